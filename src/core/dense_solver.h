@@ -1,0 +1,49 @@
+#pragma once
+// Dense symmetric saddle-point solves through LAPACKE (OpenBLAS), DESIGN.md §3:
+//
+//   [ A   P ] [x]   [b]      A: n × n symmetric (kernel block, smoothing already on its diagonal)
+//   [ Pᵀ  0 ] [c] = [0]      P: n × m polynomial block (m may be 0)
+//
+// Paths:
+//  - cholesky:            m = 0 and A positive definite (dpotrf)
+//  - nullspace-cholesky:  m > 0, A definite on null(Pᵀ) with sign `definiteSign`: P = QR
+//                         (dgeqrf), Zᵀ(±A)Z positive definite, dpotrf on it (n − m unknowns)
+//  - ldlt:                Bunch–Kaufman symmetric-indefinite factorisation (dsytrf)
+//  - lu:                  LU with partial pivoting (dgetrf)
+// Auto picks the cheapest path the kernel's definiteness allows; a failed factorisation falls
+// back to LU with a warning. Only a failed LU or a non-finite result throws NumericalError.
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace hermite {
+
+enum class SolverChoice { Auto, Cholesky, NullspaceCholesky, Ldlt, Lu };
+
+std::string_view solverName(SolverChoice s);  // auto, cholesky, nullspace-cholesky, ldlt, lu
+SolverChoice parseSolverChoice(std::string_view name);  // throws InputError
+
+struct SaddleSystem {
+  Eigen::MatrixXd A;  // n × n, symmetric; only the lower triangle must be valid
+  Eigen::MatrixXd P;  // n × m
+  Eigen::VectorXd b;  // n
+  // +1: A is positive definite on null(Pᵀ) (and on everything when m = 0); −1: negative
+  // definite there; 0: no known definiteness (indefinite paths only).
+  int definiteSign = 0;
+};
+
+struct SaddleSolution {
+  Eigen::VectorXd x;  // n
+  Eigen::VectorXd c;  // m
+  std::string solver;              // the path that produced x: cholesky, nullspace-cholesky, ldlt, lu
+  double conditionEstimate = 0;    // 1-norm estimate of the factorised matrix (LAPACK ?con)
+  std::vector<std::string> warnings;
+};
+
+// Solves the system; A may be overwritten (it is taken by value where the caller moves it).
+SaddleSolution solveSaddle(SaddleSystem system, SolverChoice choice = SolverChoice::Auto);
+
+}  // namespace hermite

@@ -1,0 +1,57 @@
+#pragma once
+// Hermite RBF implicit (DESIGN.md §3):
+//   f(x) = Σⱼ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x),   cⱼ = pⱼ,
+// with f(pᵢ) = 0, ∇f(pᵢ) = nᵢ and Σⱼ αⱼ q(pⱼ) + βⱼ·∇q(pⱼ) = 0 for every monomial q.
+
+#include <string>
+#include <vector>
+
+#include "core/dense_solver.h"
+#include "core/hermite_samples.h"
+#include "core/kernels.h"
+#include "core/polynomial.h"
+#include "core/radial_sum.h"
+
+namespace hermite {
+
+struct HrbfOptions {
+  Kernel kernel{KernelType::Cubic, 1.0};
+  Polynomial polynomial = Polynomial::Linear;  // linear: enough for every kernel but polyharmonic
+  double smoothing = 0.0;                      // λ ≥ 0; 0 = interpolation
+  SolverChoice solver = SolverChoice::Auto;    // auto: cheapest path the kernel allows
+};
+
+// What a fit reports besides the model (the `fit --json` keys come from here).
+struct FitReport {
+  int nSamples = 0;
+  int nUnknowns = 0;
+  std::string solver;
+  double conditionEstimate = 0;
+  double fitMs = 0;  // assembly + factorisation + solve, wall clock
+  std::vector<std::string> warnings;
+};
+
+template <int Dim>
+class HrbfModel : public RadialSum<Dim> {
+ public:
+  HrbfModel() = default;
+  HrbfModel(Kernel kernel, Polynomial polynomial, Points<Dim> centres, Eigen::VectorXd alpha,
+            Points<Dim> beta, Eigen::VectorXd poly)
+      : RadialSum<Dim>(kernel, polynomial, std::move(centres), std::move(alpha), std::move(beta),
+                       std::move(poly)) {}
+};
+
+// Fits the HRBF to validated samples. Throws NumericalError when no solver path succeeds or the
+// coefficients are not finite; warnings (order, conditioning, fallback) go to the report.
+template <int Dim>
+HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options,
+                       FitReport* report = nullptr);
+
+// Warnings every fit shares: polynomial below the kernel's order (DESIGN.md §3).
+std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomial polynomial);
+
+// Definiteness of the kernel block on null(Pᵀ) for the solver, or 0 when unknown
+// (polynomial below the order, or smoothing with the wrong sign).
+int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoothing);
+
+}  // namespace hermite

@@ -1,0 +1,32 @@
+#pragma once
+// Oriented point files (DESIGN.md §4):
+//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: an error for now)
+//   .xyn                  2D: x y nx ny per line
+// Blank lines and lines starting with '#' are skipped. A malformed line is an InputError
+// "FILE:LINE: ..." saying what was expected. PLY, OBJ and glTF readers plug in here later
+// (io_ply, io_gltf) behind the same loadPointFile entry points.
+
+#include <string>
+#include <vector>
+
+#include "core/hermite_samples.h"
+
+namespace hermite {
+
+// Dimension a point file's extension implies (2 for .xyn, 3 otherwise); InputError for an
+// unknown extension, listing the supported ones.
+int pointFileDimension(const std::string& path);
+
+// Loads and validates (validateSamples) a point file; warnings are appended.
+HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings);
+HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings);
+
+// Reads probe points for `eval --at FILE`: Dim numbers per line (extra columns are an error).
+Points<2> loadProbePoints2d(const std::string& path);
+Points<3> loadProbePoints3d(const std::string& path);
+
+// Writes samples as .xyzn / .xyn (temporary + rename).
+void savePointFile(const std::string& path, const HermiteSamples<3>& samples);
+void savePointFile(const std::string& path, const HermiteSamples<2>& samples);
+
+}  // namespace hermite
