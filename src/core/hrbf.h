@@ -41,6 +41,11 @@ class HrbfModel : public RadialSum<Dim> {
                        std::move(poly)) {}
 };
 
+// The saddle system of the fit (kernel block with smoothing, polynomial block, right-hand side),
+// unknowns ordered per centre as [αⱼ, βⱼ]; for tests, diagnostics and the r explorer.
+template <int Dim>
+SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options);
+
 // Fits the HRBF to validated samples. Throws NumericalError when no solver path succeeds or the
 // coefficients are not finite; warnings (order, conditioning, fallback) go to the report.
 template <int Dim>

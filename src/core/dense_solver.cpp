@@ -1,0 +1,257 @@
+#include "core/dense_solver.h"
+
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <string>
+
+#include <lapacke.h>
+
+#include "core/errors.h"
+
+namespace hermite {
+
+namespace {
+
+using Index = Eigen::Index;
+constexpr double kIllConditioned = 1e12;  // condition estimates above this get a warning
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+lapack_int toLapack(Index n) { return static_cast<lapack_int>(n); }
+
+// Restores the lower triangle of a symmetric matrix from its (untouched) upper triangle.
+void restoreLowerFromUpper(Eigen::MatrixXd& M) {
+  M.triangularView<Eigen::StrictlyLower>() = M.transpose().triangularView<Eigen::StrictlyLower>();
+}
+
+struct Factorised {
+  bool ok = false;
+  std::string failure;  // why the factorisation failed
+  double rcond = 0;
+};
+
+// Cholesky of sign·M (lower triangle) in place; solves sign·M y = sign·rhs in place of rhs.
+Factorised choleskySolve(Eigen::MatrixXd& M, double sign, Eigen::Ref<Eigen::MatrixXd> rhs) {
+  Factorised out;
+  const lapack_int n = toLapack(M.rows());
+  if (sign < 0) M.triangularView<Eigen::Lower>() *= -1.0;
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, M.data(), n);
+  const lapack_int info = LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, M.data(), n);
+  if (info != 0) {
+    out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
+                                 " of " + std::to_string(n) + ")"
+                           : "Cholesky: invalid argument " + std::to_string(-info);
+    return out;
+  }
+  LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', n, M.data(), n, anorm, &out.rcond);
+  if (sign < 0) rhs *= -1.0;
+  LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', n, static_cast<lapack_int>(rhs.cols()), M.data(), n, rhs.data(),
+                 static_cast<lapack_int>(rhs.outerStride()));
+  out.ok = true;
+  return out;
+}
+
+// Full saddle matrix K = [[A, P], [Pᵀ, 0]] (both triangles).
+Eigen::MatrixXd saddleMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& P) {
+  const Index n = A.rows(), m = P.cols();
+  Eigen::MatrixXd K(n + m, n + m);
+  K.topLeftCorner(n, n) = A;
+  K.topRightCorner(n, m) = P;
+  K.bottomLeftCorner(m, n) = P.transpose();
+  K.bottomRightCorner(m, m).setZero();
+  return K;
+}
+
+Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
+  Factorised out;
+  const lapack_int n = toLapack(K.rows());
+  std::vector<lapack_int> ipiv(n);
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, K.data(), n);
+  const lapack_int info = LAPACKE_dsytrf(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data());
+  if (info != 0) {
+    out.failure = info > 0 ? "symmetric-indefinite LDLᵀ: D(" + std::to_string(info) + "," +
+                                 std::to_string(info) + ") is exactly zero (singular)"
+                           : "LDLᵀ: invalid argument " + std::to_string(-info);
+    return out;
+  }
+  LAPACKE_dsycon(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data(), anorm, &out.rcond);
+  LAPACKE_dsytrs(LAPACK_COL_MAJOR, 'L', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
+  out.ok = true;
+  return out;
+}
+
+Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
+  Factorised out;
+  const lapack_int n = toLapack(K.rows());
+  std::vector<lapack_int> ipiv(n);
+  const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, K.data(), n);
+  const lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, K.data(), n, ipiv.data());
+  if (info != 0) {
+    out.failure = info > 0 ? "LU: U(" + std::to_string(info) + "," + std::to_string(info) +
+                                 ") is exactly zero (the system is singular)"
+                           : "LU: invalid argument " + std::to_string(-info);
+    return out;
+  }
+  LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, K.data(), n, anorm, &out.rcond);
+  LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
+  out.ok = true;
+  return out;
+}
+
+// QR of P (n × m) in place, with a rank check: the polynomial term must be determined by the
+// data, otherwise the saddle system is singular whatever the kernel.
+void factorPolynomialBlock(Eigen::MatrixXd& QR, Eigen::VectorXd& tau) {
+  const lapack_int n = toLapack(QR.rows()), m = toLapack(QR.cols());
+  tau.resize(m);
+  LAPACKE_dgeqrf(LAPACK_COL_MAJOR, n, m, QR.data(), n, tau.data());
+  const Eigen::VectorXd diag = QR.topLeftCorner(m, m).diagonal().cwiseAbs();
+  const double biggest = diag.maxCoeff();
+  for (lapack_int k = 0; k < m; ++k) {
+    if (!(diag(k) > 1e-12 * biggest)) {
+      throw NumericalError("singular system: the samples do not determine the polynomial term (column " +
+                           std::to_string(k) + " of the polynomial block is dependent on the others; "
+                           "use a lower polynomial degree or more, non-degenerate samples)");
+    }
+  }
+}
+
+// Applies Q or Qᵀ (from factorPolynomialBlock) to M from the left ('L') or right ('R').
+void applyQ(const Eigen::MatrixXd& QR, const Eigen::VectorXd& tau, char side, char trans, Eigen::Ref<Eigen::MatrixXd> M) {
+  LAPACKE_dormqr(LAPACK_COL_MAJOR, side, trans, toLapack(M.rows()), toLapack(M.cols()), toLapack(QR.cols()),
+                 QR.data(), toLapack(QR.rows()), tau.data(), M.data(), toLapack(M.outerStride()));
+}
+
+bool allFinite(const Eigen::MatrixXd& M) { return M.allFinite(); }
+
+}  // namespace
+
+std::string_view solverName(SolverChoice s) {
+  switch (s) {
+    case SolverChoice::Auto: return "auto";
+    case SolverChoice::Cholesky: return "cholesky";
+    case SolverChoice::NullspaceCholesky: return "nullspace-cholesky";
+    case SolverChoice::Ldlt: return "ldlt";
+    case SolverChoice::Lu: return "lu";
+  }
+  return "?";
+}
+
+SolverChoice parseSolverChoice(std::string_view name) {
+  for (SolverChoice s : {SolverChoice::Auto, SolverChoice::Cholesky, SolverChoice::NullspaceCholesky,
+                         SolverChoice::Ldlt, SolverChoice::Lu})
+    if (solverName(s) == name) return s;
+  throw InputError("unknown solver '" + std::string(name) +
+                   "', expected one of: auto, cholesky, nullspace-cholesky, ldlt, lu");
+}
+
+SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
+  const Index n = sys.A.rows(), m = sys.P.cols();
+  if (sys.A.cols() != n || sys.P.rows() != n || sys.b.size() != n)
+    throw NumericalError("solveSaddle: inconsistent shapes");
+  // Both triangles valid from here on: a failed Cholesky only touches the lower one.
+  sys.A.triangularView<Eigen::StrictlyUpper>() = sys.A.transpose().triangularView<Eigen::StrictlyUpper>();
+  if (!allFinite(sys.A) || !allFinite(sys.P) || !sys.b.allFinite())
+    throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
+
+  SaddleSolution out;
+  Eigen::MatrixXd QR;
+  Eigen::VectorXd tau;
+  if (m > 0) {
+    QR = sys.P;
+    factorPolynomialBlock(QR, tau);
+  }
+
+  if (choice == SolverChoice::Auto) {
+    if (sys.definiteSign != 0)
+      choice = m == 0 ? SolverChoice::Cholesky : SolverChoice::NullspaceCholesky;
+    else
+      choice = SolverChoice::Ldlt;
+  }
+  if (choice == SolverChoice::Cholesky && m > 0) {
+    out.warnings.push_back("cholesky needs a system without polynomial term; using nullspace-cholesky");
+    choice = SolverChoice::NullspaceCholesky;
+  }
+  if (choice == SolverChoice::NullspaceCholesky && m == 0) choice = SolverChoice::Cholesky;
+  const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
+
+  Factorised fact;
+  if (choice == SolverChoice::Cholesky) {
+    out.x = sys.b;
+    fact = choleskySolve(sys.A, sign, out.x);
+    if (fact.ok) {
+      out.solver = "cholesky";
+      out.c.resize(0);
+    } else {
+      restoreLowerFromUpper(sys.A);
+    }
+  } else if (choice == SolverChoice::NullspaceCholesky) {
+    // B = Qᵀ A Q; the trailing (n − m) block is Zᵀ A Z with Z spanning null(Pᵀ).
+    Eigen::MatrixXd& B = sys.A;
+    applyQ(QR, tau, 'L', 'T', B);
+    applyQ(QR, tau, 'R', 'N', B);
+    Eigen::VectorXd bq = sys.b;
+    applyQ(QR, tau, 'L', 'T', bq);
+    Eigen::MatrixXd B22 = B.bottomRightCorner(n - m, n - m);
+    Eigen::VectorXd y = bq.tail(n - m);
+    fact = choleskySolve(B22, sign, y);
+    if (fact.ok) {
+      out.solver = "nullspace-cholesky";
+      // R c = (Qᵀ b)₁ − B₁₂ y
+      Eigen::VectorXd rhs = bq.head(m) - B.topRightCorner(m, n - m) * y;
+      out.c = QR.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(rhs);
+      out.x = Eigen::VectorXd::Zero(n);
+      out.x.tail(n - m) = y;
+      applyQ(QR, tau, 'L', 'N', out.x);
+    } else {
+      // Undo the projection for the fallback: A = Q B Qᵀ.
+      applyQ(QR, tau, 'L', 'N', B);
+      applyQ(QR, tau, 'R', 'T', B);
+    }
+  }
+
+  if (!fact.ok && (choice == SolverChoice::Cholesky || choice == SolverChoice::NullspaceCholesky)) {
+    out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
+    choice = SolverChoice::Lu;
+  }
+  if (choice == SolverChoice::Ldlt || choice == SolverChoice::Lu) {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+    rhs.head(n) = sys.b;
+    Eigen::MatrixXd K = m > 0 ? saddleMatrix(sys.A, sys.P) : std::move(sys.A);
+    if (choice == SolverChoice::Ldlt) {
+      Eigen::MatrixXd Kcopy = K;  // kept for the LU fallback
+      Eigen::VectorXd r = rhs;
+      fact = ldltSolve(K, r);
+      if (fact.ok) {
+        out.solver = "ldlt";
+        rhs = r;
+      } else {
+        out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
+        K = std::move(Kcopy);
+        choice = SolverChoice::Lu;
+      }
+    }
+    if (choice == SolverChoice::Lu) {
+      fact = luSolve(K, rhs);
+      if (!fact.ok) throw NumericalError("singular system: " + fact.failure);
+      out.solver = "lu";
+    }
+    out.x = rhs.head(n);
+    out.c = rhs.tail(m);
+  }
+
+  out.conditionEstimate = fact.rcond > 0 ? 1.0 / fact.rcond : std::numeric_limits<double>::infinity();
+  if (!out.x.allFinite() || !out.c.allFinite())
+    throw NumericalError("the solution is not finite (solver " + out.solver + ", condition estimate " +
+                         fmt(out.conditionEstimate) + ")");
+  if (out.conditionEstimate > kIllConditioned)
+    out.warnings.push_back("ill-conditioned system: condition estimate " + fmt(out.conditionEstimate) +
+                           " (" + out.solver + "); expect lost digits in the coefficients");
+  return out;
+}
+
+}  // namespace hermite

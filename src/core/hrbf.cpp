@@ -1,0 +1,121 @@
+#include "core/hrbf.h"
+
+#include <chrono>
+#include <string>
+
+#include "core/errors.h"
+
+namespace hermite {
+
+std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomial polynomial) {
+  std::vector<std::string> w;
+  const int order = kernel.cpdOrder();
+  if (polynomialDegree(polynomial) < order - 1) {
+    w.push_back("polynomial '" + std::string(polynomialName(polynomial)) + "' is below the order of kernel '" +
+                std::string(kernelName(kernel.type)) + "' (conditionally definite of order " +
+                std::to_string(order) + ": needs degree ≥ " + std::to_string(order - 1) +
+                "); the system is not guaranteed to be solvable");
+  }
+  return w;
+}
+
+int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoothing) {
+  if (smoothing < 0) return 0;
+  if (polynomialDegree(polynomial) < kernel.cpdOrder() - 1) return 0;
+  return kernel.smoothingSign() > 0 ? 1 : -1;
+}
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+template <int Dim>
+SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options) {
+  const int N = samples.size();
+  if (N < 1) throw InputError("HRBF fit: no samples");
+  if (!(options.smoothing >= 0)) throw InputError("HRBF fit: smoothing must be ≥ 0");
+  const Kernel& kernel = options.kernel;
+  if (kernel.usesRadius() && !(kernel.radius > 0)) throw InputError("HRBF fit: radius must be > 0");
+  constexpr int B = Dim + 1;  // unknowns per centre: α, β (Dim); rows per sample: f, ∇f (Dim)
+  const int m = monomialCount<Dim>(options.polynomial);
+  const Eigen::Index n = Eigen::Index(N) * B;
+
+  SaddleSystem sys;
+  sys.A.resize(n, n);
+  sys.P.resize(n, m);
+  sys.b.setZero(n);
+  sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
+  const double lambda = kernel.smoothingSign() * options.smoothing;
+  const Points<Dim>& p = samples.points;
+
+  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ):
+  //   [ φ      −a dᵀ        ]
+  //   [ a d    −(aI + e ddᵀ) ]    d = pᵢ − pⱼ  (symmetric overall: the functionals are δ, ∇)
+#pragma omp parallel for schedule(dynamic, 8)
+  for (int j = 0; j < N; ++j) {
+    for (int i = j; i < N; ++i) {
+      const Vec<Dim> d = p.col(i) - p.col(j);
+      const RadialTerms t = kernel.terms(d.norm());
+      auto blk = sys.A.template block<B, B>(Eigen::Index(i) * B, Eigen::Index(j) * B);
+      blk(0, 0) = t.phi;
+      blk.template block<1, Dim>(0, 1) = -t.a * d.transpose();
+      blk.template block<Dim, 1>(1, 0) = t.a * d;
+      blk.template block<Dim, Dim>(1, 1) = -(t.a * Mat<Dim>::Identity() + t.e * d * d.transpose());
+    }
+  }
+  if (lambda != 0) sys.A.diagonal().array() += lambda;
+  for (int i = 0; i < N; ++i) {
+    sys.b.template segment<Dim>(Eigen::Index(i) * B + 1) = samples.normals.col(i);
+    if (m > 0) {
+      Eigen::VectorXd q(m);
+      Eigen::Matrix<double, Dim, Eigen::Dynamic> gq(Dim, m);
+      monomials<Dim>(options.polynomial, p.col(i), q, gq);
+      sys.P.row(Eigen::Index(i) * B) = q.transpose();
+      sys.P.middleRows(Eigen::Index(i) * B + 1, Dim) = gq;
+    }
+  }
+  return sys;
+}
+
+template <int Dim>
+HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options, FitReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SaddleSystem sys = assembleHrbf(samples, options);
+  const Kernel& kernel = options.kernel;
+  constexpr int B = Dim + 1;
+  const int N = samples.size();
+  const int m = monomialCount<Dim>(options.polynomial);
+  const Eigen::Index n = Eigen::Index(N) * B;
+  const Points<Dim>& p = samples.points;
+  std::vector<std::string> warnings = polynomialOrderWarnings(kernel, options.polynomial);
+  SaddleSolution sol = solveSaddle(std::move(sys), options.solver);
+  warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
+
+  Eigen::VectorXd alpha(N);
+  Points<Dim> beta(Dim, N);
+  for (int j = 0; j < N; ++j) {
+    alpha(j) = sol.x(Eigen::Index(j) * B);
+    beta.col(j) = sol.x.template segment<Dim>(Eigen::Index(j) * B + 1);
+  }
+  HrbfModel<Dim> model(kernel, options.polynomial, p, std::move(alpha), std::move(beta), std::move(sol.c));
+  if (report) {
+    report->nSamples = N;
+    report->nUnknowns = static_cast<int>(n + m);
+    report->solver = sol.solver;
+    report->conditionEstimate = sol.conditionEstimate;
+    report->warnings = std::move(warnings);
+    report->fitMs = msSince(t0);
+  }
+  return model;
+}
+
+template SaddleSystem assembleHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&);
+template SaddleSystem assembleHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&);
+template HrbfModel<2> fitHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&, FitReport*);
+template HrbfModel<3> fitHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&, FitReport*);
+
+}  // namespace hermite
