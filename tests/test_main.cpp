@@ -1,2 +1,9 @@
-#define DOCTEST_CONFIG_IMPLEMENT_WITH_MAIN
+#define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
+
+#include "core/blas_setup.h"
+
+int main(int argc, char** argv) {
+  hermite::reexecWithTunedBlas(argv);
+  return doctest::Context(argc, argv).run();
+}

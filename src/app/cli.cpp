@@ -1,7 +1,136 @@
 #include "app/cli.h"
 
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands.h"
+#include "app/output.h"
+#include "core/errors.h"
+#include "core/threading.h"
+
 namespace hermite::app {
 
-int runCli(int, char**) { return 0; }
+namespace {
+
+constexpr const char* kUsage =
+    "hermite-lab: Hermite data (points + normals) fitted by Hermite RBF implicits.\n"
+    "\n"
+    "usage:\n"
+    "  hermite-lab [SCENE] [--set KEY=VALUE ...]       fit report of SCENE (default: the demo scene)\n"
+    "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
+    "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
+    "  hermite-lab bench [--json] [--only NAME]\n"
+    "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
+
+void addSceneOptions(CLI::App& cmd, SceneArgs& scene, bool required) {
+  auto* opt = cmd.add_option("scene", scene.scenePath, "scene file (JSON, DESIGN.md §4)");
+  if (required) opt->required();
+  cmd.add_option("--set", scene.overrides, "override a scene key: KEY=VALUE (VALUE is JSON or a string)")
+      ->take_all()
+      ->allow_extra_args(false);
+}
+
+void addThreads(CLI::App& cmd, int& threads) {
+  cmd.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+}
+
+// Parses with CLI11; returns -1 to go on, or the exit code (0 for --help, 2 for usage errors).
+int parse(CLI::App& cmd, int argc, char** argv) {
+  try {
+    cmd.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cmd.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cmd.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "hermite-lab: %s\n", e.what());
+    std::fprintf(stderr, "run 'hermite-lab %s --help' for usage\n", cmd.get_name().c_str());
+    return 2;
+  }
+  return -1;
+}
+
+int dispatch(int argc, char** argv) {
+  const std::string first = argc > 1 ? argv[1] : "";
+  int threads = 0;
+  if (first == "fit") {
+    FitArgs a;
+    CLI::App cmd("fit a scene and report residuals, solver and timing", "fit");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_flag("--coefficients", a.coefficients, "also print the fitted model (centres, alpha, beta, poly)");
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runFit(a);
+  }
+  if (first == "eval") {
+    EvalArgs a;
+    CLI::App cmd("evaluate the fitted field and its gradient at points read from a file", "eval");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("--at", a.probeFile, "file with one point per line (2 or 3 numbers)")->required();
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runEval(a);
+  }
+  if (first == "bench") {
+    BenchArgs a;
+    CLI::App cmd("measure fit and evaluation speed on this machine", "bench");
+    cmd.add_flag("--json", a.json, "machine-readable output");
+    cmd.add_option("--only", a.only, "run the benchmarks whose name contains NAME");
+    cmd.add_flag("--quick", a.quick, "one repetition, small sizes (smoke test)");
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runBench(a);
+  }
+  if (first == "--help" || first == "-h" || first == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  // No subcommand: the program's main job on SCENE (or the demo scene).
+  SceneArgs a;
+  CLI::App cmd("Hermite Lab", "hermite-lab");
+  addSceneOptions(cmd, a, false);
+  addThreads(cmd, threads);
+  if (int rc = parse(cmd, argc, argv); rc >= 0) return rc;
+  if (threads > 0) setThreadCount(threads);
+  return runDefault(a);
+}
+
+}  // namespace
+
+int runCli(int argc, char** argv) {
+  try {
+    const int rc = dispatch(argc, argv);
+    finishStdout();
+    return rc;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "usage error: %s\n", e.what());
+    return 2;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "numerical failure: %s\n", e.what());
+    return 3;
+  } catch (const EnvironmentError& e) {
+    std::fprintf(stderr, "environment error: %s\n", e.what());
+    return 4;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "environment error: out of memory\n");
+    return 4;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    return 4;
+  }
+}
 
 }  // namespace hermite::app

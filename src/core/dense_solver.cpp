@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <string>
 
+#include <cblas.h>
 #include <lapacke.h>
 
 #include "core/errors.h"
@@ -35,25 +36,44 @@ struct Factorised {
   double rcond = 0;
 };
 
-// Cholesky of sign·M (lower triangle) in place; solves sign·M y = sign·rhs in place of rhs.
-Factorised choleskySolve(Eigen::MatrixXd& M, double sign, Eigen::Ref<Eigen::MatrixXd> rhs) {
+// Cholesky of sign·M in place, M = the k × k block at `M` with leading dimension `ld` (lower
+// triangle only; the upper triangle is left untouched so a failure can be undone). Solves
+// sign·M y = sign·rhs in place of rhs.
+Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs) {
   Factorised out;
-  const lapack_int n = toLapack(M.rows());
-  if (sign < 0) M.triangularView<Eigen::Lower>() *= -1.0;
-  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, M.data(), n);
-  const lapack_int info = LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', n, M.data(), n);
+  if (sign < 0)
+    for (lapack_int j = 0; j < k; ++j)
+      for (lapack_int i = j; i < k; ++i) M[size_t(j) * ld + i] = -M[size_t(j) * ld + i];
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', k, M, ld);
+  const lapack_int info = LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', k, M, ld);
   if (info != 0) {
     out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
-                                 " of " + std::to_string(n) + ")"
+                                 " of " + std::to_string(k) + ")"
                            : "Cholesky: invalid argument " + std::to_string(-info);
     return out;
   }
-  LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', n, M.data(), n, anorm, &out.rcond);
+  LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', k, M, ld, anorm, &out.rcond);
   if (sign < 0) rhs *= -1.0;
-  LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', n, static_cast<lapack_int>(rhs.cols()), M.data(), n, rhs.data(),
-                 static_cast<lapack_int>(rhs.outerStride()));
+  LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
   out.ok = true;
   return out;
+}
+
+// Replaces the lower triangle of the symmetric A (n × n, both triangles valid) by that of
+// B = Qᵀ A Q, Q = I − V T Vᵀ from the QR of P, leaving the upper triangle (= A) untouched.
+// With Y = A V T and W = Tᵀ Vᵀ Y (symmetric): B = A − Z Vᵀ − V Zᵀ, Z = Y − ½ V W — one symmetric
+// product and one rank-2m update of the lower triangle, as in LAPACK's dsytrd.
+void projectLower(Eigen::MatrixXd& A, const Eigen::MatrixXd& QR, const Eigen::VectorXd& tau) {
+  const lapack_int n = toLapack(A.rows()), m = toLapack(QR.cols());
+  Eigen::MatrixXd V = QR.triangularView<Eigen::UnitLower>();
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
+  LAPACKE_dlarft(LAPACK_COL_MAJOR, 'F', 'C', n, m, V.data(), n, tau.data(), T.data(), m);
+  Eigen::MatrixXd AV(n, m);
+  cblas_dsymm(CblasColMajor, CblasLeft, CblasUpper, n, m, 1.0, A.data(), n, V.data(), n, 0.0, AV.data(), n);
+  const Eigen::MatrixXd Y = AV * T.triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd W = T.triangularView<Eigen::Upper>().transpose() * (V.transpose() * Y);
+  const Eigen::MatrixXd Z = Y - 0.5 * V * W;
+  cblas_dsyr2k(CblasColMajor, CblasLower, CblasNoTrans, n, m, -1.0, Z.data(), n, V.data(), n, 1.0, A.data(), n);
 }
 
 // Full saddle matrix K = [[A, P], [Pᵀ, 0]] (both triangles).
@@ -153,8 +173,6 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   const Index n = sys.A.rows(), m = sys.P.cols();
   if (sys.A.cols() != n || sys.P.rows() != n || sys.b.size() != n)
     throw NumericalError("solveSaddle: inconsistent shapes");
-  // Both triangles valid from here on: a failed Cholesky only touches the lower one.
-  sys.A.triangularView<Eigen::StrictlyUpper>() = sys.A.transpose().triangularView<Eigen::StrictlyUpper>();
   if (!allFinite(sys.A) || !allFinite(sys.P) || !sys.b.allFinite())
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
 
@@ -182,7 +200,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   Factorised fact;
   if (choice == SolverChoice::Cholesky) {
     out.x = sys.b;
-    fact = choleskySolve(sys.A, sign, out.x);
+    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x);
     if (fact.ok) {
       out.solver = "cholesky";
       out.c.resize(0);
@@ -190,27 +208,23 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       restoreLowerFromUpper(sys.A);
     }
   } else if (choice == SolverChoice::NullspaceCholesky) {
-    // B = Qᵀ A Q; the trailing (n − m) block is Zᵀ A Z with Z spanning null(Pᵀ).
-    Eigen::MatrixXd& B = sys.A;
-    applyQ(QR, tau, 'L', 'T', B);
-    applyQ(QR, tau, 'R', 'N', B);
+    // Lower triangle of A := that of B = Qᵀ A Q; its trailing (n − m) block is Zᵀ A Z with Z
+    // spanning null(Pᵀ): the unknowns x = Q [0; y] satisfy Pᵀx = 0 by construction.
+    projectLower(sys.A, QR, tau);
     Eigen::VectorXd bq = sys.b;
     applyQ(QR, tau, 'L', 'T', bq);
-    Eigen::MatrixXd B22 = B.bottomRightCorner(n - m, n - m);
     Eigen::VectorXd y = bq.tail(n - m);
-    fact = choleskySolve(B22, sign, y);
+    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y);
     if (fact.ok) {
       out.solver = "nullspace-cholesky";
-      // R c = (Qᵀ b)₁ − B₁₂ y
-      Eigen::VectorXd rhs = bq.head(m) - B.topRightCorner(m, n - m) * y;
+      // R c = (Qᵀ b)₁ − B₁₂ y, with B₁₂ = B₂₁ᵀ from the (untouched by dpotrf) lower part.
+      Eigen::VectorXd rhs = bq.head(m) - sys.A.block(m, 0, n - m, m).transpose() * y;
       out.c = QR.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(rhs);
       out.x = Eigen::VectorXd::Zero(n);
       out.x.tail(n - m) = y;
       applyQ(QR, tau, 'L', 'N', out.x);
     } else {
-      // Undo the projection for the fallback: A = Q B Qᵀ.
-      applyQ(QR, tau, 'L', 'N', B);
-      applyQ(QR, tau, 'R', 'T', B);
+      restoreLowerFromUpper(sys.A);  // the upper triangle still holds A
     }
   }
 

@@ -52,7 +52,7 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   const double lambda = kernel.smoothingSign() * options.smoothing;
   const Points<Dim>& p = samples.points;
 
-  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ):
+  // Both triangles (the solver needs them), block by block (row block i = conditions at pᵢ, column block j = centre pⱼ):
   //   [ φ      −a dᵀ        ]
   //   [ a d    −(aI + e ddᵀ) ]    d = pᵢ − pⱼ  (symmetric overall: the functionals are δ, ∇)
 #pragma omp parallel for schedule(dynamic, 8)
@@ -65,6 +65,8 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
       blk.template block<1, Dim>(0, 1) = -t.a * d.transpose();
       blk.template block<Dim, 1>(1, 0) = t.a * d;
       blk.template block<Dim, Dim>(1, 1) = -(t.a * Mat<Dim>::Identity() + t.e * d * d.transpose());
+      if (i != j)
+        sys.A.template block<B, B>(Eigen::Index(j) * B, Eigen::Index(i) * B) = blk.transpose();
     }
   }
   if (lambda != 0) sys.A.diagonal().array() += lambda;
@@ -92,7 +94,9 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
   const Eigen::Index n = Eigen::Index(N) * B;
   const Points<Dim>& p = samples.points;
   std::vector<std::string> warnings = polynomialOrderWarnings(kernel, options.polynomial);
+  const auto tSolve = std::chrono::steady_clock::now();
   SaddleSolution sol = solveSaddle(std::move(sys), options.solver);
+  const double solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tSolve).count();
   warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
 
   Eigen::VectorXd alpha(N);
@@ -108,6 +112,8 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
     report->solver = sol.solver;
     report->conditionEstimate = sol.conditionEstimate;
     report->warnings = std::move(warnings);
+    report->solveMs = solveMs;
+    report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - t0).count();
     report->fitMs = msSince(t0);
   }
   return model;

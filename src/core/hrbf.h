@@ -27,7 +27,9 @@ struct FitReport {
   int nUnknowns = 0;
   std::string solver;
   double conditionEstimate = 0;
-  double fitMs = 0;  // assembly + factorisation + solve, wall clock
+  double fitMs = 0;       // assembly + factorisation + solve, wall clock
+  double assemblyMs = 0;  // building the kernel and polynomial blocks
+  double solveMs = 0;     // factorisation + solve (solveSaddle)
   std::vector<std::string> warnings;
 };
 

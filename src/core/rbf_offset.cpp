@@ -34,7 +34,7 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
 #pragma omp parallel for schedule(dynamic, 16)
   for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::Index i = j; i < n; ++i) sys.A(i, j) = kernel.phi((centres.col(i) - centres.col(j)).norm());
+    for (Eigen::Index i = j; i < n; ++i) sys.A(i, j) = sys.A(j, i) = kernel.phi((centres.col(i) - centres.col(j)).norm());
   if (options.smoothing != 0) sys.A.diagonal().array() += kernel.smoothingSign() * options.smoothing;
   if (m > 0) {
     Eigen::VectorXd q(m);
@@ -46,7 +46,9 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   }
 
   std::vector<std::string> warnings = polynomialOrderWarnings(kernel, options.polynomial);
+  const auto tSolve = std::chrono::steady_clock::now();
   SaddleSolution sol = solveSaddle(std::move(sys), options.solver);
+  const double solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tSolve).count();
   warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
   RbfOffsetModel<Dim> model(kernel, options.polynomial, std::move(centres), std::move(sol.x), std::move(sol.c), delta);
   if (report) {
@@ -55,6 +57,8 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
     report->solver = sol.solver;
     report->conditionEstimate = sol.conditionEstimate;
     report->warnings = std::move(warnings);
+    report->solveMs = solveMs;
+    report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - t0).count();
     report->fitMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   }
   return model;

@@ -1,0 +1,142 @@
+// `hermite-lab bench [--json] [--only NAME]`: what this machine measures, median of repeats.
+//   fit3d/<kernel>/N=...     3D HRBF fit on well-spread unit-sphere points (ms, assembly +
+//                            factorisation + solve, as FitReport::fitMs)
+//   eval3d/<kernel>          value + gradient, ns per (point, centre) pair per core
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/output.h"
+#include "core/errors.h"
+#include "core/hrbf.h"
+#include "core/presets.h"
+#include "core/threading.h"
+
+namespace hermite::app {
+
+namespace {
+
+using json = nlohmann::json;
+
+struct Result {
+  std::string name;
+  json params;
+  double median;
+  std::string unit;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double nowMs() {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+struct FitCase {
+  std::string label;
+  HrbfOptions options;
+};
+
+std::vector<FitCase> fitCases() {
+  return {{"cubic-linear", {{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0}},
+          {"gaussian-r0.5", {{KernelType::Gaussian, 0.5}, Polynomial::None, 0.0}}};
+}
+
+Result benchFit(const FitCase& c, int N, int repeats) {
+  const HermiteSamples<3> s = makePreset3d("sphere", N);
+  std::vector<double> times;
+  std::string solver;
+  for (int r = 0; r < repeats; ++r) {
+    FitReport rep;
+    fitHrbf<3>(s, c.options, &rep);
+    times.push_back(rep.fitMs);
+    solver = rep.solver;
+  }
+  return {"fit3d/" + c.label + "/N=" + std::to_string(N),
+          {{"N", N}, {"kernel", std::string(kernelName(c.options.kernel.type))},
+           {"radius", c.options.kernel.radius}, {"polynomial", std::string(polynomialName(c.options.polynomial))},
+           {"solver", solver}, {"repeats", repeats}},
+          median(times), "ms"};
+}
+
+Result benchEval(const FitCase& c, int centres, int points, int repeats) {
+  const HermiteSamples<3> s = makePreset3d("sphere", centres);
+  const HrbfModel<3> model = fitHrbf<3>(s, c.options);
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  Points<3> X(3, points);
+  for (int i = 0; i < points; ++i) X.col(i) = Vec<3>(u(rng), u(rng), u(rng));
+  Eigen::VectorXd f;
+  Points<3> G;
+  model.evaluateBatch(X, f, &G);  // warm-up
+  std::vector<double> perPair;
+  const int threads = threadCount();
+  for (int r = 0; r < repeats; ++r) {
+    const double t0 = nowMs();
+    model.evaluateBatch(X, f, &G);
+    const double ms = nowMs() - t0;
+    perPair.push_back(ms * 1e6 * threads / (double(points) * centres));
+  }
+  return {"eval3d/" + c.label,
+          {{"centres", centres}, {"points", points}, {"threads", threads}, {"what", "value+gradient"},
+           {"repeats", repeats}},
+          median(perPair), "ns/pair/core"};
+}
+
+}  // namespace
+
+int runBench(const BenchArgs& args) {
+  std::vector<std::pair<std::string, std::function<Result()>>> jobs;
+  const int fitRepeats = args.quick ? 1 : 7;
+  for (const FitCase& c : fitCases()) {
+    for (int N : {100, 250, 500, 1000}) {
+      const int repeats = args.quick ? 1 : (N >= 1000 ? 5 : fitRepeats);
+      jobs.emplace_back("fit3d/" + c.label + "/N=" + std::to_string(N), [c, N, repeats] { return benchFit(c, N, repeats); });
+    }
+  }
+  for (const FitCase& c : fitCases()) {
+    const int points = args.quick ? 2000 : 20000;
+    const int repeats = args.quick ? 1 : 7;
+    jobs.emplace_back("eval3d/" + c.label, [c, points, repeats] { return benchEval(c, 1000, points, repeats); });
+  }
+
+  std::vector<Result> results;
+  for (auto& [name, job] : jobs) {
+    if (!args.only.empty() && name.find(args.only) == std::string::npos) continue;
+    results.push_back(job());
+    if (!args.json) {
+      char line[256];
+      std::snprintf(line, sizeof line, "%-32s %12.4g %s\n", results.back().name.c_str(), results.back().median,
+                    results.back().unit.c_str());
+      writeStdout(line);
+      std::fflush(stdout);
+    }
+  }
+  if (results.empty()) throw UsageError("bench --only '" + args.only + "' matches no benchmark");
+  if (args.json) {
+    json out;
+    out["cores"] = availableCores();
+    out["threads"] = threadCount();
+    json arr = json::array();
+    for (const Result& r : results)
+      arr.push_back({{"name", r.name}, {"params", r.params}, {"median", r.median}, {"unit", r.unit}});
+    out["results"] = std::move(arr);
+    writeStdout(out.dump(2) + "\n");
+  } else {
+    writeStdout("cores " + std::to_string(availableCores()) + ", threads " + std::to_string(threadCount()) + "\n");
+  }
+  return 0;
+}
+
+}  // namespace hermite::app

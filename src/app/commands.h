@@ -1,0 +1,39 @@
+#pragma once
+// The subcommands of hermite-lab (DESIGN.md §5). Each returns the process exit code and
+// throws hermite errors (errors.h) that runCli maps to exit codes.
+
+#include <string>
+#include <vector>
+
+namespace hermite::app {
+
+struct SceneArgs {
+  std::string scenePath;                // empty: the built-in demo scene
+  std::vector<std::string> overrides;   // --set KEY=VALUE, in order
+};
+
+struct FitArgs {
+  SceneArgs scene;
+  bool json = false;
+  bool coefficients = false;
+};
+int runFit(const FitArgs& args);
+
+struct EvalArgs {
+  SceneArgs scene;
+  std::string probeFile;  // --at FILE
+};
+int runEval(const EvalArgs& args);
+
+struct BenchArgs {
+  bool json = false;
+  std::string only;  // substring of the benchmark names to run; empty = all
+  bool quick = false;  // fewer repetitions (used by tests)
+};
+int runBench(const BenchArgs& args);
+
+// The program's main job without a subcommand: the GUI when one exists and a display is
+// there; in this version the fit report of the scene (or of the demo scene).
+int runDefault(const SceneArgs& args);
+
+}  // namespace hermite::app
