@@ -25,9 +25,11 @@ std::string fmt(double v) {
 
 lapack_int toLapack(Index n) { return static_cast<lapack_int>(n); }
 
-// Restores the lower triangle of a symmetric matrix from its (untouched) upper triangle.
-void restoreLowerFromUpper(Eigen::MatrixXd& M) {
+// Restores a symmetric matrix whose lower triangle and diagonal were overwritten (by dpotrf or
+// the projection) from its untouched upper triangle and a saved copy of the diagonal.
+void restoreSymmetric(Eigen::MatrixXd& M, const Eigen::VectorXd& diagonal) {
   M.triangularView<Eigen::StrictlyLower>() = M.transpose().triangularView<Eigen::StrictlyLower>();
+  M.diagonal() = diagonal;
 }
 
 struct Factorised {
@@ -197,6 +199,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   if (choice == SolverChoice::NullspaceCholesky && m == 0) choice = SolverChoice::Cholesky;
   const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
 
+  const Eigen::VectorXd diagonal = sys.A.diagonal();  // for restoring A after a failed Cholesky
   Factorised fact;
   if (choice == SolverChoice::Cholesky) {
     out.x = sys.b;
@@ -205,7 +208,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       out.solver = "cholesky";
       out.c.resize(0);
     } else {
-      restoreLowerFromUpper(sys.A);
+      restoreSymmetric(sys.A, diagonal);
     }
   } else if (choice == SolverChoice::NullspaceCholesky) {
     // Lower triangle of A := that of B = Qᵀ A Q; its trailing (n − m) block is Zᵀ A Z with Z
@@ -224,7 +227,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       out.x.tail(n - m) = y;
       applyQ(QR, tau, 'L', 'N', out.x);
     } else {
-      restoreLowerFromUpper(sys.A);  // the upper triangle still holds A
+      restoreSymmetric(sys.A, diagonal);  // the upper triangle still holds A
     }
   }
 
