@@ -1,5 +1,6 @@
 #include "core/dense_solver.h"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <cstdio>
@@ -32,6 +33,21 @@ void restoreSymmetric(Eigen::MatrixXd& M, const Eigen::VectorXd& diagonal) {
   M.diagonal() = diagonal;
 }
 
+// Records the wall-clock time since the previous lap under a phase name.
+class PhaseClock {
+ public:
+  explicit PhaseClock(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
+  void lap(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    out_.emplace_back(name, std::chrono::duration<double, std::milli>(now - last_).count());
+    last_ = now;
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>>& out_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 struct Factorised {
   bool ok = false;
   std::string failure;  // why the factorisation failed
@@ -41,13 +57,15 @@ struct Factorised {
 // Cholesky of sign·M in place, M = the k × k block at `M` with leading dimension `ld` (lower
 // triangle only; the upper triangle is left untouched so a failure can be undone). Solves
 // sign·M y = sign·rhs in place of rhs.
-Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs) {
+Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs,
+                         PhaseClock& clock) {
   Factorised out;
   if (sign < 0)
     for (lapack_int j = 0; j < k; ++j)
       for (lapack_int i = j; i < k; ++i) M[size_t(j) * ld + i] = -M[size_t(j) * ld + i];
   const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', k, M, ld);
   const lapack_int info = LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', k, M, ld);
+  clock.lap("factor");
   if (info != 0) {
     out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
                                  " of " + std::to_string(k) + ")"
@@ -55,6 +73,7 @@ Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Ei
     return out;
   }
   LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', k, M, ld, anorm, &out.rcond);
+  clock.lap("condition");
   if (sign < 0) rhs *= -1.0;
   LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
   out.ok = true;
@@ -179,11 +198,13 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
 
   SaddleSolution out;
+  PhaseClock clock(out.phaseMs);
   Eigen::MatrixXd QR;
   Eigen::VectorXd tau;
   if (m > 0) {
     QR = sys.P;
     factorPolynomialBlock(QR, tau);
+    clock.lap("qr");
   }
 
   if (choice == SolverChoice::Auto) {
@@ -203,7 +224,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   Factorised fact;
   if (choice == SolverChoice::Cholesky) {
     out.x = sys.b;
-    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x);
+    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock);
     if (fact.ok) {
       out.solver = "cholesky";
       out.c.resize(0);
@@ -214,10 +235,11 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     // Lower triangle of A := that of B = Qᵀ A Q; its trailing (n − m) block is Zᵀ A Z with Z
     // spanning null(Pᵀ): the unknowns x = Q [0; y] satisfy Pᵀx = 0 by construction.
     projectLower(sys.A, QR, tau);
+    clock.lap("project");
     Eigen::VectorXd bq = sys.b;
     applyQ(QR, tau, 'L', 'T', bq);
     Eigen::VectorXd y = bq.tail(n - m);
-    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y);
+    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y, clock);
     if (fact.ok) {
       out.solver = "nullspace-cholesky";
       // R c = (Qᵀ b)₁ − B₁₂ y, with B₁₂ = B₂₁ᵀ from the (untouched by dpotrf) lower part.
@@ -261,6 +283,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     out.c = rhs.tail(m);
   }
 
+  clock.lap("solve");
   out.conditionEstimate = fact.rcond > 0 ? 1.0 / fact.rcond : std::numeric_limits<double>::infinity();
   if (!out.x.allFinite() || !out.c.allFinite())
     throw NumericalError("the solution is not finite (solver " + out.solver + ", condition estimate " +

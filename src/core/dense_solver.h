@@ -41,6 +41,9 @@ struct SaddleSolution {
   std::string solver;              // the path that produced x: cholesky, nullspace-cholesky, ldlt, lu
   double conditionEstimate = 0;    // 1-norm estimate of the factorised matrix (LAPACK ?con)
   std::vector<std::string> warnings;
+  // Wall-clock milliseconds of each phase ("qr", "project", "factor", "condition", "solve",
+  // "fallback"), in order, for benchmarks and the diagnostics panel.
+  std::vector<std::pair<std::string, double>> phaseMs;
 };
 
 // Solves the system; A may be overwritten (it is taken by value where the caller moves it).

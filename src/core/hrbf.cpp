@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/errors.h"
+#include "core/huge_pages.h"
 
 namespace hermite {
 
@@ -46,6 +47,7 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
 
   SaddleSystem sys;
   sys.A.resize(n, n);
+  adviseHugePages(sys.A.data(), sizeof(double) * size_t(n) * size_t(n));
   sys.P.resize(n, m);
   sys.b.setZero(n);
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
