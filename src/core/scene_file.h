@@ -7,6 +7,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -24,6 +25,8 @@ enum class TraceMode { Auto, Baked, Exact };
 
 std::string_view sceneModeName(SceneMode m);  // implicit2d, implicit3d, patch, holefill
 std::string_view fitMethodName(FitMethod m);  // hrbf, rbf-offset
+std::string_view projectionName(Projection p);  // perspective, orthographic
+std::string_view traceModeName(TraceMode t);    // auto, baked, exact
 
 struct DataSpec {
   // Exactly one source is set: preset, file, or inline points/normals.
@@ -34,6 +37,7 @@ struct DataSpec {
   std::vector<std::vector<double>> points;   // inline data, each of the scene's dimension
   std::vector<std::vector<double>> normals;  // inline data, same count as points
   bool isInline() const { return preset.empty() && file.empty(); }
+  bool operator==(const DataSpec&) const = default;
 };
 
 struct PartitionSpec {
@@ -41,6 +45,7 @@ struct PartitionSpec {
   int maxPointsPerBox = 20;  // ≥ 1
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;      // ≥ 1: support = box scaled about its centre
+  bool operator==(const PartitionSpec&) const = default;
 };
 
 struct FitSpec {
@@ -52,6 +57,7 @@ struct FitSpec {
   double shift = 0.01;                        // > 0, RBF-offset δ
   SolverChoice solver = SolverChoice::Auto;   // added key: auto | cholesky | nullspace-cholesky | ldlt | lu
   PartitionSpec partition;
+  bool operator==(const FitSpec&) const = default;
 };
 
 struct TransformSpec {
@@ -60,6 +66,7 @@ struct TransformSpec {
   double rotateDeg = 0.0;                            // 2D: counter-clockwise degrees
   double scale = 1.0;                                // > 0, uniform
   bool isIdentity() const;
+  bool operator==(const TransformSpec&) const = default;
 };
 
 struct CameraSpec {
@@ -67,12 +74,14 @@ struct CameraSpec {
   std::array<double, 3> target{0, 0, 0};
   std::array<double, 3> up{0, 1, 0};
   double fovYDeg = 40.0;  // (0, 180)
+  bool operator==(const CameraSpec&) const = default;
 };
 
 struct SliceSpec {
   bool enabled = false;
   std::array<double, 3> normal{0, 0, 1};  // non-zero
   double offset = 0.0;
+  bool operator==(const SliceSpec&) const = default;
 };
 
 struct ViewSpec {
@@ -88,6 +97,7 @@ struct ViewSpec {
   bool showBounds = false;
   TraceMode trace = TraceMode::Auto;
   SliceSpec slice;
+  bool operator==(const ViewSpec&) const = default;
 };
 
 struct Scene {
@@ -99,6 +109,7 @@ struct Scene {
   ViewSpec view;
   std::string sourceName = "<scene>";  // file name used in messages
   int dimension() const { return mode == SceneMode::Implicit2d ? 2 : 3; }
+  bool operator==(const Scene&) const = default;
 };
 
 // Applies one `--set KEY=VALUE` to a JSON document before parsing: KEY is a dotted path
