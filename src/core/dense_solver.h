@@ -27,7 +27,7 @@ std::string_view solverName(SolverChoice s);  // auto, cholesky, nullspace-chole
 SolverChoice parseSolverChoice(std::string_view name);  // throws InputError
 
 struct SaddleSystem {
-  Eigen::MatrixXd A;  // n × n, symmetric, both triangles filled
+  Eigen::MatrixXd A;  // n × n, symmetric; the lower triangle is read (solveSaddle mirrors it)
   Eigen::MatrixXd P;  // n × m
   Eigen::VectorXd b;  // n
   // +1: A is positive definite on null(Pᵀ) (and on everything when m = 0); −1: negative

@@ -34,6 +34,26 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Kernel& kernel, Polynomial polynomial,
+                              int nSamples, std::chrono::steady_clock::time_point start, FitReport* report) {
+  const Eigen::Index nUnknowns = system.A.rows() + system.P.cols();
+  std::vector<std::string> warnings = polynomialOrderWarnings(kernel, polynomial);
+  const auto tSolve = std::chrono::steady_clock::now();
+  SaddleSolution sol = solveSaddle(std::move(system), solver);
+  warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
+  if (report) {
+    report->nSamples = nSamples;
+    report->nUnknowns = static_cast<int>(nUnknowns);
+    report->solver = sol.solver;
+    report->conditionEstimate = sol.conditionEstimate;
+    report->warnings = std::move(warnings);
+    report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - start).count();
+    report->solveMs = msSince(tSolve);
+    report->fitMs = msSince(start);
+  }
+  return sol;
+}
+
 template <int Dim>
 SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options) {
   const int N = samples.size();
@@ -54,7 +74,8 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   const double lambda = kernel.smoothingSign() * options.smoothing;
   const Points<Dim>& p = samples.points;
 
-  // Both triangles (the solver needs them), block by block (row block i = conditions at pᵢ, column block j = centre pⱼ):
+  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ);
+  // solveSaddle mirrors it (writing the transposed blocks here strides across columns: slower):
   //   [ φ      −a dᵀ        ]
   //   [ a d    −(aI + e ddᵀ) ]    d = pᵢ − pⱼ  (symmetric overall: the functionals are δ, ∇)
 #pragma omp parallel for schedule(dynamic, 8)
@@ -67,8 +88,6 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
       blk.template block<1, Dim>(0, 1) = -t.a * d.transpose();
       blk.template block<Dim, 1>(1, 0) = t.a * d;
       blk.template block<Dim, Dim>(1, 1) = -(t.a * Mat<Dim>::Identity() + t.e * d * d.transpose());
-      if (i != j)
-        sys.A.template block<B, B>(Eigen::Index(j) * B, Eigen::Index(i) * B) = blk.transpose();
     }
   }
   if (lambda != 0) sys.A.diagonal().array() += lambda;
@@ -92,14 +111,9 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;
   const int N = samples.size();
-  const int m = monomialCount<Dim>(options.polynomial);
-  const Eigen::Index n = Eigen::Index(N) * B;
   const Points<Dim>& p = samples.points;
-  std::vector<std::string> warnings = polynomialOrderWarnings(kernel, options.polynomial);
-  const auto tSolve = std::chrono::steady_clock::now();
-  SaddleSolution sol = solveSaddle(std::move(sys), options.solver);
-  const double solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tSolve).count();
-  warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
+  SaddleSolution sol =
+      solveFitSystem(std::move(sys), options.solver, kernel, options.polynomial, N, t0, report);
 
   Eigen::VectorXd alpha(N);
   Points<Dim> beta(Dim, N);
@@ -108,16 +122,6 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
     beta.col(j) = sol.x.template segment<Dim>(Eigen::Index(j) * B + 1);
   }
   HrbfModel<Dim> model(kernel, options.polynomial, p, std::move(alpha), std::move(beta), std::move(sol.c));
-  if (report) {
-    report->nSamples = N;
-    report->nUnknowns = static_cast<int>(n + m);
-    report->solver = sol.solver;
-    report->conditionEstimate = sol.conditionEstimate;
-    report->warnings = std::move(warnings);
-    report->solveMs = solveMs;
-    report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - t0).count();
-    report->fitMs = msSince(t0);
-  }
   return model;
 }
 

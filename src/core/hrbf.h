@@ -3,6 +3,7 @@
 //   f(x) = Σⱼ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x),   cⱼ = pⱼ,
 // with f(pᵢ) = 0, ∇f(pᵢ) = nᵢ and Σⱼ αⱼ q(pⱼ) + βⱼ·∇q(pⱼ) = 0 for every monomial q.
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -53,6 +54,11 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
 template <int Dim>
 HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options,
                        FitReport* report = nullptr);
+
+// The part every fit method shares: solves the assembled system, collects the warnings
+// (polynomial order, solver) and fills `report` (may be null); `start` is when assembly began.
+SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Kernel& kernel, Polynomial polynomial,
+                              int nSamples, std::chrono::steady_clock::time_point start, FitReport* report);
 
 // Warnings every fit shares: polynomial below the kernel's order (DESIGN.md §3).
 std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomial polynomial);

@@ -1,7 +1,10 @@
 #include "core/radial_sum.h"
 
+#include "core/radial_sum_avx512.h"
+
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 namespace hermite {
 
@@ -139,6 +142,45 @@ void RadialSum<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Poi
     bc[k] = beta ? soa_[Dim + 1 + k].data() : nullptr;
   }
   const double* al = soa_[Dim].data();
+
+#if defined(__AVX512F__)
+  // Fused AVX-512 path: one templated loop per (kernel, β?, gradient?) combination.
+  auto run = [&](auto kernelTag, auto betaTag, auto gradTag) {
+    constexpr KernelType T = decltype(kernelTag)::value;
+    constexpr bool B = decltype(betaTag)::value, WG = decltype(gradTag)::value;
+    const double r = kernel_.radius;
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Eigen::Index i = 0; i < m; ++i) {
+      Vec<Dim> gp;
+      const Vec<Dim> xi = X.col(i);
+      double fv = evaluatePolynomial<Dim>(polynomial_, poly_, xi, WG ? &gp : nullptr, nullptr);
+      double g[Dim] = {};
+      fv += detail::fusedSum<Dim, T, B, WG>(xi.data(), r, c, al, bc, padded_, g);
+      f(i) = fv;
+      if constexpr (WG)
+        for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + g[k];
+    }
+  };
+  auto withFlags = [&](auto kernelTag) {
+    using TT = std::true_type;
+    using FT = std::false_type;
+    if (beta) {
+      if (wantG) run(kernelTag, TT{}, TT{}); else run(kernelTag, TT{}, FT{});
+    } else {
+      if (wantG) run(kernelTag, FT{}, TT{}); else run(kernelTag, FT{}, FT{});
+    }
+  };
+  switch (kernel_.type) {
+    case KernelType::Cubic: withFlags(std::integral_constant<KernelType, KernelType::Cubic>{}); return;
+    case KernelType::Gaussian: withFlags(std::integral_constant<KernelType, KernelType::Gaussian>{}); return;
+    case KernelType::Wendland: withFlags(std::integral_constant<KernelType, KernelType::Wendland>{}); return;
+    case KernelType::Multiquadric: withFlags(std::integral_constant<KernelType, KernelType::Multiquadric>{}); return;
+    case KernelType::InverseMultiquadric:
+      withFlags(std::integral_constant<KernelType, KernelType::InverseMultiquadric>{});
+      return;
+    case KernelType::Polyharmonic: withFlags(std::integral_constant<KernelType, KernelType::Polyharmonic>{}); return;
+  }
+#endif
 
 #pragma omp parallel
   {

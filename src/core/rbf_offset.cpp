@@ -36,7 +36,7 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
 #pragma omp parallel for schedule(dynamic, 16)
   for (Eigen::Index j = 0; j < n; ++j)
-    for (Eigen::Index i = j; i < n; ++i) sys.A(i, j) = sys.A(j, i) = kernel.phi((centres.col(i) - centres.col(j)).norm());
+    for (Eigen::Index i = j; i < n; ++i) sys.A(i, j) = kernel.phi((centres.col(i) - centres.col(j)).norm());
   if (options.smoothing != 0) sys.A.diagonal().array() += kernel.smoothingSign() * options.smoothing;
   if (m > 0) {
     Eigen::VectorXd q(m);
@@ -47,23 +47,8 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
     }
   }
 
-  std::vector<std::string> warnings = polynomialOrderWarnings(kernel, options.polynomial);
-  const auto tSolve = std::chrono::steady_clock::now();
-  SaddleSolution sol = solveSaddle(std::move(sys), options.solver);
-  const double solveMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - tSolve).count();
-  warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
-  RbfOffsetModel<Dim> model(kernel, options.polynomial, std::move(centres), std::move(sol.x), std::move(sol.c), delta);
-  if (report) {
-    report->nSamples = N;
-    report->nUnknowns = static_cast<int>(n + m);
-    report->solver = sol.solver;
-    report->conditionEstimate = sol.conditionEstimate;
-    report->warnings = std::move(warnings);
-    report->solveMs = solveMs;
-    report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - t0).count();
-    report->fitMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  }
-  return model;
+  SaddleSolution sol = solveFitSystem(std::move(sys), options.solver, kernel, options.polynomial, N, t0, report);
+  return RbfOffsetModel<Dim>(kernel, options.polynomial, std::move(centres), std::move(sol.x), std::move(sol.c), delta);
 }
 
 template RbfOffsetModel<2> fitRbfOffset<2>(const HermiteSamples<2>&, const RbfOffsetOptions&, FitReport*);
