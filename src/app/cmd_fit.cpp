@@ -83,10 +83,11 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["warnings"] = fit.warnings;
   out["partition"] = nullptr;
   if (fit.transformed) {
-    // Coefficient updates come with the transform issue; until then the transformed model is
-    // the re-solve itself, so only its time is known.
-    out["transform"] = {{"update_ms", nullptr}, {"resolve_ms", fit.transform.resolveMs},
-                        {"max_abs_df", nullptr}, {"max_grad_diff", nullptr}, {"method", "re-solve"}};
+    const TransformReport& t = fit.transform;
+    out["transform"] = {{"update_ms", t.updateMs},       {"resolve_ms", t.resolveMs},
+                        {"max_abs_df", t.maxAbsDf},      {"max_grad_diff", t.maxGradDiff},
+                        {"method", t.method},            {"exact", t.exact},
+                        {"probes", t.probes}};
   } else {
     out["transform"] = nullptr;
   }
@@ -129,7 +130,10 @@ void printReadable(const Scene& scene, const json& j) {
   s += "fit time     " + sci(j["fit_ms"]) + " ms (assembly " + sci(j["assembly_ms"]) + " ms, solve " +
        sci(j["solve_ms"]) + " ms)\n";
   if (!j["transform"].is_null())
-    s += "transform    applied by re-solving on the transformed data (" + sci(j["transform"]["resolve_ms"]) + " ms)\n";
+    s += "transform    " + j["transform"]["method"].get<std::string>() + "; update " +
+         sci(j["transform"]["update_ms"]) + " ms, re-solve " + sci(j["transform"]["resolve_ms"]) +
+         " ms, max |df| " + sci(j["transform"]["max_abs_df"]) + ", max |d grad f| " +
+         sci(j["transform"]["max_grad_diff"]) + "\n";
   if (j["warnings"].empty()) {
     s += "warnings     none\n";
   } else {

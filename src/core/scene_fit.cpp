@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 
 #include "core/errors.h"
 #include "core/io_points.h"
@@ -81,14 +82,6 @@ Similarity<Dim> sceneSimilarity(const TransformSpec& spec) {
 }
 
 template <int Dim>
-HermiteSamples<Dim> transformSamples(const HermiteSamples<Dim>& samples, const Similarity<Dim>& T) {
-  HermiteSamples<Dim> out;
-  out.points = (T.q * (T.R * samples.points)).colwise() + T.t;
-  out.normals = T.R * samples.normals;
-  return out;
-}
-
-template <int Dim>
 SceneFit<Dim> fitScene(const Scene& scene) {
   if (scene.dimension() != Dim || (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d))
     throw InputError(scene.sourceName + ": mode: '" + std::string(sceneModeName(scene.mode)) +
@@ -111,10 +104,46 @@ SceneFit<Dim> fitScene(const Scene& scene) {
   out.warnings.insert(out.warnings.end(), out.report.warnings.begin(), out.report.warnings.end());
   if (!scene.transform.isIdentity()) {
     const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
-    const auto t0 = std::chrono::steady_clock::now();
+    TransformReport& tr = out.transform;
+    auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<RadialSum<Dim>> updated;
+    if (auto* h = dynamic_cast<const HrbfModel<Dim>*>(out.model.get()))
+      updated = std::make_unique<HrbfModel<Dim>>(transformModel<Dim>(*h, T));
+    else
+      updated = std::make_unique<RbfOffsetModel<Dim>>(
+          transformModel<Dim>(static_cast<const RbfOffsetModel<Dim>&>(*out.model), T));
+    tr.updateMs = msSince(t0);
+    const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
+    t0 = std::chrono::steady_clock::now();
     FitReport rep;
-    out.model = fitOn(transformSamples(out.samples, T), T.q, &rep);
-    out.transform.resolveMs = msSince(t0);
+    std::unique_ptr<RadialSum<Dim>> resolved = fitOn(moved, T.q, &rep);
+    tr.resolveMs = msSince(t0);
+    // Probes: the transformed samples and fixed pseudo-random points in their box grown by 25 %.
+    Box<Dim> box = boundingBox<Dim>(moved.points);
+    const Vec<Dim> grow = Vec<Dim>::Constant(0.25 * box.extent().maxCoeff());
+    box.lo -= grow;
+    box.hi += grow;
+    Points<Dim> probes(Dim, moved.size() + 256);
+    probes.leftCols(moved.size()) = moved.points;
+    std::uint64_t state = 0x9E3779B97F4A7C15ull;
+    for (Eigen::Index i = moved.size(); i < probes.cols(); ++i)
+      for (int k = 0; k < Dim; ++k) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        const double u = double(state >> 11) * 0x1.0p-53;
+        probes(k, i) = box.lo(k) + u * (box.hi(k) - box.lo(k));
+      }
+    Eigen::VectorXd fu, fr;
+    Points<Dim> gu, gr;
+    updated->evaluateBatch(probes, fu, &gu);
+    resolved->evaluateBatch(probes, fr, &gr);
+    tr.probes = static_cast<int>(probes.cols());
+    tr.maxAbsDf = (fu - fr).cwiseAbs().maxCoeff();
+    tr.maxGradDiff = (gu - gr).colwise().norm().maxCoeff();
+    std::string why;
+    tr.exact = coefficientUpdateIsExact(Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, &why);
+    tr.method = tr.exact ? "coefficient-update" : "re-solve";
+    if (!tr.exact) out.warnings.push_back("transform: " + why);
+    out.model = tr.exact ? std::move(updated) : std::move(resolved);
     out.transformed = true;
   }
   return out;
@@ -124,8 +153,6 @@ template HermiteSamples<2> sceneSamples<2>(const Scene&, std::vector<std::string
 template HermiteSamples<3> sceneSamples<3>(const Scene&, std::vector<std::string>&);
 template Similarity<2> sceneSimilarity<2>(const TransformSpec&);
 template Similarity<3> sceneSimilarity<3>(const TransformSpec&);
-template HermiteSamples<2> transformSamples<2>(const HermiteSamples<2>&, const Similarity<2>&);
-template HermiteSamples<3> transformSamples<3>(const HermiteSamples<3>&, const Similarity<3>&);
 template SceneFit<2> fitScene<2>(const Scene&);
 template SceneFit<3> fitScene<3>(const Scene&);
 

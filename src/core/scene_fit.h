@@ -3,8 +3,9 @@
 // the fit it asks for (HRBF or RBF-offset), and its `transform` (DESIGN.md §4).
 //
 // The transformed model is the interpolant of the transformed data (points Tpᵢ, normals Rnᵢ,
-// radius q·r, shift q·δ), which equals q·f(T⁻¹x) (DESIGN.md §3). Until coefficient updates
-// land (transform issue) it is obtained by re-solving on the transformed data.
+// radius q·r, shift q·δ), which equals q·f(T⁻¹x) (DESIGN.md §3): obtained by coefficient
+// updates (transform.h) and checked against a re-solve; where the update is not exact (λ ≠ 0,
+// polynomial below the kernel's order) the re-solve is used, with a warning.
 
 #include <memory>
 #include <string>
@@ -13,6 +14,7 @@
 #include "core/hrbf.h"
 #include "core/rbf_offset.h"
 #include "core/scene_file.h"
+#include "core/transform.h"
 
 namespace hermite {
 
@@ -20,23 +22,20 @@ namespace hermite {
 template <int Dim>
 HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& warnings);
 
-// Similarity transform x ↦ q·R·x + t of a scene's `transform` key.
-template <int Dim>
-struct Similarity {
-  Mat<Dim> R = Mat<Dim>::Identity();
-  Vec<Dim> t = Vec<Dim>::Zero();
-  double q = 1.0;
-  Vec<Dim> apply(const Vec<Dim>& x) const { return q * (R * x) + t; }
-};
+// The similarity x ↦ scale·R·x + translate of a scene's `transform` key (3D: axis-angle in
+// degrees, right-hand rule; 2D: counter-clockwise degrees).
 template <int Dim>
 Similarity<Dim> sceneSimilarity(const TransformSpec& spec);
 
-// Transformed data: points Tpᵢ, normals Rnᵢ.
-template <int Dim>
-HermiteSamples<Dim> transformSamples(const HermiteSamples<Dim>& samples, const Similarity<Dim>& T);
-
+// The `transform` object of `fit --json` (DESIGN.md §5).
 struct TransformReport {
-  double resolveMs = 0;  // time of the re-solve on the transformed data
+  double updateMs = 0;     // coefficient update
+  double resolveMs = 0;    // re-solve on the transformed data
+  double maxAbsDf = 0;     // max |f_update − f_resolve| over probe points
+  double maxGradDiff = 0;  // max ‖∇f_update − ∇f_resolve‖
+  int probes = 0;
+  bool exact = true;       // the update is the re-solved fit (else the re-solve is used)
+  std::string method;      // "coefficient-update" or "re-solve"
 };
 
 template <int Dim>

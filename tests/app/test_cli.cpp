@@ -222,6 +222,11 @@ TEST_CASE("a transformed scene is the interpolant of the transformed data") {
   REQUIRE(r.rc == 0);
   const json j = json::parse(r.out);
   REQUIRE(j["transform"].is_object());
+  CHECK(j["transform"]["method"] == "coefficient-update");
+  CHECK(j["transform"]["max_abs_df"].get<double>() <= 1e-9);
+  CHECK(j["transform"]["max_grad_diff"].get<double>() <= 1e-9);
+  CHECK(j["transform"]["update_ms"].get<double>() >= 0);
+  CHECK(j["transform"]["resolve_ms"].get<double>() > 0);
   CHECK(j["max_abs_f"].get<double>() <= 1e-9);
   CHECK(j["max_grad_error"].get<double>() <= 1e-9);
   // The transformed sphere of radius 2 about (1, 2, 3): f vanishes on it, ∇f points outward.
@@ -256,4 +261,17 @@ TEST_CASE("the program without a subcommand prints the demo scene's fit report")
   CHECK(r.rc == 0);
   CHECK(r.out.find("solver") != std::string::npos);
   CHECK(r.out.find("residuals") != std::string::npos);
+}
+
+TEST_CASE("a transform outside the exact conditions is re-solved, with a warning") {
+  const std::string scene = writeTemp("smoothed.json", R"({"version": 1, "mode": "implicit3d", "data": {"preset": "sphere", "count": 40},
+    "fit": {"kernel": "cubic", "polynomial": "linear", "smoothing": 0.01}, "transform": {"scale": 2}})");
+  const auto r = runCli("fit " + scene + " --json");
+  REQUIRE(r.rc == 0);
+  const json j = json::parse(r.out);
+  CHECK(j["transform"]["method"] == "re-solve");
+  CHECK(j["transform"]["exact"] == false);
+  bool warned = false;
+  for (const auto& w : j["warnings"]) warned |= w.get<std::string>().find("smoothing") != std::string::npos;
+  CHECK(warned);
 }
