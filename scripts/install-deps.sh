@@ -9,6 +9,7 @@ PACKAGES="
   libeigen3-dev libopenblas-dev liblapacke-dev
   nlohmann-json3-dev libcli11-dev doctest-dev libnanoflann-dev libstb-dev
   libglfw3-dev libimgui-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev python3-glad
+  libegl-mesa0 libgl1-mesa-dri
   libtinygltf-dev libtinyobjloader-dev
 "
 
