@@ -1,0 +1,105 @@
+#include "core/patch_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/errors.h"
+
+namespace hermite {
+
+namespace {
+
+void checkKnots(const std::vector<double>& k, const char* name) {
+  if (k.size() < 2) throw InputError(std::string(name) + " knots: need at least 2");
+  for (size_t i = 0; i + 1 < k.size(); ++i)
+    if (!(k[i] < k[i + 1]) || !std::isfinite(k[i]) || !std::isfinite(k[i + 1]))
+      throw InputError(std::string(name) + " knots must be finite and strictly increasing");
+}
+
+// Index of the interval containing x (clamped), and the local parameter in [0, 1].
+std::pair<int, double> locate(const std::vector<double>& k, double x) {
+  const int n = static_cast<int>(k.size()) - 1;
+  int i = static_cast<int>(std::upper_bound(k.begin(), k.end(), x) - k.begin()) - 1;
+  i = std::clamp(i, 0, n - 1);
+  const double t = std::clamp((x - k[i]) / (k[i + 1] - k[i]), 0.0, 1.0);
+  return {i, t};
+}
+
+}  // namespace
+
+PatchGrid::PatchGrid(std::vector<double> uKnots, std::vector<double> vKnots,
+                     const std::function<KnotData(double, double)>& surface)
+    : u_(std::move(uKnots)), v_(std::move(vKnots)) {
+  checkKnots(u_, "u");
+  checkKnots(v_, "v");
+  std::vector<KnotData> data(u_.size() * v_.size());
+  for (size_t a = 0; a < u_.size(); ++a)
+    for (size_t b = 0; b < v_.size(); ++b) data[a * v_.size() + b] = surface(u_[a], v_[b]);
+  patches_.resize(size_t(patchesU()) * patchesV());
+  for (int i = 0; i < patchesU(); ++i) {
+    const double du = u_[i + 1] - u_[i];
+    for (int j = 0; j < patchesV(); ++j) {
+      const double dv = v_[j + 1] - v_[j];
+      HermitePatch& p = patches_[i * patchesV() + j];
+      for (int a = 0; a < 2; ++a)
+        for (int b = 0; b < 2; ++b) {
+          const KnotData& d = data[(i + a) * v_.size() + (j + b)];
+          p.setPoint(a, b, d.X);
+          p.setSTangent(a, b, du * d.Xu);
+          p.setTTangent(a, b, dv * d.Xv);
+          p.setTwist(a, b, du * dv * d.Xuv);
+        }
+    }
+  }
+}
+
+SurfacePoint PatchGrid::evaluate(double u, double v) const {
+  const auto [i, s] = locate(u_, u);
+  const auto [j, t] = locate(v_, v);
+  SurfacePoint p = patch(i, j).evaluate(s, t);
+  const double du = u_[i + 1] - u_[i], dv = v_[j + 1] - v_[j];
+  p.Xs /= du;
+  p.Xt /= dv;
+  p.Xst /= du * dv;
+  return p;
+}
+
+PatchGrid::Tessellation PatchGrid::tessellate(int samples) const {
+  if (samples < 2) throw InputError("tessellation needs at least 2 samples per patch edge");
+  Tessellation out;
+  const int perPatch = samples * samples;
+  const int nPatches = patchesU() * patchesV();
+  out.positions.resize(3, perPatch * nPatches);
+  out.normals.resize(3, perPatch * nPatches);
+  out.triangles.resize(3, 2 * (samples - 1) * (samples - 1) * nPatches);
+  int tri = 0;
+  for (int p = 0; p < nPatches; ++p) {
+    const HermitePatch& hp = patches_[p];
+    const int base = p * perPatch;
+    for (int a = 0; a < samples; ++a)
+      for (int b = 0; b < samples; ++b) {
+        const SurfacePoint sp = hp.evaluate(double(a) / (samples - 1), double(b) / (samples - 1));
+        out.positions.col(base + a * samples + b) = sp.X;
+        out.normals.col(base + a * samples + b) = sp.normal();
+      }
+    for (int a = 0; a + 1 < samples; ++a)
+      for (int b = 0; b + 1 < samples; ++b) {
+        const int v00 = base + a * samples + b, v10 = v00 + samples, v01 = v00 + 1, v11 = v10 + 1;
+        out.triangles.col(tri++) << v00, v10, v11;  // (s, t) counter-clockwise: normal Xs × Xt
+        out.triangles.col(tri++) << v00, v11, v01;
+      }
+  }
+  return out;
+}
+
+KnotData torusKnotData(double u, double v) {
+  const double cu = std::cos(u), su = std::sin(u), cv = std::cos(v), sv = std::sin(v);
+  KnotData d;
+  d.X = Vec<3>((2 + cv) * cu, (2 + cv) * su, sv);
+  d.Xu = Vec<3>(-(2 + cv) * su, (2 + cv) * cu, 0);
+  d.Xv = Vec<3>(-sv * cu, -sv * su, cv);
+  d.Xuv = Vec<3>(sv * su, -sv * cu, 0);
+  return d;
+}
+
+}  // namespace hermite
