@@ -1,0 +1,232 @@
+// Shared ray marcher of trace_baked.frag and trace_exact.frag (included after the including file
+// defined fieldValue(p), fieldGradient(p) and brickInfo(b) = (L, may contain a zero)).
+// Rays follow DESIGN.md §4 exactly (Camera::ray); world units throughout.
+
+layout(location = 0) out vec4 outColor;  // final colour (surface, slice plane or background)
+layout(location = 1) out vec4 outHit;    // (t of the surface hit or -1, outward unit normal)
+layout(location = 2) out vec4 outPlane;  // slice-plane colour, alpha 1 where the plane is hit
+
+uniform vec2 uViewport;  // W, H in pixels
+uniform vec3 uEye;
+uniform vec3 uRight;
+uniform vec3 uUp;
+uniform vec3 uForward;
+uniform float uTanHalf;     // tan(fov_y / 2)
+uniform float uAspect;      // W / H
+uniform float uHalfHeight;  // orthographic half height, world units
+uniform int uOrtho;
+uniform mat4 uViewProj;     // P(near, far) · V, for gl_FragDepth
+
+uniform vec3 uBoundsLo;
+uniform vec3 uBoundsHi;
+uniform ivec3 uBrickCount;
+uniform vec3 uBrickSize;
+uniform float uMinStep;     // ε of the march, world units
+uniform int uMaxSteps;
+uniform int uShowSurface;
+uniform vec3 uBackground;   // exact bytes / 255
+
+// core/shading.h
+uniform vec3 uFrontColor;
+uniform vec3 uBackColor;
+uniform float uAmbient;
+uniform vec3 uLightDir[2];  // world-space unit directions towards the lights
+uniform float uLightIntensity[2];
+
+// Slice plane and core/color_map.h
+uniform int uSliceEnabled;
+uniform vec3 uSliceNormal;  // unit
+uniform float uSliceOffset;
+uniform float uSliceRange;
+uniform float uIsoSpacing;
+uniform vec4 uStops[5];     // (t, r, g, b)
+uniform vec3 uZeroColor;
+uniform float uIsoDarken;
+
+void pixelRay(out vec3 origin, out vec3 dir) {
+  float px = gl_FragCoord.x;
+  float py = uViewport.y - gl_FragCoord.y;  // row 0 = top
+  float sx = (2.0 * px / uViewport.x - 1.0) * uAspect;
+  float sy = 1.0 - 2.0 * py / uViewport.y;
+  if (uOrtho == 1) {
+    origin = uEye + (sx * uHalfHeight) * uRight + (sy * uHalfHeight) * uUp;
+    dir = uForward;
+  } else {
+    origin = uEye;
+    dir = normalize(uForward + (sx * uTanHalf) * uRight + (sy * uTanHalf) * uUp);
+  }
+}
+
+// [t0, t1] of the ray inside the box (t ≥ 0); false when it misses.
+bool clipBox(vec3 o, vec3 d, vec3 lo, vec3 hi, out float t0, out float t1) {
+  t0 = 0.0;
+  t1 = 1e30;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] == 0.0) {
+      if (o[k] < lo[k] || o[k] > hi[k]) return false;
+      continue;
+    }
+    float ta = (lo[k] - o[k]) / d[k];
+    float tb = (hi[k] - o[k]) / d[k];
+    t0 = max(t0, min(ta, tb));
+    t1 = min(t1, max(ta, tb));
+  }
+  return t0 <= t1;
+}
+
+float exitParameter(vec3 o, vec3 d, vec3 lo, vec3 hi) {
+  float t = 1e30;
+  for (int k = 0; k < 3; ++k) {
+    if (d[k] > 0.0) t = min(t, (hi[k] - o[k]) / d[k]);
+    if (d[k] < 0.0) t = min(t, (lo[k] - o[k]) / d[k]);
+  }
+  return t;
+}
+
+// The first zero of f on [t0, t1]: brick by brick, skipping bricks without a possible zero,
+// steps max(|f|/L, ε), then bisection of the first sign change. One loop with one texture /
+// field fetch per iteration: llvmpipe runs both sides of divergent branches, so every fetch
+// sits on the common path and the loop ends as soon as all lanes are done.
+bool march(vec3 o, vec3 d, float t0, float t1, out float tHit) {
+  float nudge = 1e-6 * length(uBoundsHi - uBoundsLo);
+  float t = t0;
+  float fa = fieldValue(o + t * d);
+  tHit = t;
+  if (fa == 0.0) return true;
+  bool bisecting = false;
+  bool negA = fa < 0.0;
+  float ta = t, tb = t;
+  int bisections = 0;
+  for (int it = 0; it < uMaxSteps + 16; ++it) {
+    float ts;
+    if (!bisecting) {
+      if (!(t < t1) || it >= uMaxSteps) return false;
+      vec3 p = o + min(t + nudge, t1) * d;
+      ivec3 b = clamp(ivec3(floor((p - uBoundsLo) / uBrickSize)), ivec3(0), uBrickCount - 1);
+      vec3 blo = uBoundsLo + vec3(b) * uBrickSize;
+      vec3 bhi = min(blo + uBrickSize, uBoundsHi);
+      bhi = mix(bhi, uBoundsHi, vec3(equal(b, uBrickCount - 1)));
+      float tExit = min(max(exitParameter(o, d, blo, bhi), t + nudge), t1);
+      vec2 info = brickInfo(b);
+      if (info.y < 0.5) {
+        ts = tExit;
+      } else {
+        float stepLength = info.x > 0.0 ? abs(fa) / info.x : 1e30;
+        ts = (t + stepLength >= tExit) ? tExit : min(t + max(uMinStep, stepLength), t1);
+      }
+    } else {
+      ts = 0.5 * (ta + tb);
+    }
+    float fs = fieldValue(o + ts * d);
+    if (!bisecting) {
+      if (fs == 0.0) {
+        tHit = ts;
+        return true;
+      }
+      if ((fs < 0.0) != negA) {
+        bisecting = true;
+        ta = t;
+        tb = ts;
+      } else {
+        t = ts;
+        fa = fs;
+      }
+    } else {
+      if (fs != 0.0 && (fs < 0.0) == negA) ta = ts; else tb = ts;
+      if (++bisections >= 16) break;
+    }
+  }
+  if (!bisecting) return false;
+  tHit = 0.5 * (ta + tb);
+  return true;
+}
+
+vec3 shadeHit(vec3 n, vec3 d) {
+  bool back = dot(n, d) > 0.0;
+  vec3 ns = back ? -n : n;
+  vec3 base = back ? uBackColor : uFrontColor;
+  float light = uAmbient;
+  for (int k = 0; k < 2; ++k) light += uLightIntensity[k] * max(0.0, dot(ns, uLightDir[k]));
+  return clamp(base * light, 0.0, 1.0);
+}
+
+vec3 divergingColor(float f) {
+  float t = clamp(f / uSliceRange, -1.0, 1.0);
+  if (isnan(f)) return vec3(0.5);
+  for (int k = 0; k < 4; ++k) {
+    if (t <= uStops[k + 1].x) {
+      float w = (t - uStops[k].x) / (uStops[k + 1].x - uStops[k].x);
+      return mix(uStops[k].yzw, uStops[k + 1].yzw, w);
+    }
+  }
+  return uStops[4].yzw;
+}
+
+#ifdef TRACE_SLICE
+// Heat map, iso-lines and zero curve at a plane point p seen at ray parameter t along d.
+vec3 sliceColor(vec3 p, float t, vec3 d) {
+  float f = fieldValue(p);
+  vec3 g = fieldGradient(p);
+  vec3 gPlane = g - dot(g, uSliceNormal) * uSliceNormal;
+  // World size of one pixel at this depth, stretched by the plane's tilt.
+  float pixelWorld = (uOrtho == 1 ? 2.0 * uHalfHeight : 2.0 * uTanHalf * t * dot(d, uForward)) / uViewport.y;
+  float footprint = pixelWorld / max(abs(dot(d, uSliceNormal)), 0.05);
+  float dfPixel = max(length(gPlane) * footprint, 1e-30);
+  if (abs(f) < dfPixel) return uZeroColor;  // the zero curve, 2 px wide
+  vec3 c = divergingColor(f);
+  float k = round(f / uIsoSpacing);
+  if (k != 0.0 && abs(f - k * uIsoSpacing) < 0.5 * dfPixel) c *= uIsoDarken;
+  return c;
+}
+
+#endif
+
+float windowDepth(vec3 p) {
+  vec4 clip = uViewProj * vec4(p, 1.0);
+  return clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
+}
+
+void main() {
+  vec3 o, d;
+  pixelRay(o, d);
+  outColor = vec4(uBackground, 1.0);
+  outHit = vec4(-1.0, 0.0, 0.0, 0.0);
+  outPlane = vec4(0.0);
+  gl_FragDepth = 1.0;
+  float t0, t1;
+  if (!clipBox(o, d, uBoundsLo, uBoundsHi, t0, t1)) return;
+
+  float tSurface = 1e30;
+  bool surface = false;
+  if (uShowSurface == 1) {
+    float tHit;
+    if (march(o, d, t0, t1, tHit)) {
+      surface = true;
+      tSurface = tHit;
+      vec3 p = o + tHit * d;
+      vec3 g = fieldGradient(p);
+      float gn = length(g);
+      vec3 n = gn > 0.0 ? g / gn : -d;
+      outHit = vec4(tHit, n);
+      outColor = vec4(shadeHit(n, d), 1.0);
+      gl_FragDepth = windowDepth(p);
+    }
+  }
+#ifdef TRACE_SLICE
+  if (uSliceEnabled == 1) {
+    float dn = dot(d, uSliceNormal);
+    if (dn != 0.0) {
+      float tp = (uSliceOffset - dot(uSliceNormal, o)) / dn;
+      if (tp >= t0 && tp <= t1) {
+        vec3 p = o + tp * d;
+        vec3 c = sliceColor(p, tp, d);
+        outPlane = vec4(c, 1.0);
+        if (tp < tSurface) {
+          outColor = vec4(c, 1.0);
+          gl_FragDepth = windowDepth(p);
+        }
+      }
+    }
+  }
+#endif
+}

@@ -1,0 +1,782 @@
+#include "render/implicit_tracer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include <Eigen/Geometry>
+
+#include "core/color_map.h"
+#include "core/errors.h"
+#include "core/hrbf.h"
+#include "core/presets.h"
+#include "core/shading.h"
+#include "core/view_bounds.h"
+#include "render/context.h"
+#include "render/gl_objects.h"
+#include "render/overlay.h"
+#include "render/shader_library.h"
+
+namespace hermite::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+}
+
+glm::vec3 toGlm(const Vec<3>& v) { return glm::vec3(float(v.x()), float(v.y()), float(v.z())); }
+
+glm::mat4 toGlm(const Eigen::Matrix4d& m) {
+  glm::mat4 out(1.0f);
+  for (int c = 0; c < 4; ++c)
+    for (int r = 0; r < 4; ++r) out[c][r] = float(m(r, c));
+  return out;
+}
+
+// [t0, t1] of the ray inside the box (t ≥ 0); false when it misses.
+bool clipRay(const Ray& ray, const Box<3>& box, double& t0, double& t1) {
+  t0 = 0.0;
+  t1 = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double o = ray.origin(k), d = ray.direction(k);
+    if (d == 0) {
+      if (o < box.lo(k) || o > box.hi(k)) return false;
+      continue;
+    }
+    double ta = (box.lo(k) - o) / d, tb = (box.hi(k) - o) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
+}
+
+// Trilinear interpolant of the baked samples at x (clamped to the bounds).
+double sampleBake(const VolumeBake& bake, const Vec<3>& x) {
+  const int R = bake.resolution;
+  const Vec<3> q = (x - bake.bounds.lo).cwiseQuotient(bake.spacing());
+  int i0[3];
+  double w[3];
+  for (int k = 0; k < 3; ++k) {
+    const double c = std::clamp(q(k), 0.0, double(R - 1));
+    i0[k] = std::min(int(c), R - 2);
+    w[k] = c - i0[k];
+  }
+  double f = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
+    const double weight = (dx ? w[0] : 1 - w[0]) * (dy ? w[1] : 1 - w[1]) * (dz ? w[2] : 1 - w[2]);
+    f += weight * bake.value(i0[0] + dx, i0[1] + dy, i0[2] + dz);
+  }
+  return f;
+}
+
+// Two unit vectors spanning the plane with unit normal n.
+void planeBasis(const Vec<3>& n, Vec<3>& u, Vec<3>& v) {
+  const Vec<3> a = std::abs(n.x()) < 0.9 ? Vec<3>::UnitX() : Vec<3>::UnitY();
+  u = n.cross(a).normalized();
+  v = n.cross(u);
+}
+
+// Per-brick (L of the interpolant and field, interpolant may vanish, L field, field may vanish).
+// The trilinear interpolant's gradient component k in a cell is a convex combination of the
+// cell's edge differences along k divided by h_k, so ‖∇‖ ≤ ‖(max|Δₖf|/hₖ)ₖ‖ over the brick.
+std::vector<float> brickTexels(const VolumeBake& bake) {
+  const BrickGrid& grid = bake.bricks;
+  const int n = grid.brickCount();
+  const int R = bake.resolution, C = bake.brickCells;
+  const Vec<3> h = bake.spacing();
+  std::vector<float> texels(4 * std::size_t(n));
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < n; ++b) {
+    const int bx = b % grid.count.x(), by = (b / grid.count.x()) % grid.count.y(),
+              bz = b / (grid.count.x() * grid.count.y());
+    const int i0 = bx * C, i1 = std::min((bx + 1) * C, R - 1);
+    const int j0 = by * C, j1 = std::min((by + 1) * C, R - 1);
+    const int k0 = bz * C, k1 = std::min((bz + 1) * C, R - 1);
+    double maxDiff[3] = {0, 0, 0};
+    for (int k = k0; k <= k1; ++k)
+      for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+          const double f = bake.value(i, j, k);
+          if (i < i1) maxDiff[0] = std::max(maxDiff[0], std::abs(double(bake.value(i + 1, j, k)) - f));
+          if (j < j1) maxDiff[1] = std::max(maxDiff[1], std::abs(double(bake.value(i, j + 1, k)) - f));
+          if (k < k1) maxDiff[2] = std::max(maxDiff[2], std::abs(double(bake.value(i, j, k + 1)) - f));
+        }
+    const double interp = Vec<3>(maxDiff[0] / h.x(), maxDiff[1] / h.y(), maxDiff[2] / h.z()).norm();
+    const double field = grid.lipschitz[b];
+    // Float texture values: 1 % slack covers rounding of the filtered samples.
+    // The shader steps on the interpolant, so its own bound is the safe and tight one; the
+    // field's bound (often orders of magnitude above the true ‖∇f‖ for global kernels) would
+    // only shrink the steps. The true field is handled by the exact refinement.
+    const double L = 1.01 * interp;
+    texels[4 * std::size_t(b) + 0] = float(L);
+    texels[4 * std::size_t(b) + 1] = bake.interpolantMayContainZero(b) ? 1.0f : 0.0f;
+    texels[4 * std::size_t(b) + 2] = float(field);
+    texels[4 * std::size_t(b) + 3] = grid.mayContainZero[b] ? 1.0f : 0.0f;
+  }
+  return texels;
+}
+
+int kernelIndex(KernelType t) {
+  switch (t) {
+    case KernelType::Gaussian: return 0;
+    case KernelType::Wendland: return 1;
+    case KernelType::Multiquadric: return 2;
+    case KernelType::InverseMultiquadric: return 3;
+    case KernelType::Cubic: return 4;
+    case KernelType::Polyharmonic: return 5;
+  }
+  return 4;
+}
+
+// Polynomial coefficients (order 1, x, y, z, xx, xy, xz, yy, yz, zz) re-expressed for
+// x = o + y (y the shifted coordinate): p(o + y) as a polynomial in y.
+std::array<double, 10> shiftPolynomial(Polynomial p, const Eigen::VectorXd& c, const Vec<3>& o) {
+  std::array<double, 10> s{};
+  if (p == Polynomial::None) return s;
+  s[0] = c(0) + c(1) * o.x() + c(2) * o.y() + c(3) * o.z();
+  s[1] = c(1);
+  s[2] = c(2);
+  s[3] = c(3);
+  if (p == Polynomial::Quadratic) {
+    // Quadratic coefficients q(i,j), i ≤ j, in the order xx, xy, xz, yy, yz, zz.
+    const int idx[3][3] = {{4, 5, 6}, {5, 7, 8}, {6, 8, 9}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j) {
+        const double q = c(idx[i][j]);
+        s[idx[i][j]] = q;
+        s[0] += q * o(i) * o(j);
+        s[1 + i] += q * o(j);
+        s[1 + j] += q * o(i);
+      }
+  }
+  return s;
+}
+
+// An FBO with colour (RGBA8), hit data (RGBA32F), plane colour (RGBA8) and depth.
+struct TraceTarget {
+  int width = 0, height = 0;
+  GLuint fbo = 0;
+  Texture color, hit, plane, depth;
+
+  TraceTarget(int w, int h) : width(w), height(h) {
+    color = Texture::create2D(GL_RGBA8, w, h);
+    hit = Texture::create2D(GL_RGBA32F, w, h);
+    plane = Texture::create2D(GL_RGBA8, w, h);
+    depth = Texture::create2D(GL_DEPTH_COMPONENT24, w, h);
+    for (Texture* t : {&color, &hit, &plane, &depth}) t->setFilter(GL_NEAREST, GL_NEAREST);
+    glCreateFramebuffers(1, &fbo);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT0, color.id(), 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT1, hit.id(), 0);
+    glNamedFramebufferTexture(fbo, GL_COLOR_ATTACHMENT2, plane.id(), 0);
+    glNamedFramebufferTexture(fbo, GL_DEPTH_ATTACHMENT, depth.id(), 0);
+    setAllBuffers();
+    if (glCheckNamedFramebufferStatus(fbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw EnvironmentError("implicit tracer: incomplete framebuffer");
+    checkGl("implicit tracer framebuffer");
+  }
+  ~TraceTarget() {
+    if (fbo) glDeleteFramebuffers(1, &fbo);
+  }
+  TraceTarget(const TraceTarget&) = delete;
+  TraceTarget& operator=(const TraceTarget&) = delete;
+
+  void setAllBuffers() const {
+    const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+    glNamedFramebufferDrawBuffers(fbo, 3, buffers);
+  }
+  void setColorOnly() const {
+    const GLenum buffers[1] = {GL_COLOR_ATTACHMENT0};
+    glNamedFramebufferDrawBuffers(fbo, 1, buffers);
+  }
+  void bind() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glViewport(0, 0, width, height);
+  }
+};
+
+// Reads a whole level-0 texture; rows come bottom-up (GL order).
+template <class T>
+std::vector<T> readTexture(const Texture& texture, GLenum format, GLenum type, std::size_t componentsPerPixel) {
+  std::vector<T> data(std::size_t(texture.width()) * texture.height() * componentsPerPixel);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureImage(texture.id(), 0, format, type, GLsizei(data.size() * sizeof(T)), data.data());
+  checkGl("glGetTextureImage");
+  return data;
+}
+
+// The trace program of a mode, with or without the slice plane (a compile-time switch: llvmpipe
+// executes untaken branches under a mask, so an unused slice would still cost its fetches).
+Program buildTraceProgram(TracerMode mode, bool slice) {
+  const char* file = mode == TracerMode::Baked ? "trace_baked.frag" : "trace_exact.frag";
+  std::string fragment = slice ? "#define TRACE_SLICE 1\n" : "";
+  fragment += shaderSource(file);
+  return buildProgram({ShaderSource{GL_VERTEX_SHADER, std::string(shaderSource("fullscreen.vert")), "fullscreen.vert"},
+                       ShaderSource{GL_FRAGMENT_SHADER, fragment, file}});
+}
+
+}  // namespace
+
+struct ImplicitTracer::Gpu {
+  std::unique_ptr<Program> programs[2][2];  // [mode][slice], built on first use
+  VertexArray empty;
+  Texture volume;
+  Texture bricks;
+  Buffer centres;
+  Buffer betas;
+  std::unique_ptr<TraceTarget> target;
+  std::unique_ptr<OverlayRenderer> overlay;
+  std::array<double, 10> shiftedPoly{};
+  Vec<3> origin = Vec<3>::Zero();
+};
+
+ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
+  gpu_->programs[0][0] = std::make_unique<Program>(buildTraceProgram(TracerMode::Baked, false));
+  gpu_->overlay = std::make_unique<OverlayRenderer>();
+}
+
+ImplicitTracer::~ImplicitTracer() = default;
+
+bool ImplicitTracer::hasExactModel() const { return radialSum_ != nullptr; }
+
+const VolumeBake& ImplicitTracer::bake() const {
+  if (!bake_) throw InputError("implicit tracer: nothing uploaded");
+  return *bake_;
+}
+
+Eigen::Vector2d ImplicitTracer::depthRange(const Camera& camera) const {
+  Box<3> grown = bounds_;
+  const double pad = 0.1 * bounds_.extent().norm();
+  grown.lo.array() -= pad;
+  grown.hi.array() += pad;
+  return camera.depthRange(grown);
+}
+
+void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds, const HermiteSamples<3>* samples,
+                            const TracerUploadOptions& options) {
+  const auto t0 = Clock::now();
+  VolumeBakeOptions bakeOptions;
+  bakeOptions.resolution = options.bakeResolution;
+  bakeOptions.brickCells = options.brickCells;
+  auto bake = std::make_unique<VolumeBake>(bakeVolume(field, bounds, bakeOptions));
+  const std::vector<float> texels = brickTexels(*bake);
+  bakeMs_ = msSince(t0);
+
+  const auto t1 = Clock::now();
+  const int R = bake->resolution;
+  gpu_->volume = Texture::create3D(GL_R32F, R, R, R);
+  gpu_->volume.upload3D(GL_RED, GL_FLOAT, bake->values.data());
+  gpu_->volume.setFilter(GL_LINEAR, GL_LINEAR);
+  gpu_->volume.setWrap(GL_CLAMP_TO_EDGE);
+  const Eigen::Array3i count = bake->bricks.count;
+  gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
+  gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, texels.data());
+  gpu_->bricks.setFilter(GL_NEAREST, GL_NEAREST);
+
+  field_ = &field;
+  radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
+  bounds_ = bounds;
+  if (radialSum_) {
+    // Centres relative to the bounds centre (float precision in the shader).
+    gpu_->origin = bounds.center();
+    const int n = int(radialSum_->centres().cols());
+    std::vector<float> ca(4 * std::size_t(std::max(n, 1)), 0.0f), beta(4 * std::size_t(std::max(n, 1)), 0.0f);
+    for (int j = 0; j < n; ++j) {
+      const Vec<3> c = radialSum_->centres().col(j) - gpu_->origin;
+      for (int k = 0; k < 3; ++k) ca[4 * j + k] = float(c(k));
+      ca[4 * j + 3] = float(radialSum_->alpha()(j));
+      if (radialSum_->hasBeta())
+        for (int k = 0; k < 3; ++k) beta[4 * j + k] = float(radialSum_->beta()(k, j));
+    }
+    gpu_->centres.setData(ca.data(), ca.size() * sizeof(float), GL_STATIC_DRAW);
+    gpu_->betas.setData(beta.data(), beta.size() * sizeof(float), GL_STATIC_DRAW);
+    gpu_->shiftedPoly = shiftPolynomial(radialSum_->polynomial(), radialSum_->poly(), gpu_->origin);
+  }
+  hasSamples_ = samples != nullptr && samples->size() > 0;
+  if (hasSamples_) samples_ = *samples;
+  bake_ = std::move(bake);
+  glFinish();
+  checkGl("implicit tracer upload");
+  uploadMs_ = msSince(t1);
+}
+
+namespace {
+
+// Uniforms shared by both trace programs.
+void setTraceUniforms(const Program& p, const Camera& camera, const Box<3>& bounds, const VolumeBake& bake,
+                      const TraceSettings& settings, const glm::mat4& viewProj, double minStep, double sliceRange) {
+  p.setUniform("uViewport", glm::vec2(float(camera.width()), float(camera.height())));
+  p.setUniform("uEye", toGlm(camera.eye()));
+  p.setUniform("uRight", toGlm(camera.right()));
+  p.setUniform("uUp", toGlm(camera.up()));
+  p.setUniform("uForward", toGlm(camera.forward()));
+  p.setUniform("uTanHalf", float(camera.tanHalfFov()));
+  p.setUniform("uAspect", float(camera.aspect()));
+  p.setUniform("uHalfHeight", float(camera.halfHeight()));
+  p.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
+  p.setUniform("uViewProj", viewProj);
+  p.setUniform("uBoundsLo", toGlm(bounds.lo));
+  p.setUniform("uBoundsHi", toGlm(bounds.hi));
+  p.setUniform("uBrickCount", glm::ivec3(bake.bricks.count.x(), bake.bricks.count.y(), bake.bricks.count.z()));
+  p.setUniform("uBrickSize", toGlm(bake.bricks.size));
+  p.setUniform("uMinStep", float(minStep));
+  p.setUniform("uMaxSteps", 4096);
+  p.setUniform("uShowSurface", settings.showSurface ? 1 : 0);
+  p.setUniform("uBackground", glm::vec3(shading::toByte(settings.background[0]) / 255.0f,
+                                        shading::toByte(settings.background[1]) / 255.0f,
+                                        shading::toByte(settings.background[2]) / 255.0f));
+  const auto& fc = shading::kFrontColor;
+  const auto& bc = shading::kBackColor;
+  p.setUniform("uFrontColor", glm::vec3(float(fc[0]), float(fc[1]), float(fc[2])));
+  p.setUniform("uBackColor", glm::vec3(float(bc[0]), float(bc[1]), float(bc[2])));
+  p.setUniform("uAmbient", float(shading::kAmbient));
+  for (int k = 0; k < 2; ++k) {
+    const shading::Light& l = shading::kLights[k];
+    const Vec<3> dir = shading::lightDirection(l, camera.right(), camera.up(), camera.forward());
+    p.setUniform("uLightDir[" + std::to_string(k) + "]", toGlm(dir));
+    p.setUniform("uLightIntensity[" + std::to_string(k) + "]", float(l.intensity));
+  }
+  const SliceSettings& s = settings.slice;
+  Vec<3> n(s.normal[0], s.normal[1], s.normal[2]);
+  p.setUniform("uSliceEnabled", s.enabled ? 1 : 0);
+  if (s.enabled) {
+    n.normalize();
+    p.setUniform("uSliceNormal", toGlm(n));
+    p.setUniform("uSliceOffset", float(s.offset));
+    p.setUniform("uSliceRange", float(sliceRange));
+    p.setUniform("uIsoSpacing", float(niceIsoSpacing(sliceRange)));
+    for (int k = 0; k < 5; ++k) {
+      const ColorStop& c = kDivergingStops[k];
+      p.setUniform("uStops[" + std::to_string(k) + "]", glm::vec4(float(c.t), float(c.r), float(c.g), float(c.b)));
+    }
+    p.setUniform("uZeroColor", glm::vec3(float(kZeroCurveColor[0]), float(kZeroCurveColor[1]), float(kZeroCurveColor[2])));
+    p.setUniform("uIsoDarken", float(kIsoLineDarken));
+  }
+}
+
+// max |f| of the baked interpolant on the slice plane inside the bounds (64² probes).
+double sliceRangeFromBake(const VolumeBake& bake, const Vec<3>& n, double offset) {
+  Vec<3> u, v;
+  planeBasis(n, u, v);
+  const Vec<3> c = bake.bounds.center();
+  const Vec<3> c0 = c + (offset - n.dot(c)) * n;
+  const double half = 0.5 * bake.bounds.extent().norm();
+  double range = 0;
+  const int m = 64;
+  for (int a = 0; a <= m; ++a)
+    for (int b = 0; b <= m; ++b) {
+      const Vec<3> x = c0 + (-half + 2 * half * a / m) * u + (-half + 2 * half * b / m) * v;
+      if (!bake.bounds.contains(x)) continue;
+      range = std::max(range, std::abs(sampleBake(bake, x)));
+    }
+  return range > 0 && std::isfinite(range) ? range : 1.0;
+}
+
+struct PixelRefine {
+  int pixel;
+  Ray ray;
+  double t;
+  double tLo, tHi;  // clip of the ray to the bounds
+};
+
+}  // namespace
+
+TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& settings) {
+  if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
+  if (settings.mode == TracerMode::Exact && !radialSum_)
+    throw InputError("implicit tracer: exact mode needs an HRBF or RBF-offset model");
+  if (settings.slice.enabled) {
+    const Vec<3> n(settings.slice.normal[0], settings.slice.normal[1], settings.slice.normal[2]);
+    if (!(n.norm() > 0) || !n.allFinite()) throw InputError("view.slice.normal: must be a non-zero vector");
+  }
+  const int W = camera.width(), H = camera.height();
+  const std::size_t npx = std::size_t(W) * H;
+  if (!gpu_->target || gpu_->target->width != W || gpu_->target->height != H)
+    gpu_->target = std::make_unique<TraceTarget>(W, H);
+  TraceTarget& target = *gpu_->target;
+  const VolumeBake& bake = *bake_;
+
+  const Eigen::Vector2d range = depthRange(camera);
+  const Eigen::Matrix4d viewProjD = camera.projectionMatrix(range(0), range(1)) * camera.viewMatrix();
+  const glm::mat4 viewProj = toGlm(viewProjD);
+  const double diagonal = bounds_.extent().norm();
+  Vec<3> sliceNormal(settings.slice.normal[0], settings.slice.normal[1], settings.slice.normal[2]);
+  if (settings.slice.enabled) sliceNormal.normalize();
+  const double sliceRange = !settings.slice.enabled ? 1.0
+                            : settings.slice.range > 0
+                                ? settings.slice.range
+                                : sliceRangeFromBake(bake, sliceNormal, settings.slice.offset);
+
+  // ---- GPU trace pass ------------------------------------------------------------------------
+  TraceResult result;
+  auto t0 = Clock::now();
+  target.bind();
+  target.setAllBuffers();
+  glDisable(GL_BLEND);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
+  const int modeIndex = settings.mode == TracerMode::Baked ? 0 : 1;
+  std::unique_ptr<Program>& slot = gpu_->programs[modeIndex][settings.slice.enabled ? 1 : 0];
+  if (!slot) slot = std::make_unique<Program>(buildTraceProgram(settings.mode, settings.slice.enabled));
+  const Program* program = slot.get();
+  const double minStep = settings.mode == TracerMode::Baked ? settings.minStepCells * bake.spacing().minCoeff()
+                                                            : settings.minStepCells * 1e-3 * diagonal;
+  program->use();
+  setTraceUniforms(*program, camera, bounds_, bake, settings, viewProj, minStep, sliceRange);
+  if (settings.mode == TracerMode::Baked) {
+    gpu_->volume.bind(0);
+    program->setUniform("uVolume", 0);
+    const Vec<3> scale = Vec<3>::Constant(bake.resolution - 1).cwiseQuotient(bounds_.extent());
+    program->setUniform("uVolumeScale", toGlm(scale));
+    program->setUniform("uVolumeResolution", float(bake.resolution));
+    program->setUniform("uCell", toGlm(bake.spacing()));
+  } else {
+    const RadialSum<3>& m = *radialSum_;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu_->centres.id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu_->betas.id());
+    program->setUniform("uCount", int(m.centres().cols()));
+    program->setUniform("uHasBeta", m.hasBeta() ? 1 : 0);
+    program->setUniform("uKernel", kernelIndex(m.kernel().type));
+    program->setUniform("uRadius", float(m.kernel().radius));
+    const int polyCount = m.polynomial() == Polynomial::None ? 0 : m.polynomial() == Polynomial::Linear ? 4 : 10;
+    program->setUniform("uPolyCount", polyCount);
+    for (int k = 0; k < 10; ++k)
+      program->setUniform("uPoly[" + std::to_string(k) + "]", float(gpu_->shiftedPoly[k]));
+    program->setUniform("uOrigin", toGlm(gpu_->origin));
+  }
+  gpu_->bricks.bind(1);
+  program->setUniform("uBricks", 1);
+  gpu_->empty.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glFinish();
+  checkGl("implicit tracer trace pass");
+  result.traceMs = msSince(t0);
+
+  // ---- read back the hits (GL rows bottom-up → row 0 = top) -----------------------------------
+  const std::vector<float> hitData = readTexture<float>(target.hit, GL_RGBA, GL_FLOAT, 4);
+  result.hit.assign(npx, 0);
+  result.depth.assign(npx, std::numeric_limits<float>::infinity());
+  result.normal.assign(3 * npx, 0.0f);
+  std::vector<float> surfaceT(npx, -1.0f);  // GPU surface hits, row 0 = top
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const float* h = &hitData[4 * (std::size_t(H - 1 - j) * W + i)];
+      const std::size_t p = std::size_t(j) * W + i;
+      surfaceT[p] = h[0];
+      if (h[0] >= 0) {
+        result.depth[p] = h[0];
+        for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = h[1 + k];
+      }
+    }
+  auto planeT = [&](const Ray& ray) {
+    if (!settings.slice.enabled) return std::numeric_limits<double>::infinity();
+    const double dn = ray.direction.dot(sliceNormal);
+    double a, b;
+    if (dn == 0 || !clipRay(ray, bounds_, a, b)) return std::numeric_limits<double>::infinity();
+    const double tp = (settings.slice.offset - sliceNormal.dot(ray.origin)) / dn;
+    return (tp >= a && tp <= b) ? tp : std::numeric_limits<double>::infinity();
+  };
+
+  // ---- exact refinement on the CPU ------------------------------------------------------------
+  if (settings.refineExact && settings.showSurface) {
+    t0 = Clock::now();
+    const ImplicitField<3>& field = *field_;
+    const double cell = bake.spacing().norm();
+    const double tol = 1e-7 * diagonal;
+    std::vector<double> refinedT(npx, -1.0);
+    std::vector<Vec<3>> refinedG(npx, Vec<3>::Zero());
+    std::vector<std::uint8_t> hasGpuHit(npx, 0);
+    std::vector<PixelRefine> work;
+    work.reserve(npx / 4);
+    for (std::size_t p = 0; p < npx; ++p) {
+      if (surfaceT[p] < 0) continue;
+      hasGpuHit[p] = 1;
+      const Ray ray = camera.pixelRay(int(p % W), int(p / W));
+      double a = 0, b = 0;
+      clipRay(ray, bounds_, a, b);
+      work.push_back({int(p), ray, double(surfaceT[p]), a, b});
+    }
+    // Safeguarded Newton along the ray, batched over pixels (f and ∇f per iteration).
+    std::vector<PixelRefine> fallback;
+    Points<3> X;
+    Points<3> G;
+    Eigen::VectorXd F;
+    std::vector<PixelRefine> active = work;
+    for (int iteration = 0; iteration < 4 && !active.empty(); ++iteration) {
+      X.resize(3, Eigen::Index(active.size()));
+      for (std::size_t q = 0; q < active.size(); ++q) X.col(Eigen::Index(q)) = active[q].ray.at(active[q].t);
+      field.evaluateBatch(X, F, &G);
+      std::vector<PixelRefine> next;
+      for (std::size_t q = 0; q < active.size(); ++q) {
+        PixelRefine& w = active[q];
+        const Vec<3> g = G.col(Eigen::Index(q));
+        const double f = F(Eigen::Index(q));
+        const double fd = g.dot(w.ray.direction);
+        const double stepLength = fd != 0 ? f / fd : std::numeric_limits<double>::infinity();
+        const double tn = w.t - stepLength;
+        if (!std::isfinite(stepLength) || std::abs(stepLength) > 2 * cell || tn < w.tLo - tol || tn > w.tHi + tol ||
+            !std::isfinite(f)) {
+          fallback.push_back(w);
+          continue;
+        }
+        if (std::abs(stepLength) <= tol || f == 0) {
+          refinedT[w.pixel] = std::clamp(tn, w.tLo, w.tHi);
+          refinedG[w.pixel] = g;
+          continue;
+        }
+        w.t = tn;
+        if (iteration == 3)
+          fallback.push_back(w);
+        else
+          next.push_back(w);
+      }
+      active.swap(next);
+    }
+    // Bracket search with the true field near the GPU depth, then bisection. Used for hits Newton
+    // could not settle and for the silhouette ring (misses next to a hit).
+    auto bracketSearch = [&](const Ray& ray, double lo, double hi, int samplesCount, double& tHit, Vec<3>& g) {
+      double ta = lo, fa = field.evaluate(ray.at(lo));
+      if (fa == 0) {
+        tHit = lo;
+        field.evaluate(ray.at(tHit), &g);
+        return true;
+      }
+      for (int s = 1; s <= samplesCount; ++s) {
+        const double tb = lo + (hi - lo) * s / samplesCount;
+        const double fb = field.evaluate(ray.at(tb));
+        if (fb == 0 || (fa < 0) != (fb < 0)) {
+          double a = ta, b = tb;
+          const bool negA = fa < 0;
+          while (b - a > tol) {
+            const double m = 0.5 * (a + b);
+            const double fm = field.evaluate(ray.at(m));
+            if (fm != 0 && (fm < 0) == negA)
+              a = m;
+            else
+              b = m;
+          }
+          tHit = 0.5 * (a + b);
+          field.evaluate(ray.at(tHit), &g);
+          return true;
+        }
+        ta = tb;
+        fa = fb;
+      }
+      return false;
+    };
+    int dropped = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : dropped)
+    for (std::size_t q = 0; q < fallback.size(); ++q) {
+      const PixelRefine& w = fallback[q];
+      const double t = surfaceT[w.pixel];
+      double tHit;
+      Vec<3> g;
+      if (bracketSearch(w.ray, std::max(w.tLo, t - 2 * cell), std::min(w.tHi, t + 2 * cell), 16, tHit, g)) {
+        refinedT[w.pixel] = tHit;
+        refinedG[w.pixel] = g;
+      } else {
+        ++dropped;
+      }
+    }
+    // Silhouette ring: misses with a hit among their 8 neighbours.
+    std::vector<std::pair<int, std::array<double, 2>>> ring;
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i) {
+        const std::size_t p = std::size_t(j) * W + i;
+        if (hasGpuHit[p]) continue;
+        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+        for (int dj = -1; dj <= 1; ++dj)
+          for (int di = -1; di <= 1; ++di) {
+            const int ii = i + di, jj = j + dj;
+            if (ii < 0 || jj < 0 || ii >= W || jj >= H) continue;
+            const float t = surfaceT[std::size_t(jj) * W + ii];
+            if (t < 0) continue;
+            lo = std::min(lo, double(t));
+            hi = std::max(hi, double(t));
+          }
+        if (lo <= hi) ring.push_back({int(p), {lo, hi}});
+      }
+    int ringHits = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : ringHits)
+    for (std::size_t q = 0; q < ring.size(); ++q) {
+      const int p = ring[q].first;
+      const Ray ray = camera.pixelRay(p % W, p / W);
+      double a, b;
+      if (!clipRay(ray, bounds_, a, b)) continue;
+      const double lo = std::max(a, ring[q].second[0] - 2 * cell), hi = std::min(b, ring[q].second[1] + 2 * cell);
+      if (!(lo < hi)) continue;
+      double tHit;
+      Vec<3> g;
+      if (bracketSearch(ray, lo, hi, 16, tHit, g)) {
+        refinedT[p] = tHit;
+        refinedG[p] = g;
+        ++ringHits;
+      }
+    }
+    result.ringHits = ringHits;
+    result.droppedHits = dropped;
+
+    // ---- composite: refined surface vs slice plane vs background; colour and depth ---------------
+    std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+    const std::vector<std::uint8_t> planeColor = readTexture<std::uint8_t>(target.plane, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+    std::vector<float> depth = readTexture<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+    const std::uint8_t bg[3] = {shading::toByte(settings.background[0]), shading::toByte(settings.background[1]),
+                                shading::toByte(settings.background[2])};
+    auto windowDepth = [&](const Vec<3>& x) {
+      const Eigen::Vector4d clip = viewProjD * Eigen::Vector4d(x.x(), x.y(), x.z(), 1.0);
+      return float(std::clamp(0.5 * clip.z() / clip.w() + 0.5, 0.0, 1.0));
+    };
+    int refined = 0;
+#pragma omp parallel for schedule(static) reduction(+ : refined)
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i) {
+        const std::size_t p = std::size_t(j) * W + i;
+        const std::size_t glIndex = std::size_t(H - 1 - j) * W + i;
+        if (!hasGpuHit[p] && refinedT[p] < 0) continue;  // GPU colour (background or plane) stands
+        const Ray ray = camera.pixelRay(i, j);
+        const double tp = planeT(ray);
+        std::uint8_t* px = &color[4 * glIndex];
+        result.hit[p] = 0;
+        result.depth[p] = std::numeric_limits<float>::infinity();
+        for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = 0.0f;
+        if (refinedT[p] >= 0 && refinedT[p] < tp) {
+          ++refined;
+          const double t = refinedT[p];
+          const Vec<3> g = refinedG[p];
+          const double gn = g.norm();
+          const Vec<3> n = (gn > 0 && std::isfinite(gn)) ? Vec<3>(g / gn) : Vec<3>(-ray.direction);
+          const Vec<3> c = shading::shadeHit(n, ray.direction, camera.right(), camera.up(), camera.forward());
+          for (int k = 0; k < 3; ++k) px[k] = shading::toByte(c(k));
+          px[3] = 255;
+          depth[glIndex] = windowDepth(ray.at(t));
+          result.hit[p] = 1;
+          result.depth[p] = float(t);
+          for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = float(n(k));
+        } else if (std::isfinite(tp) && planeColor[4 * glIndex + 3] > 0) {
+          std::memcpy(px, &planeColor[4 * glIndex], 3);
+          px[3] = 255;
+          depth[glIndex] = windowDepth(ray.at(tp));
+        } else {
+          px[0] = bg[0];
+          px[1] = bg[1];
+          px[2] = bg[2];
+          px[3] = 255;
+          depth[glIndex] = 1.0f;
+        }
+      }
+    result.refinedPixels = refined;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(target.color.id(), 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+    glTextureSubImage2D(target.depth.id(), 0, 0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+    checkGl("implicit tracer refinement upload");
+    result.refineMs = msSince(t0);
+  } else {
+    // Unrefined: the surface is the visible hit unless the plane is nearer.
+    for (int j = 0; j < H; ++j)
+      for (int i = 0; i < W; ++i) {
+        const std::size_t p = std::size_t(j) * W + i;
+        if (surfaceT[p] < 0) continue;
+        const double tp = planeT(camera.pixelRay(i, j));
+        if (double(surfaceT[p]) < tp) {
+          result.hit[p] = 1;
+        } else {
+          result.depth[p] = std::numeric_limits<float>::infinity();
+          for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = 0.0f;
+        }
+      }
+  }
+
+  // ---- overlays, depth-tested against the surface -----------------------------------------------
+  t0 = Clock::now();
+  target.bind();
+  target.setColorOnly();
+  OverlayContent content;
+  content.samples = hasSamples_ ? &samples_ : nullptr;
+  content.showPoints = settings.showPoints;
+  content.showNormals = settings.showNormals;
+  content.showBounds = settings.showBounds;
+  content.bounds = bounds_;
+  gpu_->overlay->draw(camera, viewProj, content);
+  target.setAllBuffers();
+  // Read back colour, flipped so row 0 = top.
+  const std::vector<std::uint8_t> finalColor = readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+  result.image = ImageRgba8(W, H);
+  const std::size_t rowBytes = std::size_t(W) * 4;
+  for (int j = 0; j < H; ++j)
+    std::memcpy(result.image.pixels.data() + std::size_t(j) * rowBytes,
+                finalColor.data() + std::size_t(H - 1 - j) * rowBytes, rowBytes);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  result.overlayMs = msSince(t0);
+  return result;
+}
+
+// ---- bench ------------------------------------------------------------------------------------
+
+TracerBenchResult benchTracer(int bakeCentres, int traceCentres, int bakeResolution, int width, int height,
+                              int repeats, const char* backend) {
+  TracerBenchResult out;
+  out.bakeCentres = bakeCentres;
+  out.traceCentres = traceCentres;
+  out.bakeResolution = bakeResolution;
+  out.width = width;
+  out.height = height;
+  repeats = std::max(1, repeats);
+  ContextOptions contextOptions;
+  contextOptions.width = width;
+  contextOptions.height = height;
+  auto context = createContext(backend, contextOptions);
+  auto median = [](std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    return v[v.size() / 2];
+  };
+  HrbfOptions options;
+  options.kernel = Kernel{KernelType::Cubic, 1.0};
+  options.polynomial = Polynomial::Linear;
+
+  ImplicitTracer tracer;
+  {
+    const HermiteSamples<3> samples = makePreset3d("torus", bakeCentres);
+    const HrbfModel<3> model = fitHrbf(samples, options);
+    const Box<3> bounds = defaultViewBounds<3>(samples.points);
+    std::vector<double> times;
+    for (int r = 0; r < repeats; ++r) {
+      VolumeBakeOptions bakeOptions;
+      bakeOptions.resolution = bakeResolution;
+      const auto t0 = Clock::now();
+      const VolumeBake bake = bakeVolume(model, bounds, bakeOptions);
+      times.push_back(msSince(t0));
+    }
+    out.bakeMs = median(times);
+  }
+  const HermiteSamples<3> samples = makePreset3d("torus", traceCentres);
+  const HrbfModel<3> model = fitHrbf(samples, options);
+  const Box<3> bounds = defaultViewBounds<3>(samples.points);
+  TracerUploadOptions upload;
+  upload.bakeResolution = bakeResolution;
+  tracer.upload(model, bounds, &samples, upload);
+  CameraSpec spec;
+  spec.eye = {1.6, -2.4, 1.8};
+  const Camera camera(spec, Projection::Perspective, width, height, 1.5);
+  TraceSettings settings;
+  std::vector<double> trace, refine;
+  for (int r = 0; r < repeats; ++r) {
+    settings.refineExact = false;
+    trace.push_back(tracer.render(camera, settings).traceMs);
+    settings.refineExact = true;
+    const TraceResult refined = tracer.render(camera, settings);
+    refine.push_back(refined.refineMs);
+    out.hitPixels = refined.refinedPixels;
+  }
+  out.traceMs = median(trace);
+  out.refineMs = median(refine);
+  return out;
+}
+
+}  // namespace hermite::render

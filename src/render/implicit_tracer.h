@@ -1,0 +1,151 @@
+#pragma once
+// The GPU tracer of 3D implicits (issue 3 §2, DESIGN.md §6), with the slice plane and overlays.
+//
+// Baked mode (default, fast on llvmpipe): f is baked on the CPU over the bounds into an R32F 3D
+// texture (core/volume_bake.h); a fragment shader marches each pixel's ray (DESIGN.md §4, the
+// same rays as Camera / the CPU reference) brick by brick: bricks whose samples all have one sign
+// are skipped (the trilinear interpolant cannot vanish there), inside a brick it steps by
+// max(|f|/L, ε) with L = 1.01 × the trilinear interpolant's own Lipschitz bound on that brick
+// (‖(max|Δₖf|/hₖ)ₖ‖: what the shader samples; the field's bound from lipschitzBound is often far
+// above the true ‖∇f‖ for global kernels and only shrank steps), and refines the first sign
+// change by bisection on the interpolant.
+//
+// Exact refinement (settled views, the default for headless renders): the GPU's ray parameters
+// are read back and every hit pixel is refined against the TRUE field on the CPU (safeguarded
+// Newton along the pixel's Camera ray, batched and threaded), then shaded with the true ∇f
+// exactly like core/shading.h. Miss pixels next to a hit (the silhouette ring) are searched
+// with the true field near the neighbours' depth, so thin rims the bake loses are recovered.
+// Limitation: a component the bake misses entirely (thinner than about one bake cell) stays
+// missing away from the silhouette of a found surface; refinement only corrects what the bake
+// found, plus the one-pixel ring around it.
+//
+// Exact mode (RadialSum models: HRBF and RBF-offset, every kernel and polynomial): the shader
+// sums the model from an SSBO and sphere-traces with per-brick Lipschitz bounds of the field.
+// Slow on llvmpipe (~2 ns per step per centre): meant for real GPUs and reference images.
+//
+// Slice plane {x : n·x = offset} (unit n): f on the plane inside the bounds as a heat map
+// (core/color_map.h), iso-lines and the zero curve, depth-composited with the surface (the
+// nearer of the surface hit and the plane hit wins per pixel).
+//
+// Overlays (points, normals, bounds box) are drawn depth-tested against the traced depth, which
+// the tracer writes consistently with Camera::projectionMatrix(near, far) for the tracer's
+// depth range. Every GL call must happen on the thread whose context is current.
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/camera.h"
+#include "core/hermite_samples.h"
+#include "core/image.h"
+#include "core/implicit_field.h"
+#include "core/radial_sum.h"
+#include "core/volume_bake.h"
+
+namespace hermite::render {
+
+enum class TracerMode {
+  Baked,  // 3D texture of f (any ImplicitField<3>)
+  Exact,  // per-pixel evaluation of a RadialSum<3> in the shader
+};
+
+struct SliceSettings {
+  bool enabled = false;
+  std::array<double, 3> normal{0, 0, 1};  // normalised by the tracer (must be non-zero)
+  double offset = 0.0;                    // plane n̂·x = offset, world units along n̂
+  double range = 0.0;                     // heat-map range |f|; ≤ 0: max |f| on the plane (from the bake)
+};
+
+struct TraceSettings {
+  TracerMode mode = TracerMode::Baked;
+  bool refineExact = true;    // CPU refinement of hits against the true field (settled views)
+  bool showSurface = true;    // false: only the slice plane / overlays (to see inside)
+  bool showPoints = false;    // samples as 4 px points
+  bool showNormals = false;   // normals as lines of 5 % of the bounds diagonal
+  bool showBounds = false;    // the bounds box as lines
+  SliceSettings slice;
+  std::array<double, 3> background{1, 1, 1};  // each in [0, 1]; misses get round(255·c) exactly
+  double minStepCells = 0.1;  // ε of the shader's march, in bake cells (baked) or 1e-3·diagonal units (exact)
+};
+
+// A render's pixels and what tests and tools need besides them. Arrays are W·H, row 0 = top.
+struct TraceResult {
+  ImageRgba8 image;
+  std::vector<std::uint8_t> hit;  // 1 where the surface is the visible hit (not the slice plane)
+  std::vector<float> depth;       // ray parameter t of the surface hit (world units; +inf elsewhere)
+  std::vector<float> normal;      // 3·W·H outward unit normals of surface hits (0 elsewhere)
+  double traceMs = 0;             // GPU trace pass incl. glFinish
+  double refineMs = 0;            // CPU exact refinement (0 when off)
+  double overlayMs = 0;           // overlays + read-back
+  int refinedPixels = 0;          // hit pixels refined against the true field
+  int ringHits = 0;               // silhouette-ring pixels the refinement added
+  int droppedHits = 0;            // baked hits the true field does not confirm (turned to misses)
+  Vec<3> normalAt(int i, int j) const {
+    const std::size_t p = std::size_t(j) * image.width + i;
+    return Vec<3>(normal[3 * p], normal[3 * p + 1], normal[3 * p + 2]);
+  }
+};
+
+struct TracerUploadOptions {
+  int bakeResolution = 128;  // R samples per axis of the baked texture
+  int brickCells = 8;        // cells per brick edge (16³ bricks at R = 128)
+};
+
+class ImplicitTracer {
+ public:
+  // Needs a current GL 4.5 context; compiles the shaders (EnvironmentError on failure).
+  ImplicitTracer();
+  ~ImplicitTracer();
+  ImplicitTracer(const ImplicitTracer&) = delete;
+  ImplicitTracer& operator=(const ImplicitTracer&) = delete;
+
+  // Bakes `field` over `bounds` on the CPU and uploads the textures; keeps a reference to
+  // `field` (it must outlive the tracer or the next upload) for exact refinement. When the
+  // field is a RadialSum<3> (HRBF, RBF-offset) its coefficients go to an SSBO for exact mode.
+  // `samples` (may be null) feed the point and normal overlays (copied).
+  void upload(const ImplicitField<3>& field, const Box<3>& bounds, const HermiteSamples<3>* samples = nullptr,
+              const TracerUploadOptions& options = {});
+
+  // Draws into an own offscreen target of the camera's size and reads it back. Throws
+  // InputError for exact mode without a RadialSum model, or before upload().
+  TraceResult render(const Camera& camera, const TraceSettings& settings);
+
+  // True when exact mode is available (the uploaded field is a RadialSum<3>).
+  bool hasExactModel() const;
+  const VolumeBake& bake() const;
+  double bakeMs() const { return bakeMs_; }      // CPU bake of the last upload (samples + bricks)
+  double uploadMs() const { return uploadMs_; }  // texture / SSBO upload of the last upload
+  // The [near, far] used for depth: Camera::depthRange of the bounds grown by 10 % of the diagonal.
+  Eigen::Vector2d depthRange(const Camera& camera) const;
+
+ private:
+  struct Gpu;
+  std::unique_ptr<Gpu> gpu_;
+  const ImplicitField<3>* field_ = nullptr;
+  const RadialSum<3>* radialSum_ = nullptr;
+  Box<3> bounds_;
+  std::unique_ptr<VolumeBake> bake_;
+  HermiteSamples<3> samples_;
+  bool hasSamples_ = false;
+  double bakeMs_ = 0, uploadMs_ = 0;
+};
+
+// Timings of issue 3 §6 on this machine (for `hermite-lab bench`), in milliseconds.
+struct TracerBenchResult {
+  double bakeMs = 0;         // bake at bakeResolution³ of an HRBF with bakeCentres centres
+  double traceMs = 0;        // median baked trace (no refinement) at width×height, N = traceCentres
+  double refineMs = 0;       // median CPU exact refinement of that settled view, N = traceCentres
+  int bakeCentres = 250;
+  int traceCentres = 1000;
+  int bakeResolution = 128;
+  int width = 1024, height = 768;
+  int hitPixels = 0;
+};
+
+// Fits cubic HRBFs to the torus preset with the given sample counts and times bake, trace and
+// refinement in a fresh OSMesa context (`backend` names the context). `repeats` ≥ 1 frames each.
+TracerBenchResult benchTracer(int bakeCentres = 250, int traceCentres = 1000, int bakeResolution = 128,
+                              int width = 1024, int height = 768, int repeats = 3, const char* backend = "osmesa");
+
+}  // namespace hermite::render

@@ -1,0 +1,336 @@
+#include <doctest/doctest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <vector>
+
+#include "core/analytic_shapes.h"
+#include "core/color_map.h"
+#include "core/cpu_tracer.h"
+#include "core/hrbf.h"
+#include "core/presets.h"
+#include "core/shading.h"
+#include "core/view_bounds.h"
+#include "render/implicit_tracer.h"
+#include "render_test_support.h"
+
+using namespace hermite;
+using namespace hermite::render;
+
+namespace {
+
+// min(f₁, f₂): a union of two spheres (Lipschitz 1 like each of them).
+class TwoSpheres final : public ImplicitField<3> {
+ public:
+  TwoSpheres(const SphereField& a, const SphereField& b) : a_(a), b_(b) {}
+  double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
+    const double fa = a_.evaluate(x), fb = b_.evaluate(x);
+    return fa <= fb ? a_.evaluate(x, g, H) : b_.evaluate(x, g, H);
+  }
+  double lipschitzBound(const Box<3>&) const override { return 1.0; }
+
+ private:
+  SphereField a_, b_;
+};
+
+Box<3> cube(double h) {
+  Box<3> b;
+  b.lo = Vec<3>::Constant(-h);
+  b.hi = Vec<3>::Constant(h);
+  return b;
+}
+
+Camera makeCamera(int w, int h, Projection projection = Projection::Perspective,
+                  std::array<double, 3> eye = {1.8, 2.2, 2.6}, double halfHeight = 1.5) {
+  CameraSpec spec;
+  spec.eye = eye;
+  return Camera(spec, projection, w, h, halfHeight);
+}
+
+struct Comparison {
+  double iou = 0;
+  double medianAngleDeg = 180;
+  int both = 0;
+  bool backgroundExact = true;
+};
+
+Comparison compare(const TraceResult& gpu, const CpuTraceResult& cpu, const std::array<double, 3>& background) {
+  Comparison c;
+  c.iou = maskIoU(gpu.hit, cpu.hit);
+  std::vector<double> angles;
+  const int W = gpu.image.width, H = gpu.image.height;
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const std::size_t p = std::size_t(j) * W + i;
+      if (gpu.hit[p] && cpu.hit[p]) {
+        const double d = std::clamp(gpu.normalAt(i, j).dot(cpu.normalAt(i, j)), -1.0, 1.0);
+        angles.push_back(std::acos(d) * 180.0 / M_PI);
+      }
+      if (!gpu.hit[p]) {
+        const std::uint8_t* px = gpu.image.at(i, j);
+        for (int k = 0; k < 3; ++k)
+          if (px[k] != shading::toByte(background[k])) c.backgroundExact = false;
+      }
+    }
+  c.both = int(angles.size());
+  if (!angles.empty()) {
+    std::nth_element(angles.begin(), angles.begin() + angles.size() / 2, angles.end());
+    c.medianAngleDeg = angles[angles.size() / 2];
+  }
+  return c;
+}
+
+void checkAgainstReference(ImplicitTracer& tracer, const ImplicitField<3>& field, const Box<3>& bounds,
+                           const Camera& camera, TraceSettings settings) {
+  const CpuTraceResult reference = traceImage(field, camera, bounds, settings.background);
+  for (bool refine : {false, true}) {
+    CAPTURE(refine);
+    settings.refineExact = refine;
+    const TraceResult result = tracer.render(camera, settings);
+    const Comparison c = compare(result, reference, settings.background);
+    CAPTURE(c.iou);
+    CAPTURE(c.medianAngleDeg);
+    CAPTURE(result.ringHits);
+    CAPTURE(result.droppedHits);
+    CHECK(c.both > 100);
+    CHECK(c.iou >= 0.99);
+    CHECK(c.medianAngleDeg <= 2.0);
+    CHECK(c.backgroundExact);
+    if (refine) {
+      // Refined hits are shaded exactly like the reference: the bytes agree on common pixels.
+      int differing = 0;
+      for (int j = 0; j < camera.height(); ++j)
+        for (int i = 0; i < camera.width(); ++i) {
+          const std::size_t p = std::size_t(j) * camera.width() + i;
+          if (!result.hit[p] || !reference.hit[p]) continue;
+          for (int k = 0; k < 3; ++k)
+            if (std::abs(int(result.image.at(i, j)[k]) - int(reference.image.at(i, j)[k])) > 2) {
+              ++differing;
+              break;
+            }
+        }
+      CHECK(differing <= c.both / 100);
+    }
+  }
+}
+
+HrbfModel<3> fittedTorus(int count, HermiteSamples<3>* samplesOut = nullptr) {
+  const HermiteSamples<3> samples = makePreset3d("torus", count);
+  HrbfOptions options;
+  options.kernel = Kernel{KernelType::Cubic, 1.0};
+  options.polynomial = Polynomial::Linear;
+  if (samplesOut) *samplesOut = samples;
+  return fitHrbf(samples, options);
+}
+
+}  // namespace
+
+TEST_CASE("implicit tracer: baked sphere and torus match the CPU reference") {
+  auto context = testing::makeTestContext();
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 64;
+  TraceSettings settings;
+  settings.background = {0.2, 0.3, 0.4};
+  SUBCASE("sphere") {
+    const SphereField sphere(Vec<3>(0.1, -0.05, 0.0), 0.9);
+    const Box<3> bounds = cube(1.3);
+    tracer.upload(sphere, bounds, nullptr, upload);
+    checkAgainstReference(tracer, sphere, bounds, makeCamera(80, 64), settings);
+  }
+  SUBCASE("torus") {
+    const TorusField torus;
+    const Box<3> bounds = cube(1.25);
+    tracer.upload(torus, bounds, nullptr, upload);
+    checkAgainstReference(tracer, torus, bounds, makeCamera(80, 64), settings);
+  }
+}
+
+TEST_CASE("implicit tracer: baked fitted HRBF matches the CPU reference") {
+  auto context = testing::makeTestContext();
+  ImplicitTracer tracer;
+  HermiteSamples<3> samples;
+  const HrbfModel<3> model = fittedTorus(150, &samples);
+  const Box<3> bounds = defaultViewBounds<3>(samples.points);
+  TracerUploadOptions upload;
+  upload.bakeResolution = 64;
+  tracer.upload(model, bounds, &samples, upload);
+  TraceSettings settings;
+  checkAgainstReference(tracer, model, bounds, makeCamera(72, 64), settings);
+}
+
+TEST_CASE("implicit tracer: exact shader mode matches the CPU reference at 64x64") {
+  auto context = testing::makeTestContext();
+  ImplicitTracer tracer;
+  HermiteSamples<3> samples;
+  const HrbfModel<3> model = fittedTorus(60, &samples);
+  const Box<3> bounds = defaultViewBounds<3>(samples.points);
+  TracerUploadOptions upload;
+  upload.bakeResolution = 32;
+  tracer.upload(model, bounds, &samples, upload);
+  REQUIRE(tracer.hasExactModel());
+  TraceSettings settings;
+  settings.mode = TracerMode::Exact;
+  settings.refineExact = false;
+  const Camera camera = makeCamera(64, 64);
+  const CpuTraceResult reference = traceImage(model, camera, bounds, settings.background);
+  const TraceResult result = tracer.render(camera, settings);
+  const Comparison c = compare(result, reference, settings.background);
+  CAPTURE(c.iou);
+  CAPTURE(c.medianAngleDeg);
+  CHECK(c.both > 100);
+  CHECK(c.iou >= 0.99);
+  CHECK(c.medianAngleDeg <= 2.0);
+  CHECK(c.backgroundExact);
+}
+
+TEST_CASE("implicit tracer: a tiny far-away bubble is visible") {
+  auto context = testing::makeTestContext();
+  const Box<3> bounds = cube(1.5);
+  const TwoSpheres field(SphereField(Vec<3>::Zero(), 0.6), SphereField(Vec<3>(1.3, 1.3, -1.3), 0.08));
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 64;
+  tracer.upload(field, bounds, nullptr, upload);
+  const Camera camera = makeCamera(96, 96, Projection::Perspective, {3.0, 2.0, 4.0});
+  TraceSettings settings;
+  const TraceResult result = tracer.render(camera, settings);
+  const Vec<2> c = camera.project(Vec<3>(1.3, 1.3, -1.3));
+  int bubble = 0;
+  for (int j = 0; j < 96; ++j)
+    for (int i = 0; i < 96; ++i)
+      if (result.hit[std::size_t(j) * 96 + i] && std::hypot(i + 0.5 - c.x(), j + 0.5 - c.y()) < 4.0) ++bubble;
+  CHECK(bubble >= 3);
+  const CpuTraceResult reference = traceImage(field, camera, bounds, settings.background);
+  CHECK(maskIoU(result.hit, reference.hit) >= 0.99);
+}
+
+TEST_CASE("implicit tracer: orthographic projection matches the CPU reference") {
+  auto context = testing::makeTestContext();
+  const TorusField torus;
+  const Box<3> bounds = cube(1.25);
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 64;
+  tracer.upload(torus, bounds, nullptr, upload);
+  checkAgainstReference(tracer, torus, bounds, makeCamera(80, 64, Projection::Orthographic, {1.8, 2.2, 2.6}, 1.3),
+                        TraceSettings{});
+}
+
+TEST_CASE("implicit tracer: slice plane shows the zero circle of a sphere cut through its centre") {
+  auto context = testing::makeTestContext();
+  const SphereField sphere(Vec<3>::Zero(), 0.8);
+  const Box<3> bounds = cube(1.2);
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 64;
+  tracer.upload(sphere, bounds, nullptr, upload);
+  const int N = 96;
+  const Camera camera = makeCamera(N, N, Projection::Orthographic, {0, 0, 4}, 1.2);
+  TraceSettings settings;
+  settings.slice.enabled = true;
+  settings.slice.normal = {0, 0, 1};
+  settings.slice.offset = 0.0;
+  for (bool surface : {false, true}) {
+    CAPTURE(surface);
+    settings.showSurface = surface;
+    const TraceResult result = tracer.render(camera, settings);
+    const double radiusPx = 0.8 / (2.0 * 1.2 / N);
+    int zero = 0, outside = 0, heat = 0;
+    for (int j = 0; j < N; ++j)
+      for (int i = 0; i < N; ++i) {
+        const std::uint8_t* px = result.image.at(i, j);
+        const double r = std::hypot(i + 0.5 - N / 2.0, j + 0.5 - N / 2.0);
+        if (px[0] == 0 && px[1] == 0 && px[2] == 0) {
+          ++zero;
+          if (std::abs(r - radiusPx) > 1.5) ++outside;
+        } else if (!result.hit[std::size_t(j) * N + i]) {
+          ++heat;
+        }
+      }
+    CAPTURE(zero);
+    CHECK(outside == 0);
+    // A 2 px band (or its outer half when the surface hides the inside) around 2πr.
+    CHECK(zero >= (surface ? 0.8 : 1.6) * 2 * M_PI * radiusPx);
+    CHECK(heat > N * N / 2);
+  }
+}
+
+TEST_CASE("implicit tracer: overlays are drawn and hidden behind the surface") {
+  auto context = testing::makeTestContext();
+  HermiteSamples<3> samples = makePreset3d("sphere6", 0);
+  const SphereField sphere;
+  const Box<3> bounds = defaultViewBounds<3>(samples.points);
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 48;
+  tracer.upload(sphere, bounds, &samples, upload);
+  const Camera camera = makeCamera(96, 96, Projection::Perspective, {1.5, 1.2, 3.5});
+  REQUIRE((camera.project(Vec<3>(0, 0, 1)) - camera.project(Vec<3>(0, 0, -1))).norm() > 8);
+  TraceSettings settings;
+  settings.showPoints = true;
+  settings.showNormals = true;
+  settings.showBounds = true;
+  const TraceResult result = tracer.render(camera, settings);
+  auto near = [&](const Vec<3>& x) {
+    const Vec<2> p = camera.project(x);
+    int dark = 0;
+    for (int j = int(p.y()) - 2; j <= int(p.y()) + 2; ++j)
+      for (int i = int(p.x()) - 2; i <= int(p.x()) + 2; ++i) {
+        const std::uint8_t* px = result.image.at(i, j);
+        if (px[0] < 40 && px[1] < 40 && px[2] < 40) ++dark;
+      }
+    return dark;
+  };
+  CHECK(near(Vec<3>(0, 0, 1)) >= 4);   // the sample facing the camera
+  CHECK(near(Vec<3>(0, 0, -1)) == 0);  // the one behind the sphere is hidden
+  // The bounds box draws lines on the background.
+  int boxPixels = 0;
+  for (std::size_t p = 0; p < result.hit.size(); ++p) {
+    const std::uint8_t* px = result.image.pixels.data() + 4 * p;
+    if (!result.hit[p] && px[0] == 89 && px[1] == 89 && px[2] == 89) ++boxPixels;
+  }
+  CHECK(boxPixels > 50);
+}
+
+TEST_CASE("implicit tracer: deterministic bytes, and EGL agrees with OSMesa") {
+  HermiteSamples<3> samples;
+  const HrbfModel<3> model = fittedTorus(80, &samples);
+  const Box<3> bounds = defaultViewBounds<3>(samples.points);
+  TracerUploadOptions upload;
+  upload.bakeResolution = 48;
+  TraceSettings settings;
+  settings.showPoints = true;
+  settings.showNormals = true;
+  settings.slice.enabled = true;
+  settings.slice.normal = {0.2, 0.3, 1.0};
+  settings.slice.offset = 0.05;
+  const Camera camera = makeCamera(96, 80);
+  ImageRgba8 osmesa;
+  {
+    auto context = testing::makeTestContext("osmesa");
+    ImplicitTracer tracer;
+    tracer.upload(model, bounds, &samples, upload);
+    osmesa = tracer.render(camera, settings).image;
+    if (std::getenv("HERMITE_TRACER_PNG")) writePng("/tmp/h5_tracer.png", osmesa);
+    const ImageRgba8 again = tracer.render(camera, settings).image;
+    CHECK(osmesa == again);
+  }
+  if (testing::skipEgl()) return;
+  auto context = testing::makeTestContext("egl");
+  ImplicitTracer tracer;
+  tracer.upload(model, bounds, &samples, upload);
+  const ImageRgba8 egl = tracer.render(camera, settings).image;
+  const ImageDiffStats stats = compareImages(osmesa, egl, 2);
+  CAPTURE(stats.maxChannelDiff);
+  CHECK(stats.fractionOver <= 0.001);
+}
+
+TEST_CASE("implicit tracer: bench figures" * doctest::skip()) {
+  const TracerBenchResult r = benchTracer();
+  std::printf("bake %d^3 N=%d: %.1f ms; trace %dx%d N=%d: %.1f ms; refine: %.1f ms (%d hit pixels)\n",
+              r.bakeResolution, r.bakeCentres, r.bakeMs, r.width, r.height, r.traceCentres, r.traceMs, r.refineMs,
+              r.hitPixels);
+}
