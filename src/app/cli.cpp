@@ -25,6 +25,8 @@ constexpr const char* kUsage =
     "  hermite-lab [SCENE] [--set KEY=VALUE ...]       fit report of SCENE (default: the demo scene)\n"
     "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
+    "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
+    "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
     "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
 
@@ -79,6 +81,32 @@ int dispatch(int argc, char** argv) {
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);
     return runEval(a);
+  }
+  if (first == "render") {
+    RenderArgs a;
+    CLI::App cmd("render a scene to a PNG without a display (OSMesa or EGL)", "render");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("-o,--output", a.output, "output PNG (written atomically)");
+    cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+    cmd.add_flag("--ui", a.ui, "draw the application's panels on top");
+    cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runRender(a);
+  }
+  if (first == "patch-table") {
+    PatchTableArgs a;
+    CLI::App cmd("torus error study: bicubic Hermite patches from exact data vs the torus", "patch-table");
+    cmd.add_option("--samples", a.samples, "N x N local parameters per patch (default 15)")->check(CLI::Range(2, 100000));
+    cmd.add_option("--splits", a.splits, "comma-separated NxM splits, N along u (default 1x1,2x1,2x2,3x3)");
+    cmd.add_option("--domain", a.domain, "U0,U1,V0,V1 (default 0,1,0,1)");
+    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runPatchTable(a);
   }
   if (first == "bench") {
     BenchArgs a;

@@ -2,6 +2,9 @@
 //   fit3d/<kernel>/N=...     3D HRBF fit on well-spread unit-sphere points (ms, assembly +
 //                            factorisation + solve, as FitReport::fitMs)
 //   eval3d/<kernel>          value + gradient, ns per (point, centre) pair per core
+//   render/trace-baked       GPU trace of a 128³ bake at 1024×768, N = 1000 (params: bake and
+//                            exact-refinement times)
+//   render/field2d-refit-redraw   refit + redraw of a 200-point curve at 512×512
 
 #include <algorithm>
 #include <chrono>
@@ -19,6 +22,8 @@
 #include "core/hrbf.h"
 #include "core/presets.h"
 #include "core/threading.h"
+#include "render/field2d_view.h"
+#include "render/implicit_tracer.h"
 
 namespace hermite::app {
 
@@ -110,6 +115,27 @@ int runBench(const BenchArgs& args) {
     const int repeats = args.quick ? 1 : 7;
     jobs.emplace_back("eval3d/" + c.label, [c, points, repeats] { return benchEval(c, 1000, points, repeats); });
   }
+
+  // Rendering (issue 3 §6), on this machine's OpenGL (llvmpipe here) through OSMesa.
+  jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {
+    const render::TracerBenchResult r =
+        quick ? render::benchTracer(50, 100, 32, 128, 96, 1) : render::benchTracer(250, 1000, 128, 1024, 768, 3);
+    return {"render/trace-baked", {{"bake_ms", r.bakeMs}, {"bake_resolution", r.bakeResolution},
+            {"bake_centres", r.bakeCentres}, {"refine_ms", r.refineMs}, {"trace_centres", r.traceCentres},
+            {"width", r.width}, {"height", r.height}, {"hit_pixels", r.hitPixels}},
+            r.traceMs, "ms/frame"};
+  });
+  jobs.emplace_back("render/field2d-refit-redraw", [quick = args.quick]() -> Result {
+    render::Field2dBenchOptions o;
+    if (quick) {
+      o.points = 40;
+      o.size = 128;
+      o.repetitions = 1;
+    }
+    const render::Field2dBenchResult r = render::benchField2dRefitRedraw(o);
+    return {"render/field2d-refit-redraw", {{"points", o.points}, {"size", o.size}, {"fit_ms", r.fitMs},
+            {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
+  });
 
   std::vector<Result> results;
   for (auto& [name, job] : jobs) {

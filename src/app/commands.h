@@ -32,6 +32,23 @@ struct BenchArgs {
 };
 int runBench(const BenchArgs& args);
 
+struct PatchTableArgs {
+  int samples = 15;     // N × N local parameters per patch
+  std::string splits;   // "1x1,2x1,2x2,3x3" (empty: that default)
+  std::string domain;   // "U0,U1,V0,V1" (empty: 0,1,0,1)
+  bool json = false;
+};
+int runPatchTable(const PatchTableArgs& args);
+
+struct RenderArgs {
+  SceneArgs scene;
+  std::string output;              // -o OUT.png (required)
+  std::string size;                // --size WxH; empty: the scene's view.size
+  bool ui = false;                 // --ui: the application's panels on top
+  std::string backend = "osmesa";  // --backend osmesa | egl
+};
+int runRender(const RenderArgs& args);
+
 // The program's main job without a subcommand: the GUI when one exists and a display is
 // there; in this version the fit report of the scene (or of the demo scene).
 int runDefault(const SceneArgs& args);

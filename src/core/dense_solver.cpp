@@ -149,6 +149,10 @@ Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
 // data, otherwise the saddle system is singular whatever the kernel.
 void factorPolynomialBlock(Eigen::MatrixXd& QR, Eigen::VectorXd& tau) {
   const lapack_int n = toLapack(QR.rows()), m = toLapack(QR.cols());
+  if (n < m)
+    throw NumericalError("singular system: the samples do not determine the polynomial term (" + std::to_string(m) +
+                         " polynomial coefficients but only " + std::to_string(n) +
+                         " conditions; use a lower polynomial degree or more samples)");
   tau.resize(m);
   LAPACKE_dgeqrf(LAPACK_COL_MAJOR, n, m, QR.data(), n, tau.data());
   const Eigen::VectorXd diag = QR.topLeftCorner(m, m).diagonal().cwiseAbs();

@@ -275,3 +275,22 @@ TEST_CASE("a transform outside the exact conditions is re-solved, with a warning
   for (const auto& w : j["warnings"]) warned |= w.get<std::string>().find("smoothing") != std::string::npos;
   CHECK(warned);
 }
+
+TEST_CASE("patch-table --json: rows with splits, per-coordinate error and Hermite/Bézier agreement") {
+  auto r = runCli("patch-table --json --splits 1x1,2x2 --samples 15");
+  REQUIRE(r.rc == 0);
+  const json j = json::parse(r.out);
+  REQUIRE(j["rows"].size() == 2);
+  CHECK(j["rows"][0]["splits"] == json::array({1, 1}));
+  CHECK(j["rows"][0]["error"][0].get<double>() == doctest::Approx(0.0717).epsilon(0.01));
+  CHECK(j["rows"][1]["error"][0].get<double>() < j["rows"][0]["error"][0].get<double>());
+  CHECK(j["rows"][0]["hermite_bezier_max_diff"].get<double>() <= 1e-13);
+  r = runCli("patch-table --domain 0,0.5,0,0.5 --splits 1x1 --json");
+  REQUIRE(r.rc == 0);
+  CHECK(json::parse(r.out)["rows"][0]["error"][2].get<double>() == doctest::Approx(3.7e-4).epsilon(0.03));
+  CHECK(runCli("patch-table --splits 2y2").rc == 2);
+  CHECK(runCli("patch-table --domain 1,0,0,1").rc == 1);
+  r = runCli("patch-table");
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("3x3") != std::string::npos);
+}

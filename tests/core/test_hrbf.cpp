@@ -157,6 +157,16 @@ TEST_CASE("a polynomial term the samples cannot determine is a numerical error w
   s.normals(2, 0) = s.normals(2, 1) = 1.0;
   CHECK_THROWS_WITH_AS(fitHrbf<3>(s, {{KernelType::Gaussian, 1}, Polynomial::Quadratic, 0.0}),
                        doctest::Contains("polynomial term"), NumericalError);
+  // Enough conditions (4 samples: 16 ≥ 10) but all on the x axis: y², z², yz are never seen.
+  HermiteSamples<3> line;
+  line.points = Points<3>::Zero(3, 4);
+  line.normals = Points<3>::Zero(3, 4);
+  for (int i = 0; i < 4; ++i) {
+    line.points(0, i) = i;
+    line.normals(2, i) = 1.0;
+  }
+  CHECK_THROWS_WITH_AS(fitHrbf<3>(line, {{KernelType::Gaussian, 1}, Polynomial::Quadratic, 0.0}),
+                       doctest::Contains("dependent"), NumericalError);
 }
 
 TEST_CASE("model gradient and Hessian match finite differences, batch matches single-point evaluation") {

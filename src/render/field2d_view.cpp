@@ -1,0 +1,254 @@
+#include "render/field2d_view.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "core/color_map.h"
+#include "core/errors.h"
+#include "core/hrbf.h"
+#include "core/presets.h"
+#include "render/context.h"
+#include "render/offscreen.h"
+#include "render/shader_library.h"
+
+namespace hermite::render {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
+
+glm::vec3 toGlm(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
+
+// One instance of marks2d.vert: segment in GL pixel coordinates, colour and full width.
+struct Mark {
+  float ax, ay, bx, by;
+  float r, g, b, width;
+};
+
+}  // namespace
+
+Field2dView::Field2dView()
+    : heat_(buildProgram({"fullscreen.vert", "field2d.frag"})), marks_(buildProgram({"marks2d.vert", "marks2d.frag"})) {
+  marksVao_.setVertexBuffer(0, marksBuffer_, 0, sizeof(Mark));
+  marksVao_.setAttribute(0, 0, 4, GL_FLOAT, false, 0);
+  marksVao_.setAttribute(1, 0, 4, GL_FLOAT, false, 4 * sizeof(float));
+  glVertexArrayBindingDivisor(marksVao_.id(), 0, 1);  // one segment per instance
+  checkGl("Field2dView vertex arrays");
+}
+
+void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, const Field2dViewOptions& options,
+                           const Points<2>& points, const Points<2>& normals) {
+  const auto t0 = Clock::now();
+  const int W = view.width(), H = view.height();
+  const double scale = std::clamp(options.gridScale, 0.05, 1.0);
+  const int gw = std::max(1, int(std::lround(W * scale)));
+  const int gh = std::max(1, int(std::lround(H * scale)));
+  const std::size_t n = std::size_t(gw) * gh;
+
+  // Grid point (a, b), b = 0 at the bottom (GL row order), sits at GL pixel coordinates
+  // ((a + ½)·W/gw, (b + ½)·H/gh); with gw = W, gh = H these are the pixel centres.
+  Points<2> X(2, Eigen::Index(n));
+  const double sx = double(W) / gw, sy = double(H) / gh;
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < gh; ++b)
+    for (int a = 0; a < gw; ++a)
+      X.col(Eigen::Index(b) * gw + a) = view.pixelToWorld((a + 0.5) * sx, H - (b + 0.5) * sy);
+  Eigen::VectorXd f;
+  Points<2> G;
+  field.evaluateBatch(X, f, &G);
+
+  // RGBA32F, not RGB32F: llvmpipe fetches 3-channel float textures through a slow generic path.
+  std::vector<float> texels(4 * n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p) {
+    texels[4 * p] = float(f(p));
+    texels[4 * p + 1] = float(G(0, p));
+    texels[4 * p + 2] = float(G(1, p));
+    texels[4 * p + 3] = 0.0f;
+  }
+
+  range_ = options.style.range;
+  if (!(range_ > 0)) {
+    double m = 0;
+    for (std::size_t p = 0; p < n; ++p) {
+      if (!std::isfinite(f(Eigen::Index(p)))) continue;
+      if (options.bounds && !options.bounds->contains(X.col(Eigen::Index(p)))) continue;
+      m = std::max(m, std::abs(f(Eigen::Index(p))));
+    }
+    range_ = m > 0 ? m : 1.0;
+  }
+  isoSpacing_ = options.style.isoSpacing == 0 ? niceIsoSpacing(range_) : options.style.isoSpacing;
+  evaluateMs_ = msSince(t0);
+
+  const auto t1 = Clock::now();
+  if (!field_.valid() || gw != gridW_ || gh != gridH_) {
+    field_ = Texture::create2D(GL_RGBA32F, gw, gh);
+    field_.setWrap(GL_CLAMP_TO_EDGE);
+  }
+  field_.upload2D(GL_RGBA, GL_FLOAT, texels.data());
+  gridW_ = gw;
+  gridH_ = gh;
+  view_ = view;
+  options_ = options;
+
+  // Marks: normals (with arrow heads) first, then the dots on top, as the reference draws them.
+  std::vector<Mark> marks;
+  const auto toGl = [&](const Vec<2>& world) {
+    const Vec<2> p = view.worldToPixel(world);
+    return Vec<2>(p.x(), H - p.y());
+  };
+  const auto add = [&](const Vec<2>& a, const Vec<2>& b, double width, const std::array<double, 3>& c) {
+    marks.push_back({float(a.x()), float(a.y()), float(b.x()), float(b.y()), float(c[0]), float(c[1]), float(c[2]),
+                     float(width)});
+  };
+  const Field2dStyle& st = options.style;
+  if (options.showNormals && normals.cols() == points.cols() && st.normalLengthPx > 0)
+    for (Eigen::Index s = 0; s < points.cols(); ++s) {
+      const double len = normals.col(s).norm();
+      if (!(len > 0) || !points.col(s).allFinite()) continue;
+      const Vec<2> a = toGl(points.col(s));
+      const Vec<2> dir = normals.col(s) / len;  // GL pixels have +y up like the world
+      const Vec<2> b = a + st.normalLengthPx * dir;
+      add(a, b, 1.5, st.normalColor);
+      if (options.arrowHeadPx > 0) {
+        const Vec<2> side(-dir.y(), dir.x());
+        const double h = options.arrowHeadPx;
+        add(b, b - h * (0.87 * dir + 0.5 * side), 1.5, st.normalColor);  // barbs at ±30°
+        add(b, b - h * (0.87 * dir - 0.5 * side), 1.5, st.normalColor);
+      }
+    }
+  if (options.showPoints && st.pointRadiusPx > 0)
+    for (Eigen::Index s = 0; s < points.cols(); ++s) {
+      if (!points.col(s).allFinite()) continue;
+      const Vec<2> a = toGl(points.col(s));
+      add(a, a, 2.0 * st.pointRadiusPx, st.pointColor);
+    }
+  markCount_ = int(marks.size());
+  if (!marks.empty()) {
+    marksBuffer_.setData(marks.data(), marks.size() * sizeof(Mark));
+    marksVao_.setVertexBuffer(0, marksBuffer_, 0, sizeof(Mark));
+  }
+  checkGl("Field2dView::setField");
+  uploadMs_ = msSince(t1);
+}
+
+void Field2dView::draw() {
+  if (!view_ || !field_.valid()) throw EnvironmentError("Field2dView::draw before setField");
+  const View2d& view = *view_;
+  const int W = view.width(), H = view.height();
+  const Field2dStyle& st = options_.style;
+
+  const GLboolean blend = glIsEnabled(GL_BLEND);
+  const GLboolean depth = glIsEnabled(GL_DEPTH_TEST);
+  glDisable(GL_BLEND);
+  glDisable(GL_DEPTH_TEST);
+
+  heat_.use();
+  field_.bind(0);
+  const bool pixelGrid = gridW_ == W && gridH_ == H;
+  field_.setFilter(pixelGrid ? GL_NEAREST : GL_LINEAR, pixelGrid ? GL_NEAREST : GL_LINEAR);
+  heat_.setUniform("u_field", 0);
+  heat_.setUniform("u_pixel_grid", pixelGrid ? 1 : 0);
+  heat_.setUniform("u_viewport", glm::vec2(float(W), float(H)));
+  heat_.setUniform("u_pixel_size", float(view.pixelSize()));
+  heat_.setUniform("u_range", float(range_));
+  heat_.setUniform("u_iso_spacing", float(isoSpacing_));
+  heat_.setUniform("u_zero_width", float(st.zeroWidthPx));
+  heat_.setUniform("u_iso_width", float(st.isoWidthPx));
+  heat_.setUniform("u_iso_darken", float(kIsoLineDarken));
+  for (std::size_t k = 0; k < kDivergingStops.size(); ++k) {
+    const ColorStop& s = kDivergingStops[k];
+    heat_.setUniform("u_stops[" + std::to_string(k) + "]", glm::vec4(float(s.t), float(s.r), float(s.g), float(s.b)));
+  }
+  heat_.setUniform("u_zero_color", toGlm(kZeroCurveColor));
+  if (options_.bounds) {
+    const Vec<2> lo = view.worldToPixel(options_.bounds->lo);  // image rows grow downwards
+    const Vec<2> hi = view.worldToPixel(options_.bounds->hi);
+    heat_.setUniform("u_bounds_px", glm::vec4(float(lo.x()), float(H - lo.y()), float(hi.x()), float(H - hi.y())));
+  }
+  heat_.setUniform("u_use_bounds", options_.bounds ? 1 : 0);
+  heat_.setUniform("u_outside_color", toGlm(options_.outsideColor));
+  heat_.setUniform("u_outside_mix", float(options_.outsideMix));
+  emptyVao_.bind();
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  checkGl("Field2dView heat map");
+
+  if (markCount_ > 0) {
+    glEnable(GL_BLEND);
+    glBlendEquation(GL_FUNC_ADD);
+    // Alpha stays 1: the framebuffer is an opaque screenshot.
+    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+    marks_.use();
+    marks_.setUniform("u_viewport", glm::vec2(float(W), float(H)));
+    marksVao_.bind();
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, markCount_);
+    checkGl("Field2dView marks");
+  }
+  glBindVertexArray(0);
+  if (blend) glEnable(GL_BLEND); else glDisable(GL_BLEND);
+  if (depth) glEnable(GL_DEPTH_TEST);
+}
+
+ImageRgba8 renderField2d(const ImplicitField<2>& field, const View2d& view, const Field2dViewOptions& options,
+                         const Points<2>& points, const Points<2>& normals) {
+  Field2dView v;
+  v.setField(field, view, options, points, normals);
+  OffscreenTarget target(view.width(), view.height(), false);
+  target.bind();
+  v.draw();
+  return target.read();
+}
+
+Field2dBenchResult benchField2dRefitRedraw(const Field2dBenchOptions& o) {
+  ContextOptions co;
+  co.width = o.size;
+  co.height = o.size;
+  co.visible = false;
+  co.vsync = false;
+  const auto context = createContext(o.backend, co);
+  const HermiteSamples<2> samples = makePreset2d("curve2d", o.points);
+  HrbfOptions ho;
+  ho.kernel = o.kernel;
+  ho.polynomial = o.polynomial;
+  const View2d view(Vec<2>(0, 0), 1.25, o.size, o.size);
+  Field2dViewOptions vo;
+  vo.gridScale = o.gridScale;
+  Field2dView v;
+  OffscreenTarget target(o.size, o.size, false);
+  target.bind();
+
+  std::vector<double> total, fit, eval, draw;
+  for (int r = 0; r < std::max(1, o.repetitions) + 1; ++r) {  // the first round warms up
+    const auto t0 = Clock::now();
+    const HrbfModel<2> model = fitHrbf(samples, ho);
+    const double tFit = msSince(t0);
+    v.setField(model, view, vo, samples.points, samples.normals);
+    const auto t1 = Clock::now();
+    v.draw();
+    context->present();  // glFinish
+    const double tDraw = msSince(t1) + v.uploadMs();
+    const double tTotal = msSince(t0);
+    if (r == 0) continue;
+    total.push_back(tTotal);
+    fit.push_back(tFit);
+    eval.push_back(v.evaluateMs());
+    draw.push_back(tDraw);
+  }
+  const auto median = [](std::vector<double> x) {
+    std::sort(x.begin(), x.end());
+    return x[x.size() / 2];
+  };
+  Field2dBenchResult out;
+  out.medianMs = median(total);
+  out.fitMs = median(fit);
+  out.evaluateMs = median(eval);
+  out.drawMs = median(draw);
+  out.options = o;
+  return out;
+}
+
+}  // namespace hermite::render
