@@ -1,12 +1,15 @@
 // Baked mode of the implicit tracer: f from an R³ R32F texture over the bounds (vertex-centred
-// samples, trilinear filtering), per-brick (L, may contain a zero) from a brick texture.
+// samples, trilinear filtering), per-brick (L, brick distance e) from a brick texture of its own
+// (finer bricks than the bake's, ImplicitTracer::upload): e = 0 where the interpolant may vanish
+// in the brick, else the Chebyshev distance in bricks to the nearest such brick.
 
 uniform sampler3D uVolume;
-uniform highp sampler3D uBricks;  // RGBA32F per brick: (L interpolant, cull flag, L field, field flag)
+uniform highp sampler3D uBakedBricks;  // RG32F per (fine) brick: (L of the interpolant, brick distance e)
 uniform vec3 uVolumeScale;        // (R − 1) / (hi − lo): world → sample index
 uniform float uVolumeResolution;  // R
 uniform vec3 uCell;               // sample spacing, world units
 
+#define TRACE_BRICK_DISTANCE 1
 float fieldValue(vec3 p);
 vec3 fieldGradient(vec3 p);
 vec2 brickInfo(ivec3 b);
@@ -26,5 +29,5 @@ vec3 fieldGradient(vec3 p) {
               fieldValue(p + vec3(0, 0, h.z)) - fieldValue(p - vec3(0, 0, h.z))) / (2.0 * h);
 }
 
-vec2 brickInfo(ivec3 b) { return texelFetch(uBricks, b, 0).xy; }
+vec2 brickInfo(ivec3 b) { return texelFetch(uBakedBricks, b, 0).xy; }
 

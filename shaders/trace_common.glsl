@@ -83,62 +83,53 @@ float exitParameter(vec3 o, vec3 d, vec3 lo, vec3 hi) {
   return t;
 }
 
-// The first zero of f on [t0, t1]: brick by brick, skipping bricks without a possible zero,
-// steps max(|f|/L, ε), then bisection of the first sign change. One loop with one texture /
-// field fetch per iteration: llvmpipe runs both sides of divergent branches, so every fetch
-// sits on the common path and the loop ends as soon as all lanes are done.
+// The first zero of f on [t0, t1]: brick by brick, jumping over empty space, steps
+// max(|f|/L, ε) in bricks that may hold a zero, then a secant on the first sign change (the
+// bracket is at most ε long: a Lipschitz step cannot cross a zero, and the interpolant is
+// nearly linear over ε; settled views are refined against the true field on the CPU anyway).
+// With TRACE_BRICK_DISTANCE, brickInfo(b) = (L, e): e = 0 when the brick may contain a zero,
+// else e ≥ 1 and every brick within Chebyshev distance e − 1 of b is free of zeros too (a "brick
+// distance map"), so the ray leaves that whole cube of bricks in one step; without it,
+// brickInfo(b) = (L, 1 where the brick may contain a zero, else 0).
+// One loop with one texture / field fetch per iteration and no return inside it: llvmpipe
+// runs both sides of divergent branches under masks, so every fetch sits on the common path,
+// control flow stays simple, and the loop ends as soon as all lanes are done.
 bool march(vec3 o, vec3 d, float t0, float t1, out float tHit) {
   float nudge = 1e-6 * length(uBoundsHi - uBoundsLo);
+  vec3 invBrick = 1.0 / uBrickSize;
   float t = t0;
   float fa = fieldValue(o + t * d);
-  tHit = t;
-  if (fa == 0.0) return true;
-  bool bisecting = false;
   bool negA = fa < 0.0;
-  float ta = t, tb = t;
-  int bisections = 0;
-  for (int it = 0; it < uMaxSteps + 16; ++it) {
-    float ts;
-    if (!bisecting) {
-      if (!(t < t1) || it >= uMaxSteps) return false;
-      vec3 p = o + min(t + nudge, t1) * d;
-      ivec3 b = clamp(ivec3(floor((p - uBoundsLo) / uBrickSize)), ivec3(0), uBrickCount - 1);
-      vec3 blo = uBoundsLo + vec3(b) * uBrickSize;
-      vec3 bhi = min(blo + uBrickSize, uBoundsHi);
-      bhi = mix(bhi, uBoundsHi, vec3(equal(b, uBrickCount - 1)));
-      float tExit = min(max(exitParameter(o, d, blo, bhi), t + nudge), t1);
-      vec2 info = brickInfo(b);
-      if (info.y < 0.5) {
-        ts = tExit;
-      } else {
-        float stepLength = info.x > 0.0 ? abs(fa) / info.x : 1e30;
-        ts = (t + stepLength >= tExit) ? tExit : min(t + max(uMinStep, stepLength), t1);
-      }
-    } else {
-      ts = 0.5 * (ta + tb);
-    }
+  float tb = t, fb = fa;
+  bool found = fa == 0.0;
+  for (int it = 0; it < uMaxSteps && !found && t < t1; ++it) {
+    vec3 p = o + min(t + nudge, t1) * d;
+    ivec3 b = clamp(ivec3(floor((p - uBoundsLo) * invBrick)), ivec3(0), uBrickCount - 1);
+    vec2 info = brickInfo(b);
+#ifndef TRACE_BRICK_DISTANCE
+    info.y = info.y > 0.5 ? 0.0 : 1.0;  // (L, may contain a zero) → (L, e) with e ∈ {0, 1}
+#endif
+    // Empty cube of bricks [b − r, b + r] (r = e − 1), or the brick itself (e = 0).
+    float r = max(info.y - 1.0, 0.0);
+    vec3 blo = uBoundsLo + (vec3(b) - r) * uBrickSize;
+    vec3 bhi = uBoundsLo + (vec3(b) + r + 1.0) * uBrickSize;
+    float tExit = min(max(exitParameter(o, d, blo, bhi), t + nudge), t1);
+    float stepLength = (info.y > 0.5) ? 1e30 : (info.x > 0.0 ? abs(fa) / info.x : 1e30);
+    float ts = (t + stepLength >= tExit) ? tExit : min(t + max(uMinStep, stepLength), t1);
     float fs = fieldValue(o + ts * d);
-    if (!bisecting) {
-      if (fs == 0.0) {
-        tHit = ts;
-        return true;
-      }
-      if ((fs < 0.0) != negA) {
-        bisecting = true;
-        ta = t;
-        tb = ts;
-      } else {
-        t = ts;
-        fa = fs;
-      }
+    if (fs == 0.0 || (fs < 0.0) != negA) {
+      found = true;
+      tb = ts;
+      fb = fs;
     } else {
-      if (fs != 0.0 && (fs < 0.0) == negA) ta = ts; else tb = ts;
-      if (++bisections >= 16) break;
+      t = ts;
+      fa = fs;
     }
   }
-  if (!bisecting) return false;
-  tHit = 0.5 * (ta + tb);
-  return true;
+  // Secant on the bracket [t, tb] (fa, fb of opposite signs, or fb = 0); stays inside.
+  float w = fa == 0.0 ? 0.0 : fa / (fa - fb);
+  tHit = mix(t, tb, clamp(w, 0.0, 1.0));
+  return found;
 }
 
 vec3 shadeHit(vec3 n, vec3 d) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <limits>
 
 #include "core/errors.h"
@@ -119,28 +120,36 @@ RadialTerms Kernel::terms(double x) const {
 RadialBounds Kernel::bounds(double lo, double hi) const {
   // Interior critical points of |φ′|, |a| and |φ″| (in x), found by hand per kernel. The
   // sup of a smooth function over [lo, hi] is attained at an endpoint or a critical point.
-  std::vector<double> candidates{lo, hi};
+  // (A fixed array: this runs for every centre of every brick of a bake.)
+  double candidates[5] = {lo, hi};
+  int count = 2;
   const double r = radius;
+  auto add = [&](std::initializer_list<double> xs) {
+    for (double x : xs) candidates[count++] = x;
+  };
   switch (type) {
     case KernelType::Gaussian:  // φ′: s = 1/√2; φ″: s = √1.5
-      candidates.insert(candidates.end(), {r / std::sqrt(2.0), r * std::sqrt(1.5)});
+      add({r / std::sqrt(2.0), r * std::sqrt(1.5)});
       break;
     case KernelType::Wendland:  // φ′: s = 1/4; φ″: s = 1/2
-      candidates.insert(candidates.end(), {0.25 * r, 0.5 * r});
+      add({0.25 * r, 0.5 * r});
       break;
     case KernelType::InverseMultiquadric:  // φ′: s = 1/√2; φ″: s = √1.5
-      candidates.insert(candidates.end(), {r / std::sqrt(2.0), r * std::sqrt(1.5)});
+      add({r / std::sqrt(2.0), r * std::sqrt(1.5)});
       break;
-    case KernelType::Multiquadric:  // φ′ increasing, a and φ″ decreasing
-    case KernelType::Cubic:         // all increasing
+    case KernelType::Multiquadric:  // φ′ increasing, a and φ″ decreasing: the endpoints
+      break;
+    case KernelType::Cubic:  // |φ′| = 3x², |a| = 3x, |φ″| = 6x all increasing: the sups are at hi
+      candidates[0] = hi;
+      count = 1;
       break;
     case KernelType::Polyharmonic:  // φ′: x = e^{−7/12}; a: e^{−3/4}; φ″: e^{−13/12}
-      candidates.insert(candidates.end(),
-                        {std::exp(-7.0 / 12.0), std::exp(-0.75), std::exp(-13.0 / 12.0)});
+      add({std::exp(-7.0 / 12.0), std::exp(-0.75), std::exp(-13.0 / 12.0)});
       break;
   }
   RadialBounds out;
-  for (double x : candidates) {
+  for (int q = 0; q < count; ++q) {
+    const double x = candidates[q];
     if (x < lo || x > hi) continue;
     const RadialTerms t = terms(x);
     out.dphi = std::max(out.dphi, std::abs(t.dphi));

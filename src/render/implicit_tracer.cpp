@@ -123,6 +123,81 @@ std::vector<float> brickTexels(const VolumeBake& bake) {
   return texels;
 }
 
+// The baked mode's own brick grid (finer than the bake's, so that culling hugs the surface and
+// L is tighter): per brick (L, e) with L = 1.01 × the trilinear interpolant's Lipschitz bound on
+// the brick (see brickTexels) and e the brick distance: 0 where the interpolant may vanish in the
+// brick (its samples do not all have one sign), else the Chebyshev distance in bricks to the
+// nearest such brick, so that every brick within e − 1 of it is free of zeros too.
+struct BakedBricks {
+  Eigen::Array3i count = Eigen::Array3i::Zero();
+  Vec<3> size = Vec<3>::Zero();
+  std::vector<float> texels;  // RG per brick, x fastest
+};
+
+// Cells per brick edge of the baked mode's brick grid.
+constexpr int kBakedBrickCells = 4;
+
+BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
+  const int R = bake.resolution;
+  const int perAxis = (R - 1 + C - 1) / C;
+  const Vec<3> h = bake.spacing();
+  BakedBricks out;
+  out.count = Eigen::Array3i::Constant(perAxis);
+  out.size = double(C) * h;
+  const int n = perAxis * perAxis * perAxis;
+  out.texels.assign(2 * std::size_t(n), 0.0f);
+  constexpr int kFar = 1 << 20;
+  std::vector<int> dist(n);
+  const std::size_t plane = std::size_t(R) * R;
+  const float* v = bake.values.data();
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < n; ++b) {
+    const int bx = b % perAxis, by = (b / perAxis) % perAxis, bz = b / (perAxis * perAxis);
+    const int i0 = bx * C, i1 = std::min((bx + 1) * C, R - 1);
+    const int j0 = by * C, j1 = std::min((by + 1) * C, R - 1);
+    const int k0 = bz * C, k1 = std::min((bz + 1) * C, R - 1);
+    double maxDiff[3] = {0, 0, 0};
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    bool nan = false;
+    for (int k = k0; k <= k1; ++k)
+      for (int j = j0; j <= j1; ++j) {
+        const float* row = v + plane * k + std::size_t(R) * j;
+        for (int i = i0; i <= i1; ++i) {
+          const double f = row[i];
+          nan = nan || std::isnan(row[i]);
+          lo = std::min(lo, row[i]);
+          hi = std::max(hi, row[i]);
+          if (i < i1) maxDiff[0] = std::max(maxDiff[0], std::abs(double(row[i + 1]) - f));
+          if (j < j1) maxDiff[1] = std::max(maxDiff[1], std::abs(double(row[i + R]) - f));
+          if (k < k1) maxDiff[2] = std::max(maxDiff[2], std::abs(double(row[i + plane]) - f));
+        }
+      }
+    const double interp = Vec<3>(maxDiff[0] / h.x(), maxDiff[1] / h.y(), maxDiff[2] / h.z()).norm();
+    out.texels[2 * std::size_t(b)] = float(1.01 * interp);  // 1 % slack as in brickTexels
+    dist[b] = (nan || (lo <= 0.0f && hi >= 0.0f)) ? 0 : kFar;
+  }
+  // Chebyshev distance transform, separable: pass k sets d(x) = min_y max(|x_k − y_k|, d(y))
+  // along the lines of axis k.
+  std::vector<int> line(perAxis), result(perAxis);
+  const int stride[3] = {1, perAxis, perAxis * perAxis};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    for (int u = 0; u < perAxis; ++u)
+      for (int w = 0; w < perAxis; ++w) {
+        const int base = u * stride[a1] + w * stride[a2];
+        for (int q = 0; q < perAxis; ++q) line[q] = dist[base + q * stride[axis]];
+        for (int q = 0; q < perAxis; ++q) {
+          int best = line[q];
+          for (int r = 0; r < perAxis; ++r) best = std::min(best, std::max(std::abs(q - r), line[r]));
+          result[q] = best;
+        }
+        for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
+      }
+  }
+  for (int b = 0; b < n; ++b) out.texels[2 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
+  return out;
+}
+
 int kernelIndex(KernelType t) {
   switch (t) {
     case KernelType::Gaussian: return 0;
@@ -228,6 +303,9 @@ struct ImplicitTracer::Gpu {
   VertexArray empty;
   Texture volume;
   Texture bricks;
+  Texture bakedBricks;  // baked mode: per fine brick (L of the interpolant, brick distance)
+  Eigen::Array3i bakedBrickCount = Eigen::Array3i::Zero();
+  Vec<3> bakedBrickSize = Vec<3>::Zero();
   Buffer centres;
   Buffer betas;
   std::unique_ptr<TraceTarget> target;
@@ -266,6 +344,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   bakeOptions.brickCells = options.brickCells;
   auto bake = std::make_unique<VolumeBake>(bakeVolume(field, bounds, bakeOptions));
   const std::vector<float> texels = brickTexels(*bake);
+  const BakedBricks baked = bakedBrickTexels(*bake, kBakedBrickCells);
   bakeMs_ = msSince(t0);
 
   const auto t1 = Clock::now();
@@ -278,6 +357,11 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
   gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, texels.data());
   gpu_->bricks.setFilter(GL_NEAREST, GL_NEAREST);
+  gpu_->bakedBricks = Texture::create3D(GL_RG32F, baked.count.x(), baked.count.y(), baked.count.z());
+  gpu_->bakedBricks.upload3D(GL_RG, GL_FLOAT, baked.texels.data());
+  gpu_->bakedBricks.setFilter(GL_NEAREST, GL_NEAREST);
+  gpu_->bakedBrickCount = baked.count;
+  gpu_->bakedBrickSize = baked.size;
 
   field_ = &field;
   radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
@@ -437,6 +521,12 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     program->setUniform("uVolumeScale", toGlm(scale));
     program->setUniform("uVolumeResolution", float(bake.resolution));
     program->setUniform("uCell", toGlm(bake.spacing()));
+    // The baked mode marches over its own, finer brick grid.
+    program->setUniform("uBrickCount", glm::ivec3(gpu_->bakedBrickCount.x(), gpu_->bakedBrickCount.y(),
+                                                  gpu_->bakedBrickCount.z()));
+    program->setUniform("uBrickSize", toGlm(gpu_->bakedBrickSize));
+    gpu_->bakedBricks.bind(2);
+    program->setUniform("uBakedBricks", 2);
   } else {
     const RadialSum<3>& m = *radialSum_;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu_->centres.id());
