@@ -33,6 +33,16 @@ namespace hermite::app {
 
 namespace {
 
+// A hidden context of the render's size on the named backend (osmesa, egl).
+std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height) {
+  render::ContextOptions co;
+  co.width = width;
+  co.height = height;
+  co.visible = false;
+  co.vsync = false;
+  return render::createContext(backend, co);
+}
+
 // "WxH" (also "W×H" with an ASCII x or X) → {W, H}, each in [1, 16384]; UsageError otherwise.
 std::array<int, 2> parseSize(const std::string& text) {
   static const std::regex pattern(R"(^\s*([0-9]{1,5})\s*[xX]\s*([0-9]{1,5})\s*$)");
@@ -108,12 +118,7 @@ ImageRgba8 render2d(const Scene& scene, const RenderArgs& args) {
   if (fit.transformed) shown = transformSamples(fit.samples, sceneSimilarity<2>(scene.transform));
   const View2d view = View2d::fromView(scene.view);
 
-  render::ContextOptions co;
-  co.width = view.width();
-  co.height = view.height();
-  co.visible = false;
-  co.vsync = false;
-  const auto context = render::createContext(args.backend, co);
+  const auto context = offscreenContext(args.backend, view.width(), view.height());
 
   render::Field2dViewOptions options;
   options.showPoints = scene.view.showPoints;
@@ -171,12 +176,7 @@ ImageRgba8 render3d(const Scene& scene, const RenderArgs& args) {
   const Camera camera = Camera::fromView(scene.view);
   const Box<3> bounds = viewBounds<3>(scene.view, shown.points);
 
-  render::ContextOptions co;
-  co.width = camera.width();
-  co.height = camera.height();
-  co.visible = false;
-  co.vsync = false;
-  const auto context = render::createContext(args.backend, co);
+  const auto context = offscreenContext(args.backend, camera.width(), camera.height());
 
   render::ImplicitTracer tracer;
   tracer.upload(*fit.model, bounds, &shown);

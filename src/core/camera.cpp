@@ -1,6 +1,9 @@
 #include "core/camera.h"
 
 #include <algorithm>
+#include <limits>
+
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -166,6 +169,23 @@ Box<2> View2d::visibleBox() const {
   b.lo = pixelToWorld(0, height_);
   b.hi = pixelToWorld(width_, 0);
   return b;
+}
+
+bool clipRayToBox(const Ray& ray, const Box<3>& box, double& t0, double& t1) {
+  t0 = 0.0;
+  t1 = std::numeric_limits<double>::infinity();
+  for (int k = 0; k < 3; ++k) {
+    const double o = ray.origin(k), d = ray.direction(k);
+    if (d == 0) {
+      if (o < box.lo(k) || o > box.hi(k)) return false;
+      continue;
+    }
+    double ta = (box.lo(k) - o) / d, tb = (box.hi(k) - o) / d;
+    if (ta > tb) std::swap(ta, tb);
+    t0 = std::max(t0, ta);
+    t1 = std::min(t1, tb);
+  }
+  return t0 <= t1;
 }
 
 }  // namespace hermite

@@ -18,6 +18,9 @@ struct Ray {
   Vec<3> at(double t) const { return origin + t * direction; }
 };
 
+// [t0, t1] of the ray inside the box, t ≥ 0 (slab test); false when the ray misses it.
+bool clipRayToBox(const Ray& ray, const Box<3>& box, double& t0, double& t1);
+
 // Right-handed look-at camera: f = normalize(target − eye), r = normalize(f × up), u = r × f,
 // t = tan(fov_y/2). Perspective ray of pixel (i, j): origin eye, direction
 // normalize(f + (2(i+½)/W − 1)(W/H)t·r + (1 − 2(j+½)/H)t·u). Orthographic: direction f, origin

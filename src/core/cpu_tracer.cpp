@@ -59,19 +59,8 @@ struct CpuTracer::RayState {
 CpuTracer::RayState CpuTracer::start(const Ray& ray) const {
   RayState s;
   s.ray = ray;
-  double t0 = 0.0, t1 = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    const double o = ray.origin(k), d = ray.direction(k);
-    if (d == 0) {
-      if (o < bounds_.lo(k) || o > bounds_.hi(k)) return s;
-      continue;
-    }
-    double ta = (bounds_.lo(k) - o) / d, tb = (bounds_.hi(k) - o) / d;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  if (!(t0 <= t1)) return s;
+  double t0 = 0.0, t1 = 0.0;
+  if (!clipRayToBox(ray, bounds_, t0, t1)) return s;
   s.t = s.query = t0;
   s.t1 = t1;
   s.phase = RayState::March;

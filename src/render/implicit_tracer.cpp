@@ -38,23 +38,6 @@ glm::mat4 toGlm(const Eigen::Matrix4d& m) {
   return out;
 }
 
-// [t0, t1] of the ray inside the box (t ≥ 0); false when it misses.
-bool clipRay(const Ray& ray, const Box<3>& box, double& t0, double& t1) {
-  t0 = 0.0;
-  t1 = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    const double o = ray.origin(k), d = ray.direction(k);
-    if (d == 0) {
-      if (o < box.lo(k) || o > box.hi(k)) return false;
-      continue;
-    }
-    double ta = (box.lo(k) - o) / d, tb = (box.hi(k) - o) / d;
-    if (ta > tb) std::swap(ta, tb);
-    t0 = std::max(t0, ta);
-    t1 = std::min(t1, tb);
-  }
-  return t0 <= t1;
-}
 
 // Trilinear interpolant of the baked samples at x (clamped to the bounds).
 double sampleBake(const VolumeBake& bake, const Vec<3>& x) {
@@ -569,7 +552,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     if (!settings.slice.enabled) return std::numeric_limits<double>::infinity();
     const double dn = ray.direction.dot(sliceNormal);
     double a, b;
-    if (dn == 0 || !clipRay(ray, bounds_, a, b)) return std::numeric_limits<double>::infinity();
+    if (dn == 0 || !clipRayToBox(ray, bounds_, a, b)) return std::numeric_limits<double>::infinity();
     const double tp = (settings.slice.offset - sliceNormal.dot(ray.origin)) / dn;
     return (tp >= a && tp <= b) ? tp : std::numeric_limits<double>::infinity();
   };
@@ -590,7 +573,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
       hasGpuHit[p] = 1;
       const Ray ray = camera.pixelRay(int(p % W), int(p / W));
       double a = 0, b = 0;
-      clipRay(ray, bounds_, a, b);
+      clipRayToBox(ray, bounds_, a, b);
       work.push_back({int(p), ray, double(surfaceT[p]), a, b});
     }
     // Safeguarded Newton along the ray, batched over pixels (f and ∇f per iteration).
@@ -699,7 +682,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
       const int p = ring[q].first;
       const Ray ray = camera.pixelRay(p % W, p / W);
       double a, b;
-      if (!clipRay(ray, bounds_, a, b)) continue;
+      if (!clipRayToBox(ray, bounds_, a, b)) continue;
       const double lo = std::max(a, ring[q].second[0] - 2 * cell), hi = std::min(b, ring[q].second[1] + 2 * cell);
       if (!(lo < hi)) continue;
       double tHit;
