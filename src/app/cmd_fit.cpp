@@ -17,26 +17,6 @@ namespace {
 
 using json = nlohmann::json;
 
-struct Residuals {
-  double maxAbsF = 0;       // max |f(pᵢ)| over the samples
-  double maxGradError = 0;  // max ‖∇f(pᵢ) − nᵢ‖
-};
-
-// Residuals of the model against the data it must reproduce (the transformed data when the
-// scene has a transform).
-template <int Dim>
-Residuals residuals(const SceneFit<Dim>& fit, const Scene& scene) {
-  HermiteSamples<Dim> data = fit.samples;
-  if (fit.transformed) data = transformSamples(fit.samples, sceneSimilarity<Dim>(scene.transform));
-  Eigen::VectorXd f;
-  Points<Dim> G;
-  fit.model->evaluateBatch(data.points, f, &G);
-  Residuals r;
-  r.maxAbsF = f.cwiseAbs().maxCoeff();
-  r.maxGradError = (G - data.normals).colwise().norm().maxCoeff();
-  return r;
-}
-
 template <int Dim>
 json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
   json out;
@@ -69,7 +49,7 @@ json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
 
 template <int Dim>
 json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficients) {
-  const Residuals r = residuals(fit, scene);
+  const FitResiduals r = fitResiduals(fit);
   json out;
   out["n_samples"] = fit.report.nSamples;
   out["n_unknowns"] = fit.report.nUnknowns;

@@ -114,8 +114,7 @@ std::string fmt(const char* format, double v) {
 
 ImageRgba8 render2d(const Scene& scene, const RenderArgs& args) {
   const SceneFit<2> fit = fitScene<2>(scene);
-  HermiteSamples<2> shown = fit.samples;
-  if (fit.transformed) shown = transformSamples(fit.samples, sceneSimilarity<2>(scene.transform));
+  const HermiteSamples<2>& shown = fit.data;
   const View2d view = View2d::fromView(scene.view);
 
   const auto context = offscreenContext(args.backend, view.width(), view.height());
@@ -171,8 +170,7 @@ void blitImage(const ImageRgba8& image) {
 
 ImageRgba8 render3d(const Scene& scene, const RenderArgs& args) {
   const SceneFit<3> fit = fitScene<3>(scene);
-  HermiteSamples<3> shown = fit.samples;
-  if (fit.transformed) shown = transformSamples(fit.samples, sceneSimilarity<3>(scene.transform));
+  const HermiteSamples<3>& shown = fit.data;
   const Camera camera = Camera::fromView(scene.view);
   const Box<3> bounds = viewBounds<3>(scene.view, shown.points);
 

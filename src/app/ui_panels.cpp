@@ -29,19 +29,10 @@ FitDiagnostics fitDiagnostics(const Scene& scene, const SceneFit<Dim>& fit) {
   d.fitMs = fit.report.fitMs;
   d.meanSpacing = meanSampleSpacing<Dim>(fit.samples.points);
   d.warnings = fit.warnings;
-  // Residuals against the data the model must reproduce (transformed when the scene says so).
-  HermiteSamples<Dim> data = fit.samples;
-  if (fit.transformed) {
-    data = transformSamples(fit.samples, sceneSimilarity<Dim>(scene.transform));
-    d.transform = fit.transform.method;
-  }
-  if (data.size() > 0) {
-    Eigen::VectorXd f;
-    Points<Dim> G;
-    fit.model->evaluateBatch(data.points, f, &G);
-    d.maxAbsF = f.cwiseAbs().maxCoeff();
-    d.maxGradError = (G - data.normals).colwise().norm().maxCoeff();
-  }
+  if (fit.transformed) d.transform = fit.transform.method;
+  const FitResiduals r = fitResiduals(fit);
+  d.maxAbsF = r.maxAbsF;
+  d.maxGradError = r.maxGradError;
   return d;
 }
 

@@ -145,14 +145,31 @@ SceneFit<Dim> fitScene(const Scene& scene) {
     if (!tr.exact) out.warnings.push_back("transform: " + why);
     out.model = tr.exact ? std::move(updated) : std::move(resolved);
     out.transformed = true;
+    out.data = moved;
+  } else {
+    out.data = out.samples;
   }
   return out;
+}
+
+template <int Dim>
+FitResiduals fitResiduals(const SceneFit<Dim>& fit) {
+  FitResiduals r;
+  if (fit.data.size() == 0) return r;
+  Eigen::VectorXd f;
+  Points<Dim> G;
+  fit.model->evaluateBatch(fit.data.points, f, &G);
+  r.maxAbsF = f.cwiseAbs().maxCoeff();
+  r.maxGradError = (G - fit.data.normals).colwise().norm().maxCoeff();
+  return r;
 }
 
 template HermiteSamples<2> sceneSamples<2>(const Scene&, std::vector<std::string>&);
 template HermiteSamples<3> sceneSamples<3>(const Scene&, std::vector<std::string>&);
 template Similarity<2> sceneSimilarity<2>(const TransformSpec&);
 template Similarity<3> sceneSimilarity<3>(const TransformSpec&);
+template FitResiduals fitResiduals<2>(const SceneFit<2>&);
+template FitResiduals fitResiduals<3>(const SceneFit<3>&);
 template SceneFit<2> fitScene<2>(const Scene&);
 template SceneFit<3> fitScene<3>(const Scene&);
 

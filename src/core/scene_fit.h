@@ -41,12 +41,21 @@ struct TransformReport {
 template <int Dim>
 struct SceneFit {
   HermiteSamples<Dim> samples;             // the scene's data, before the transform
+  HermiteSamples<Dim> data;                // what the model interpolates: samples, transformed if asked
   std::unique_ptr<RadialSum<Dim>> model;   // the fitted (and transformed) field
   FitReport report;                        // of the fit on the untransformed data
   std::vector<std::string> warnings;       // data + fit warnings, in order
   bool transformed = false;
   TransformReport transform;
 };
+
+// Residuals of a fitted scene against the data it interpolates (SceneFit::data).
+struct FitResiduals {
+  double maxAbsF = 0;       // max |f(pᵢ)|
+  double maxGradError = 0;  // max ‖∇f(pᵢ) − nᵢ‖
+};
+template <int Dim>
+FitResiduals fitResiduals(const SceneFit<Dim>& fit);
 
 // Throws InputError for scene settings that cannot be fitted (wrong mode, partition of unity
 // before it exists) and NumericalError from the solver.
