@@ -13,6 +13,7 @@
 #include "core/hrbf.h"
 #include "core/presets.h"
 #include "core/shading.h"
+#include "core/transform.h"
 #include "core/view_bounds.h"
 #include "render/context.h"
 #include "render/gl_objects.h"
@@ -194,26 +195,14 @@ int kernelIndex(KernelType t) {
 }
 
 // Polynomial coefficients (order 1, x, y, z, xx, xy, xz, yy, yz, zz) re-expressed for
-// x = o + y (y the shifted coordinate): p(o + y) as a polynomial in y.
+// x = o + y (y the shifted coordinate): p(o + y) as a polynomial in y, i.e. the core's
+// transformPolynomial for the translation y = x − o; unused entries stay 0.
 std::array<double, 10> shiftPolynomial(Polynomial p, const Eigen::VectorXd& c, const Vec<3>& o) {
+  Similarity<3> toShifted;
+  toShifted.t = -o;
+  const Eigen::VectorXd shifted = transformPolynomial<3>(p, c, toShifted);
   std::array<double, 10> s{};
-  if (p == Polynomial::None) return s;
-  s[0] = c(0) + c(1) * o.x() + c(2) * o.y() + c(3) * o.z();
-  s[1] = c(1);
-  s[2] = c(2);
-  s[3] = c(3);
-  if (p == Polynomial::Quadratic) {
-    // Quadratic coefficients q(i,j), i ≤ j, in the order xx, xy, xz, yy, yz, zz.
-    const int idx[3][3] = {{4, 5, 6}, {5, 7, 8}, {6, 8, 9}};
-    for (int i = 0; i < 3; ++i)
-      for (int j = i; j < 3; ++j) {
-        const double q = c(idx[i][j]);
-        s[idx[i][j]] = q;
-        s[0] += q * o(i) * o(j);
-        s[1 + i] += q * o(j);
-        s[1 + j] += q * o(i);
-      }
-  }
+  for (Eigen::Index k = 0; k < shifted.size(); ++k) s[k] = shifted(k);
   return s;
 }
 
