@@ -4,7 +4,6 @@
 #include <string>
 
 #include "core/errors.h"
-#include "core/huge_pages.h"
 
 namespace hermite {
 
@@ -67,7 +66,6 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
 
   SaddleSystem sys;
   sys.A.resize(n, n);
-  adviseHugePages(sys.A.data(), sizeof(double) * size_t(n) * size_t(n));
   sys.P.resize(n, m);
   sys.b.setZero(n);
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);

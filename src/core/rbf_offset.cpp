@@ -3,7 +3,6 @@
 #include <chrono>
 
 #include "core/errors.h"
-#include "core/huge_pages.h"
 
 namespace hermite {
 
@@ -31,7 +30,6 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   }
   const int m = monomialCount<Dim>(options.polynomial);
   sys.A.resize(n, n);
-  adviseHugePages(sys.A.data(), sizeof(double) * size_t(n) * size_t(n));
   sys.P.resize(n, m);
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
 #pragma omp parallel for schedule(dynamic, 16)
