@@ -35,6 +35,19 @@ inline __m512d invSqrt(__m512d x) {
   return _mm512_maskz_mov_pd(positive, y);
 }
 
+// √x per lane for x ≥ 0, to a few ulp: vrsqrt14pd (14 bits), one Newton step for 1/√x (~28
+// bits), then one Newton step for √x itself using that reciprocal (~53 bits). x = 0 gives 0
+// (the reciprocal is taken of max(x, 1e-300), a normal double).
+inline __m512d sqrtLanes(__m512d x) {
+  const __m512d xc = _mm512_max_pd(x, _mm512_set1_pd(1e-300));
+  const __m512d halfX = _mm512_mul_pd(xc, _mm512_set1_pd(0.5));
+  __m512d y = _mm512_rsqrt14_pd(xc);
+  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(_mm512_mul_pd(halfX, y), y, _mm512_set1_pd(1.5)));
+  const __m512d r0 = _mm512_mul_pd(x, y);                    // √x (1 + O(2⁻²⁸))
+  const __m512d e = _mm512_fnmadd_pd(r0, r0, x);              // x − r0²
+  return _mm512_fmadd_pd(_mm512_mul_pd(y, _mm512_set1_pd(0.5)), e, r0);  // r0 + e / (2 r0)
+}
+
 // φ, a = φ′/x and e = a′/x for 8 squared distances (kernels.h conventions).
 struct RadialLanes {
   __m512d phi, a, e;

@@ -10,9 +10,7 @@
 #include "core/polynomial.h"
 #include "core/radial_sum.h"
 
-#if defined(__AVX512F__)
-#include <immintrin.h>
-#endif
+#include "core/radial_sum_avx512.h"
 
 namespace hermite {
 
@@ -53,23 +51,6 @@ void fillBrickGrid(const ImplicitField<3>& field, BrickGrid& grid) {
 
 
 #if defined(__AVX512F__)
-// GCC 12 flags _mm512_undefined_pd() inside the rsqrt14 intrinsic as uninitialised (false positive).
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wuninitialized"
-
-// √x per lane for x ≥ 0, to a few ulp: vrsqrt14pd (14 bits), one Newton step for 1/√x (~28
-// bits), then one Newton step for √x itself using that reciprocal (~53 bits). x = 0 gives 0
-// (the reciprocal is taken of max(x, 1e-300), a normal double).
-inline __m512d sqrtLanes(__m512d x) {
-  const __m512d xc = _mm512_max_pd(x, _mm512_set1_pd(1e-300));
-  const __m512d halfX = _mm512_mul_pd(xc, _mm512_set1_pd(0.5));
-  __m512d y = _mm512_rsqrt14_pd(xc);
-  y = _mm512_mul_pd(y, _mm512_fnmadd_pd(_mm512_mul_pd(halfX, y), y, _mm512_set1_pd(1.5)));
-  const __m512d r0 = _mm512_mul_pd(x, y);                    // √x (1 + O(2⁻²⁸))
-  const __m512d e = _mm512_fnmadd_pd(r0, r0, x);              // x − r0²
-  return _mm512_fmadd_pd(_mm512_mul_pd(y, _mm512_set1_pd(0.5)), e, r0);  // r0 + e / (2 r0)
-}
-
 // Grid bake of a cubic RadialSum<3> (HRBF or plain RBF, φ = x³, a = φ′/x = 3x): row by row
 // along x, 8 x-samples per vector, with what depends only on the row and the centre (dy² + dz²,
 // βy dy + βz dz) hoisted out of the x loop — the structure evaluateBatch cannot see. Per pair:
@@ -120,7 +101,7 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
         auto pair = [&](int q) {
           const __m512d dx = _mm512_sub_pd(xv[q], X);
           const __m512d r2 = _mm512_fmadd_pd(dx, dx, C);
-          const __m512d r = sqrtLanes(r2);
+          const __m512d r = detail::sqrtLanes(r2);
           // α r² − 3 β·d
           const __m512d t = _mm512_fmadd_pd(A, r2, _mm512_fmadd_pd(BX, dx, B));
           acc[q] = _mm512_fmadd_pd(r, t, acc[q]);
@@ -149,7 +130,6 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
   return true;
 }
 
-#pragma GCC diagnostic pop
 #else
 bool bakeCubicRadialSum(const ImplicitField<3>&, const Box<3>&, int, const Vec<3>&, float*) { return false; }
 #endif
