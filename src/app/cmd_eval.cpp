@@ -24,7 +24,7 @@ void evalScene(const Scene& scene, const std::string& probeFile) {
   const SceneFit<Dim> fit = fitScene<Dim>(scene);
   Eigen::VectorXd f;
   Points<Dim> G;
-  fit.model->evaluateBatch(X, f, &G);
+  fit.field().evaluateBatch(X, f, &G);
   std::string out;
   out.reserve(static_cast<size_t>(X.cols()) * 25 * (Dim + 1));
   char buf[32];

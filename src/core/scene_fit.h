@@ -47,6 +47,10 @@ struct SceneFit {
   std::vector<std::string> warnings;       // data + fit warnings, in order
   bool transformed = false;
   TransformReport transform;
+
+  // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
+  // (A partition-of-unity fit will hold its model beside `model`, which stays the global fit.)
+  const ImplicitField<Dim>& field() const { return *model; }
 };
 
 // Residuals of a fitted scene against the data it interpolates (SceneFit::data).
