@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "app/commands.h"
+#include "app/fit_worker.h"
 #include "app/output.h"
 #include "app/scene_loading.h"
 #include "core/errors.h"
@@ -143,10 +144,10 @@ int runFit(const FitArgs& args) {
   return 0;
 }
 
-int runDefault(const SceneArgs& args) {
-  FitArgs f;
-  f.scene = args;
-  return runFit(f);
+std::string fittedModelJson(const FitOutcome& fit) {
+  if (fit.fit2) return fitReportJson<2>(fit.scene, *fit.fit2, true)["model"].dump(2);
+  if (fit.fit3) return fitReportJson<3>(fit.scene, *fit.fit3, true)["model"].dump(2);
+  throw InputError("no fitted model to export: " + fit.error);
 }
 
 }  // namespace hermite::app

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/gui_app.h"
 #include "app/scene_loading.h"
 #include "app/ui_panels.h"
 #include "core/errors.h"
@@ -106,49 +107,6 @@ class HeadlessImGui {
   std::unique_ptr<render::ImGuiRenderer> renderer_;
 };
 
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-ImageRgba8 render2d(const Scene& scene, const RenderArgs& args) {
-  const SceneFit<2> fit = fitScene<2>(scene);
-  const HermiteSamples<2>& shown = fit.data;
-  const View2d view = View2d::fromView(scene.view);
-
-  const auto context = offscreenContext(args.backend, view.width(), view.height());
-
-  render::Field2dViewOptions options;
-  options.showPoints = scene.view.showPoints;
-  options.showNormals = scene.view.showNormals;
-  options.bounds = viewBounds<2>(scene.view, shown.points);
-  options.outsideColor = scene.view.background;
-  render::Field2dView fieldView;
-  fieldView.setField(*fit.model, view, options, shown.points, shown.normals);
-
-  render::OffscreenTarget target(view.width(), view.height(), false);
-  target.bind();
-  fieldView.draw();
-
-  FitDiagnostics diagnostics;
-  if (args.ui) {
-    diagnostics = fitDiagnostics<2>(scene, fit);
-    diagnostics.showTimings = false;  // same input → same bytes
-    diagnostics.viewLines.emplace_back("colour range", fmt("\u00b1%.3g", fieldView.range()));
-    diagnostics.viewLines.emplace_back("iso spacing", fmt("%.3g", fieldView.isoSpacing()));
-  }
-  HeadlessImGui imgui(view.width(), view.height());
-  render::LegendOptions legend;
-  legend.range = fieldView.range();
-  legend.isoSpacing = fieldView.isoSpacing();
-  imgui.draw([&] {
-    render::drawColorLegend(ImGui::GetBackgroundDrawList(), legend);
-    if (args.ui) drawAppPanels(diagnostics);
-  });
-  return target.read();
-}
-
 // Draws an ImageRgba8 texel for texel into the framebuffer bound now (same size).
 void blitImage(const ImageRgba8& image) {
   render::Texture texture = render::Texture::create2D(GL_RGBA8, image.width, image.height);
@@ -168,38 +126,53 @@ void blitImage(const ImageRgba8& image) {
   render::checkGl("image blit");
 }
 
-ImageRgba8 render3d(const Scene& scene, const RenderArgs& args) {
-  const SceneFit<3> fit = fitScene<3>(scene);
-  const HermiteSamples<3>& shown = fit.data;
-  const Camera camera = Camera::fromView(scene.view);
-  const Box<3> bounds = viewBounds<3>(scene.view, shown.points);
-
-  const auto context = offscreenContext(args.backend, camera.width(), camera.height());
-
-  render::ImplicitTracer tracer;
-  tracer.upload(*fit.model, bounds, &shown);
-  render::TraceSettings settings;
-  settings.mode = scene.view.trace == TraceMode::Exact ? render::TracerMode::Exact : render::TracerMode::Baked;
-  settings.refineExact = true;
-  settings.showPoints = scene.view.showPoints;
-  settings.showNormals = scene.view.showNormals;
-  settings.showBounds = scene.view.showBounds;
-  settings.slice.enabled = scene.view.slice.enabled;
-  settings.slice.normal = scene.view.slice.normal;
-  settings.slice.offset = scene.view.slice.offset;
-  settings.background = scene.view.background;
-  const render::TraceResult traced = tracer.render(camera, settings);
-  if (!args.ui) return traced.image;
-
-  FitDiagnostics diagnostics = fitDiagnostics<3>(scene, fit);
-  diagnostics.showTimings = false;  // same input → same bytes
-  diagnostics.viewLines.emplace_back("trace", settings.mode == render::TracerMode::Exact ? "exact" : "baked + refined");
-  diagnostics.viewLines.emplace_back("hit pixels", std::to_string(traced.refinedPixels));
-  render::OffscreenTarget target(camera.width(), camera.height(), false);
+// The scene's view as `render` draws it without --ui: the same SceneViewRenderer as the window,
+// settled quality (128³ bake + exact refinement in 3D, f at every pixel in 2D), at view.size;
+// 2D views get their colour legend.
+ImageRgba8 renderView(const Scene& scene, const RenderArgs& args) {
+  const std::shared_ptr<const FitOutcome> fit = fitOutcomeOrThrow(scene);
+  const int w = scene.view.size[0], h = scene.view.size[1];
+  const auto context = offscreenContext(args.backend, w, h);
+  SceneViewRenderer renderer;
+  const SceneViewResult view = renderer.render(fit, scene, w, h, ViewQuality::Settled);
+  if (scene.mode != SceneMode::Implicit2d) return view.image;
+  // The legend on top of the field (drawn with ImGui like in the window).
+  render::OffscreenTarget target(w, h, false);
   target.bind();
-  blitImage(traced.image);
-  HeadlessImGui imgui(camera.width(), camera.height());
-  imgui.draw([&] { drawAppPanels(diagnostics); });
+  blitImage(view.image);
+  HeadlessImGui imgui(w, h);
+  render::LegendOptions legend;
+  legend.range = view.colourRange;
+  legend.isoSpacing = view.isoSpacing;
+  imgui.draw([&] { render::drawColorLegend(ImGui::GetBackgroundDrawList(), legend); });
+  return target.read();
+}
+
+// The application itself on an offscreen context: its panels with the scene's real settings
+// and diagnostics, over the view it draws (GuiApp, the same code as the window).
+ImageRgba8 renderWithPanels(const Scene& scene, const RenderArgs& args) {
+  const int w = scene.view.size[0], h = scene.view.size[1];
+  const auto context = offscreenContext(args.backend, w, h);
+  GuiOptions options;
+  options.synchronousFits = true;
+  options.showTimings = false;
+  // The file name only: the same picture whatever directory the scene lives in.
+  GuiApp app(Document(scene, std::filesystem::path(args.scene.scenePath).filename().string()), options);
+  render::OffscreenTarget target(w, h, false);
+  FrameInput in;
+  in.width = w;
+  in.height = h;
+  // Auto-sized windows settle after two frames; the fit and the view are done in the first.
+  for (int k = 0; k < 3; ++k) {
+    target.bind();
+    app.frame(in);
+  }
+  if (!app.shownFit()) {
+    // Fit again outside the app so the failure surfaces with its own error class (exit 1 or 3).
+    if (scene.mode == SceneMode::Implicit2d) fitScene<2>(scene);
+    else fitScene<3>(scene);
+    throw NumericalError("render: " + app.status().message);
+  }
   return target.read();
 }
 
@@ -215,7 +188,7 @@ int runRender(const RenderArgs& args) {
     throw InputError("render: mode '" + std::string(sceneModeName(scene.mode)) +
                      "' is not available in this version");
   checkOutputPath(args.output);
-  const ImageRgba8 image = scene.mode == SceneMode::Implicit2d ? render2d(scene, args) : render3d(scene, args);
+  const ImageRgba8 image = args.ui ? renderWithPanels(scene, args) : renderView(scene, args);
   writePng(args.output, image);
   return 0;
 }

@@ -41,6 +41,34 @@ std::vector<double> parseRadiiArgument(const std::string& text) {
 }
 
 template <int Dim>
+RadiusSweepRow radiusSweepRow(const Scene& s, const SceneFit<Dim>& fit, double spacing) {
+  RadiusSweepRow row;
+  row.radius = s.fit.radius;
+  row.radiusInSpacing = spacing > 0 ? s.fit.radius / spacing : 0;
+  const FitResiduals res = fitResiduals(fit);
+  row.solver = fit.report.solver;
+  row.conditionEstimate = fit.report.conditionEstimate;
+  row.maxAbsF = res.maxAbsF;
+  row.maxGradError = res.maxGradError;
+  row.fitMs = fit.report.fitMs;
+  if (s.fit.method == FitMethod::Hrbf && !s.fit.partition.enabled) {
+    HrbfOptions o;
+    o.kernel = Kernel{s.fit.kernel, s.fit.radius};
+    o.polynomial = s.fit.polynomial;
+    o.smoothing = s.fit.smoothing;
+    try {
+      const LeaveOneOutResult loo = hrbfLeaveOneOut<Dim>(fit.samples, o);
+      row.looRmsValue = loo.rmsValue;
+      row.looRmsGradient = loo.rmsGradient;
+      row.looCombined = loo.combined;
+    } catch (const NumericalError& e) {
+      row.looError = e.what();  // the fit stands; its leave-one-out error is undefined
+    }
+  }
+  return row;
+}
+
+template <int Dim>
 std::vector<RadiusSweepRow> sweepRadii(const Scene& scene, const std::vector<double>& radii,
                                        const std::atomic<bool>* cancel, std::atomic<float>* progress) {
   std::vector<std::string> warnings;
@@ -55,27 +83,7 @@ std::vector<RadiusSweepRow> sweepRadii(const Scene& scene, const std::vector<dou
     Scene s = scene;
     s.fit.radius = radii[k];
     try {
-      const SceneFit<Dim> fit = fitScene<Dim>(s);
-      const FitResiduals res = fitResiduals(fit);
-      row.solver = fit.report.solver;
-      row.conditionEstimate = fit.report.conditionEstimate;
-      row.maxAbsF = res.maxAbsF;
-      row.maxGradError = res.maxGradError;
-      row.fitMs = fit.report.fitMs;
-      if (s.fit.method == FitMethod::Hrbf && !s.fit.partition.enabled) {
-        HrbfOptions o;
-        o.kernel = Kernel{s.fit.kernel, s.fit.radius};
-        o.polynomial = s.fit.polynomial;
-        o.smoothing = s.fit.smoothing;
-        try {
-          const LeaveOneOutResult loo = hrbfLeaveOneOut<Dim>(fit.samples, o);
-          row.looRmsValue = loo.rmsValue;
-          row.looRmsGradient = loo.rmsGradient;
-          row.looCombined = loo.combined;
-        } catch (const NumericalError& e) {
-          row.looError = e.what();  // the fit stands; its leave-one-out error is undefined
-        }
-      }
+      row = radiusSweepRow<Dim>(s, fitScene<Dim>(s), spacing);
     } catch (const std::exception& e) {
       row.error = e.what();
     }
@@ -112,6 +120,8 @@ std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows) {
   return out;
 }
 
+template RadiusSweepRow radiusSweepRow<2>(const Scene&, const SceneFit<2>&, double);
+template RadiusSweepRow radiusSweepRow<3>(const Scene&, const SceneFit<3>&, double);
 template std::vector<RadiusSweepRow> sweepRadii<2>(const Scene&, const std::vector<double>&, const std::atomic<bool>*,
                                                    std::atomic<float>*);
 template std::vector<RadiusSweepRow> sweepRadii<3>(const Scene&, const std::vector<double>&, const std::atomic<bool>*,

@@ -41,6 +41,13 @@ template <int Dim>
 std::vector<RadiusSweepRow> sweepRadii(const Scene& scene, const std::vector<double>& radii,
                                        const std::atomic<bool>* cancel = nullptr, std::atomic<float>* progress = nullptr);
 
+// The diagnostics row of one fitted scene (`scene` as fitted, its radius being the row's r);
+// `spacing` is the samples' mean nearest-neighbour distance.
+template <int Dim>
+struct SceneFit;
+template <int Dim>
+RadiusSweepRow radiusSweepRow(const Scene& scene, const SceneFit<Dim>& fit, double spacing);
+
 // Index of the row with the smallest finite looCombined (−1 when none).
 int suggestedRadiusIndex(const std::vector<RadiusSweepRow>& rows);
 

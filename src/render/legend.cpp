@@ -27,7 +27,8 @@ std::string label(double v) {
 }  // namespace
 
 void drawColorLegend(ImDrawList* list, const LegendOptions& options) {
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const ImVec2 display = options.cornerX > 0 && options.cornerY > 0 ? ImVec2(options.cornerX, options.cornerY)
+                                                                     : ImGui::GetIO().DisplaySize;
   const float barH = options.barHeight > 0 ? options.barHeight : std::clamp(0.4f * display.y, 40.0f, 220.0f);
   const float fontH = ImGui::GetFontSize();
   const double range = options.range > 0 ? options.range : 1.0;

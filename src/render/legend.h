@@ -16,7 +16,9 @@ struct LegendOptions {
   std::string title = "f";
   float barWidth = 14.0f;    // pixels
   float barHeight = 0.0f;    // pixels; 0 = 40 % of the display height, between 40 and 220
-  float margin = 8.0f;       // from the bottom-right corner of the display
+  float margin = 8.0f;       // from the bottom-right corner
+  // The bottom-right corner it sits in (pixels); (0, 0) = the display's (ImGui DisplaySize).
+  float cornerX = 0.0f, cornerY = 0.0f;
 };
 
 // Draws the legend at the bottom-right corner of the display (ImGui::GetIO().DisplaySize).

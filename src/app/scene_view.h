@@ -1,0 +1,61 @@
+#pragma once
+// Draws a fitted scene's view into an image: the one path the window, the r-explorer
+// thumbnails, the compare split view, `render` and `sweep` share. 2D: the field view (heat map,
+// iso-lines, zero curve, samples). 3D: the implicit tracer (bake, trace, slice, overlays).
+//
+// The field comes from a FitOutcome (kept alive here while the tracer references it); the view
+// settings (camera, slice, overlays, background) from the scene passed to render(), which may be
+// newer than the fit: moving the camera redraws without refitting. Needs a current GL context.
+
+#include <memory>
+#include <optional>
+
+#include "app/fit_worker.h"
+#include "core/image.h"
+#include "render/field2d_view.h"
+#include "render/implicit_tracer.h"
+
+namespace hermite::app {
+
+enum class ViewQuality {
+  Interactive,  // while dragging: coarse 3D bake (64³), no exact refinement; 2D f every 2 px
+  Settled,      // the view at rest: 128³ bake + exact refinement of every hit; 2D f at every pixel
+};
+
+struct SceneViewResult {
+  ImageRgba8 image;
+  // 3D only: per-pixel surface hits (depth = ray parameter, +inf where none), for picking.
+  std::vector<float> depth;
+  double ms = 0;            // whole render (bake when the field changed, trace, refinement)
+  double colourRange = 0;   // 2D: the heat map covers ±range
+  double isoSpacing = 0;    // 2D
+  int refinedPixels = 0;    // 3D
+  std::string traceMode;    // 3D: "baked", "baked + refined" or "exact"
+};
+
+class SceneViewRenderer {
+ public:
+  SceneViewRenderer() = default;
+  ~SceneViewRenderer();
+  SceneViewRenderer(const SceneViewRenderer&) = delete;
+  SceneViewRenderer& operator=(const SceneViewRenderer&) = delete;
+
+  // Renders `fit` with the view of `viewScene` at width × height pixels. Throws InputError for
+  // a failed fit (nothing to draw) and EnvironmentError from GL.
+  SceneViewResult render(const std::shared_ptr<const FitOutcome>& fit, const Scene& viewScene, int width, int height,
+                         ViewQuality quality);
+
+ private:
+  std::shared_ptr<const FitOutcome> field_;  // what the tracer / field view reference
+  std::unique_ptr<render::ImplicitTracer> tracer_;
+  std::unique_ptr<render::Field2dView> view2d_;
+  int bakeResolution_ = 0;
+  std::optional<std::vector<double>> bakedBounds_;
+};
+
+// The 3D camera of a scene's view at a given pixel size.
+Camera sceneCamera(const Scene& scene, int width, int height);
+// The 2D view of a scene at a given pixel size.
+View2d sceneView2d(const Scene& scene, int width, int height);
+
+}  // namespace hermite::app

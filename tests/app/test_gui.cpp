@@ -1,0 +1,256 @@
+// Scripted headless UI tests (issue 4 §4, DESIGN.md §8): the application on an OSMesa context,
+// driven frame by frame with FrameInput (mouse position, buttons, keys), checking the document,
+// the fit and the undo history.
+
+#include <doctest/doctest.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+
+#include "app/gui_app.h"
+#include "core/scene_file.h"
+#include "render/context.h"
+#include "render/offscreen.h"
+
+using namespace hermite;
+using namespace hermite::app;
+
+namespace {
+
+struct Harness {
+  std::unique_ptr<render::RenderContext> context;
+  std::unique_ptr<render::OffscreenTarget> target;
+  std::unique_ptr<GuiApp> app;
+  FrameInput input;
+
+  Harness(const Scene& scene, bool synchronous = true, int w = 1000, int h = 700) {
+    render::ContextOptions co;
+    co.width = w;
+    co.height = h;
+    co.visible = false;
+    context = render::createContext("osmesa", co);
+    target = std::make_unique<render::OffscreenTarget>(w, h, false);
+    GuiOptions o;
+    o.synchronousFits = synchronous;
+    o.screenshotDirectory = std::filesystem::temp_directory_path().string();
+    app = std::make_unique<GuiApp>(Document(scene), o);
+    input.width = w;
+    input.height = h;
+  }
+  void frame() {
+    target->bind();
+    app->frame(input);
+    input.wheel = 0;
+    input.characters.clear();
+    input.droppedFiles.clear();
+  }
+  void frames(int n) {
+    for (int k = 0; k < n; ++k) frame();
+  }
+  void moveTo(double x, double y) {
+    input.mouseX = x;
+    input.mouseY = y;
+    frame();
+  }
+  // Press at (x0, y0), move in `steps` to (x1, y1), release: a drag as ImGui and the tools see it.
+  void drag(double x0, double y0, double x1, double y1, int steps = 6) {
+    moveTo(x0, y0);
+    input.mouseDown[0] = true;
+    frame();
+    for (int k = 1; k <= steps; ++k) moveTo(x0 + (x1 - x0) * k / steps, y0 + (y1 - y0) * k / steps);
+    input.mouseDown[0] = false;
+    frame();
+  }
+  void click(double x, double y) { drag(x, y, x, y, 0); }
+  void key(int code, bool ctrl = false, bool shift = false) {
+    input.ctrl = ctrl;
+    input.shift = shift;
+    input.keysDown[code] = true;
+    frame();
+    input.keysDown[code] = false;
+    input.ctrl = input.shift = false;
+    frame();
+  }
+};
+
+Scene scene2d(int count = 24) {
+  Scene s;
+  s.mode = SceneMode::Implicit2d;
+  s.data.preset = "curve2d";
+  s.data.count = count;
+  s.fit.kernel = KernelType::Cubic;
+  s.sourceName = "test-2d";
+  return s;
+}
+
+Scene scene3d(const std::string& preset = "sphere", int count = 40) {
+  Scene s;
+  s.mode = SceneMode::Implicit3d;
+  s.data.preset = preset;
+  s.data.count = count;
+  s.view.size = {320, 240};
+  s.sourceName = "test-3d";
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("UI: dragging a 2D sample moves it and the field is refitted through its new position") {
+  Harness h(scene2d());
+  h.frames(2);
+  REQUIRE(h.app->shownFit() != nullptr);
+  const int i = 3;
+  const auto p = h.app->sampleScreenPosition(i);
+  REQUIRE(p);
+  const Vec<2> origin = h.app->viewOrigin();
+  const Vec<2> from = *p + origin, to = from + Vec<2>(25, -18);
+  h.drag(from.x(), from.y(), to.x(), to.y());
+  CHECK(h.app->selectedSample() == i);
+  const Scene& s = h.app->document().scene();
+  REQUIRE(s.data.isInline());  // the first edit wrote the preset's samples into the scene
+  // Where the sample went, in world coordinates, and the refitted field vanishes there.
+  const View2d view = sceneView2d(s, h.app->viewResult().image.width, h.app->viewResult().image.height);
+  const Vec<2> expected = view.pixelToWorld(to.x() - origin.x(), to.y() - origin.y());
+  const Vec<2> moved(s.data.points[i][0], s.data.points[i][1]);
+  CHECK((moved - expected).norm() < 1e-9);
+  REQUIRE(h.app->shownVersion() == h.app->document().version());
+  const FitOutcome* fit = h.app->shownFit();
+  REQUIRE(fit->fit2);
+  CHECK(std::abs(fit->fit2->field().value(moved)) < 1e-9);
+  // One undo step for the whole drag, and it restores the exact previous document.
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == scene2d());
+  h.key(GLFW_KEY_Z, true, true);  // redo
+  CHECK(h.app->document().scene().data.points[i][0] == moved.x());
+}
+
+TEST_CASE("UI: dragging the normal's tip rotates the normal; N flips it; Del deletes; undo restores each") {
+  Harness h(scene2d());
+  h.frames(2);
+  const Vec<2> origin = h.app->viewOrigin();
+  const int i = 5;
+  h.click(h.app->sampleScreenPosition(i)->x() + origin.x(), h.app->sampleScreenPosition(i)->y() + origin.y());
+  REQUIRE(h.app->selectedSample() == i);
+  const Scene before = h.app->document().scene();
+  const Vec<2> tip = *h.app->normalTipScreenPosition(i) + origin;
+  const Vec<2> p = *h.app->sampleScreenPosition(i) + origin;
+  // Drag the tip a quarter turn around the sample (screen y points down).
+  const Vec<2> d = tip - p;
+  const Vec<2> rotated = p + Vec<2>(-d.y(), d.x());
+  h.drag(tip.x(), tip.y(), rotated.x(), rotated.y());
+  const Scene& s = h.app->document().scene();
+  const auto& n = s.data.normals[i];
+  // The new normal points at the dragged tip: world direction = screen direction with y flipped.
+  const Vec<2> want = Vec<2>(rotated.x() - p.x(), -(rotated.y() - p.y())).normalized();
+  CHECK(Vec<2>(n[0], n[1]).dot(want) > 1 - 1e-9);
+  CHECK(h.app->shownFit()->fit2->field().gradient(Vec<2>(s.data.points[i][0], s.data.points[i][1])).normalized().dot(want) >
+        1 - 1e-6);
+  const Scene afterRotate = s;
+  h.key(GLFW_KEY_N);
+  CHECK(h.app->document().scene().data.normals[i][0] == -afterRotate.data.normals[i][0]);
+  h.key(GLFW_KEY_DELETE);
+  CHECK(h.app->document().scene().data.points.size() == afterRotate.data.points.size() - 1);
+  h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == afterRotate);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == before);
+}
+
+TEST_CASE("UI: the r slider changes the radius, refits, and is one undo step") {
+  Scene s = scene2d();
+  s.fit.kernel = KernelType::Gaussian;
+  s.fit.radius = 0.3;
+  Harness h(s);
+  h.frames(2);
+  const auto rect = h.app->widgetRect("fit.radius");
+  REQUIRE(rect);
+  const double y = 0.5 * ((*rect)[1] + (*rect)[3]);
+  // Drag the slider's grab towards the right end: a larger radius (logarithmic slider).
+  h.drag((*rect)[0] + 0.55 * ((*rect)[2] - (*rect)[0]), y, (*rect)[0] + 0.8 * ((*rect)[2] - (*rect)[0]), y);
+  const double r = h.app->document().scene().fit.radius;
+  CHECK(r > 0.3);
+  REQUIRE(h.app->shownFit());
+  CHECK(h.app->shownFit()->scene.fit.radius == r);
+  CHECK(h.app->shownVersion() == h.app->document().version());
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
+
+TEST_CASE("UI: orbit, zoom and fit-to-view move the 3D camera and never touch the undo history") {
+  Harness h(scene3d(), true, 640, 480);
+  h.frames(2);
+  const CameraSpec c0 = h.app->document().scene().view.camera;
+  const Vec<2> o = h.app->viewOrigin();
+  h.drag(o.x() + 40, o.y() + 40, o.x() + 120, o.y() + 60);  // empty corner: orbit
+  const CameraSpec c1 = h.app->document().scene().view.camera;
+  CHECK(c1.eye != c0.eye);
+  const auto dist = [](const CameraSpec& c) {
+    return std::hypot(c.eye[0] - c.target[0], c.eye[1] - c.target[1], c.eye[2] - c.target[2]);
+  };
+  CHECK(dist(c1) == doctest::Approx(dist(c0)).epsilon(1e-9));  // orbiting keeps the distance
+  h.input.wheel = 2;
+  h.moveTo(o.x() + 150, o.y() + 200);
+  CHECK(dist(h.app->document().scene().view.camera) < dist(c1));
+  CHECK(!h.app->document().canUndo());
+  h.key(GLFW_KEY_HOME);
+  CHECK(h.app->document().scene().view.camera == c0);
+}
+
+TEST_CASE("UI: every panel renders, with the explorer, the compare view and the help overlay") {
+  Harness h(scene3d("two-tori", 60), true, 1100, 760);
+  h.app->panels.compare = true;
+  h.app->panels.explore = true;
+  h.app->panels.help = true;
+  h.app->compare.enabled = true;
+  h.frames(3);
+  REQUIRE(h.app->shownFit());
+  CHECK(h.app->status().error == false);
+  h.app->explorer().start(h.app->document().scene(), logSpacedRadii(0.2, 2.0, 3));
+  h.app->explorer().wait();
+  h.frames(2);
+  CHECK(h.app->explorer().entries().size() == 3);
+  CHECK(h.app->viewResult().image.width == (1100 - int(kLeftPanelWidth)) / 2);
+}
+
+TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel keeps the previous result") {
+  Harness h(scene3d("sphere", 60), false, 640, 480);
+  // The first fit (small) arrives.
+  for (int k = 0; k < 200 && !h.app->shownFit(); ++k) {
+    h.frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  REQUIRE(h.app->shownFit());
+  const std::uint64_t good = h.app->shownVersion();
+  // A large fit: 1500 samples (6000 unknowns, dense) takes about a second or more here.
+  Scene big = h.app->document().scene();
+  big.data.count = 1500;
+  h.app->document().apply(big, "count");
+  h.frame();
+  REQUIRE(h.app->worker().busy());
+  double slowest = 0;
+  int frames = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (h.app->worker().runningMs() < 300 && frames < 1000) {
+    const auto f0 = std::chrono::steady_clock::now();
+    h.frame();
+    slowest = std::max(slowest, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count());
+    ++frames;
+  }
+  CHECK(frames >= 3);
+  CHECK(slowest < 250);  // the UI keeps drawing while the worker fits
+  (void)t0;
+  // Press Cancel in the diagnostics panel.
+  const auto cancel = h.app->widgetRect("diagnostics.cancel");
+  REQUIRE(cancel);
+  h.click(0.5 * ((*cancel)[0] + (*cancel)[2]), 0.5 * ((*cancel)[1] + (*cancel)[3]));
+  CHECK(h.app->status().message.find("cancelled") != std::string::npos);
+  h.app->worker().waitIdle(120);
+  h.frames(3);
+  CHECK(h.app->shownVersion() == good);  // the cancelled fit never replaces the shown one
+  CHECK(h.app->shownFit()->fit3->samples.size() < 1500);
+}
