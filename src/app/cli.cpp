@@ -22,10 +22,12 @@ constexpr const char* kUsage =
     "hermite-lab: Hermite data (points + normals) fitted by Hermite RBF implicits.\n"
     "\n"
     "usage:\n"
-    "  hermite-lab [SCENE] [--set KEY=VALUE ...]       fit report of SCENE (default: the demo scene)\n"
+    "  hermite-lab [SCENE] [--set KEY=VALUE ...]       the GUI on SCENE (default: the demo scene);\n"
+    "                                                  without a display: its fit report\n"
     "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
     "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
+    "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--size WxH] [--set KEY=VALUE ...]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
     "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
@@ -95,6 +97,20 @@ int dispatch(int argc, char** argv) {
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);
     return runRender(a);
+  }
+  if (first == "sweep") {
+    SweepArgs a;
+    CLI::App cmd("refit a scene at log-spaced radii: one PNG per radius and diagnostics.csv", "sweep");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("--radii", a.radii, "A:B:K — K radii spaced logarithmically from A to B")->required();
+    cmd.add_option("-o,--output", a.outputDirectory, "output directory (created when missing)")->required();
+    cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+    cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runSweep(a);
   }
   if (first == "patch-table") {
     PatchTableArgs a;

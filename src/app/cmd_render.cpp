@@ -32,20 +32,8 @@
 
 namespace hermite::app {
 
-namespace {
-
-// A hidden context of the render's size on the named backend (osmesa, egl).
-std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height) {
-  render::ContextOptions co;
-  co.width = width;
-  co.height = height;
-  co.visible = false;
-  co.vsync = false;
-  return render::createContext(backend, co);
-}
-
 // "WxH" (also "W×H" with an ASCII x or X) → {W, H}, each in [1, 16384]; UsageError otherwise.
-std::array<int, 2> parseSize(const std::string& text) {
+std::array<int, 2> parseImageSize(const std::string& text) {
   static const std::regex pattern(R"(^\s*([0-9]{1,5})\s*[xX]\s*([0-9]{1,5})\s*$)");
   std::smatch m;
   if (!std::regex_match(text, m, pattern))
@@ -55,6 +43,8 @@ std::array<int, 2> parseSize(const std::string& text) {
     throw UsageError("render: --size must be between 1x1 and 16384x16384 (got '" + text + "')");
   return {w, h};
 }
+
+namespace {
 
 // Fails early, before fitting and rendering, when the output's directory does not exist.
 void checkOutputPath(const std::string& path) {
@@ -180,7 +170,7 @@ ImageRgba8 renderWithPanels(const Scene& scene, const RenderArgs& args) {
 
 int runRender(const RenderArgs& args) {
   std::optional<std::array<int, 2>> size;
-  if (!args.size.empty()) size = parseSize(args.size);
+  if (!args.size.empty()) size = parseImageSize(args.size);
   if (args.output.empty()) throw UsageError("render: -o OUT.png is required");
   Scene scene = loadCommandScene(args.scene);
   if (size) scene.view.size = *size;

@@ -2,6 +2,7 @@
 // The subcommands of hermite-lab (DESIGN.md §5). Each returns the process exit code and
 // throws hermite errors (errors.h) that runCli maps to exit codes.
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,18 @@ struct RenderArgs {
   std::string backend = "osmesa";  // --backend osmesa | egl
 };
 int runRender(const RenderArgs& args);
+
+struct SweepArgs {
+  SceneArgs scene;
+  std::string radii;               // --radii A:B:K
+  std::string outputDirectory;     // -o DIR (created when missing)
+  std::string size;                // --size WxH; empty: the scene's view.size
+  std::string backend = "osmesa";
+};
+int runSweep(const SweepArgs& args);
+
+// "WxH" → {W, H}, each in [1, 16384]; UsageError otherwise (render, sweep).
+std::array<int, 2> parseImageSize(const std::string& text);
 
 // The program's main job without a subcommand: the GUI when one exists and a display is
 // there; in this version the fit report of the scene (or of the demo scene).

@@ -9,6 +9,16 @@
 
 namespace hermite::app {
 
+// A hidden context of the render's size on the named backend (osmesa, egl).
+std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height) {
+  render::ContextOptions co;
+  co.width = width;
+  co.height = height;
+  co.visible = false;
+  co.vsync = false;
+  return render::createContext(backend, co);
+}
+
 SceneViewRenderer::~SceneViewRenderer() = default;
 
 Camera sceneCamera(const Scene& scene, int width, int height) {

@@ -12,6 +12,7 @@
 
 #include "app/fit_worker.h"
 #include "core/image.h"
+#include "render/context.h"
 #include "render/field2d_view.h"
 #include "render/implicit_tracer.h"
 
@@ -52,6 +53,10 @@ class SceneViewRenderer {
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
 };
+
+// A hidden offscreen context of the given size on a headless backend ("osmesa", "egl"),
+// current on the calling thread (render, sweep).
+std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height);
 
 // The 3D camera of a scene's view at a given pixel size.
 Camera sceneCamera(const Scene& scene, int width, int height);

@@ -1,5 +1,9 @@
 #include <doctest/doctest.h>
 
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
 #include <cmath>
 #include <random>
 #include <sstream>
@@ -256,11 +260,53 @@ TEST_CASE("bench --quick --json reports cores and results") {
   CHECK(runCli("bench --only no-such-benchmark").rc == 2);
 }
 
-TEST_CASE("the program without a subcommand prints the demo scene's fit report") {
+TEST_CASE("without a display the program says so and prints the demo scene's fit report") {
+  const char* display = std::getenv("DISPLAY");
+  const std::string saved = display ? display : "";
+  ::unsetenv("DISPLAY");
+  ::unsetenv("WAYLAND_DISPLAY");
   const auto r = runCli("");
+  if (!saved.empty()) ::setenv("DISPLAY", saved.c_str(), 1);
   CHECK(r.rc == 0);
+  CHECK(r.err.find("the GUI needs a display") != std::string::npos);
   CHECK(r.out.find("solver") != std::string::npos);
   CHECK(r.out.find("residuals") != std::string::npos);
+}
+
+TEST_CASE("sweep: one PNG per radius and diagnostics.csv with the suggested r marked once") {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "hermite_sweep_test";
+  fs::remove_all(dir);
+  const std::string scene = writeTemp("sweep.json", R"({"version": 1, "mode": "implicit2d",
+    "data": {"preset": "curve2d", "count": 30}, "fit": {"kernel": "gaussian", "polynomial": "none"}})");
+  const auto r = runCli("sweep " + scene + " --radii 0.05:0.6:4 --size 64x48 -o " + dir.string());
+  REQUIRE(r.rc == 0);
+  std::ifstream csv(dir / "diagnostics.csv");
+  REQUIRE(csv.good());
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line.rfind("radius,", 0) == 0);
+  CHECK(line.find("loo_combined") != std::string::npos);
+  int rows = 0, suggested = 0;
+  double previous = 0;
+  while (std::getline(csv, line)) {
+    ++rows;
+    const double radius = std::stod(line.substr(0, line.find(',')));
+    CHECK(radius > previous);  // increasing, log-spaced
+    previous = radius;
+    const std::string image = line.substr(line.rfind(',') + 1);
+    CHECK(fs::exists(dir / image));
+    // The `suggested` column (the 11th) is 1 on exactly one row.
+    std::size_t pos = 0;
+    for (int k = 0; k < 10; ++k) pos = line.find(',', pos) + 1;
+    suggested += line[pos] == '1' ? 1 : 0;
+  }
+  CHECK(rows == 4);
+  CHECK(previous == doctest::Approx(0.6));
+  CHECK(suggested == 1);
+  CHECK(runCli("sweep " + scene + " --radii 0.05:0.6 -o " + dir.string()).rc == 2);
+  CHECK(runCli("sweep " + scene + " --radii 0.05:0.6:3 -o " + dir.string() + " --set fit.kernel=cubic").rc == 1);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("a transform outside the exact conditions is re-solved, with a warning") {
