@@ -6,6 +6,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <array>
 #include <cstdio>
 #include <cstdlib>
 
@@ -26,6 +27,30 @@ struct InputCollector {
   std::vector<unsigned> characters;
   std::vector<std::string> dropped;
   double scaleX = 1, scaleY = 1;  // framebuffer pixels per window unit (high-DPI screens)
+  // Presses since the last frame: a key or button pressed and released between two frames
+  // (xdotool, fast typing) must still be seen down for one frame.
+  std::array<bool, 512> keyLatch{};
+  std::array<bool, 3> buttonLatch{};
+  bool ctrlLatch = false, shiftLatch = false;
+
+  // The input of the next frame, and the latches reset.
+  FrameInput take() {
+    FrameInput in = input;
+    for (int k = 0; k < 512; ++k) in.keysDown[k] = in.keysDown[k] || keyLatch[k];
+    for (int b = 0; b < 3; ++b) in.mouseDown[b] = in.mouseDown[b] || buttonLatch[b];
+    in.ctrl = in.ctrl || ctrlLatch;
+    in.shift = in.shift || shiftLatch;
+    in.wheel = wheel;
+    in.characters = std::move(characters);
+    in.droppedFiles = std::move(dropped);
+    keyLatch.fill(false);
+    buttonLatch.fill(false);
+    ctrlLatch = shiftLatch = false;
+    wheel = 0;
+    characters.clear();
+    dropped.clear();
+    return in;
+  }
 };
 
 InputCollector& collector(GLFWwindow* w) { return *static_cast<InputCollector*>(glfwGetWindowUserPointer(w)); }
@@ -42,7 +67,10 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
   });
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
     InputCollector& c = collector(w);
-    if (button >= 0 && button < 3) c.input.mouseDown[button] = action == GLFW_PRESS;
+    if (button >= 0 && button < 3) {
+      c.input.mouseDown[button] = action == GLFW_PRESS;
+      if (action == GLFW_PRESS) c.buttonLatch[button] = true;
+    }
     c.input.ctrl = mods & GLFW_MOD_CONTROL;
     c.input.shift = mods & GLFW_MOD_SHIFT;
     c.input.alt = mods & GLFW_MOD_ALT;
@@ -50,10 +78,17 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
   glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { collector(w).wheel += float(dy); });
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
     InputCollector& c = collector(w);
-    if (key >= 0 && key < 512 && action != GLFW_REPEAT) c.input.keysDown[key] = action == GLFW_PRESS;
+    if (key >= 0 && key < 512 && action != GLFW_REPEAT) {
+      c.input.keysDown[key] = action == GLFW_PRESS;
+      if (action == GLFW_PRESS) c.keyLatch[key] = true;
+    }
     c.input.ctrl = mods & GLFW_MOD_CONTROL;
     c.input.shift = mods & GLFW_MOD_SHIFT;
     c.input.alt = mods & GLFW_MOD_ALT;
+    if (action == GLFW_PRESS) {
+      c.ctrlLatch = c.ctrlLatch || c.input.ctrl;
+      c.shiftLatch = c.shiftLatch || c.input.shift;
+    }
     // Modifier keys report their own state in the next event's mods: track them directly.
     if (key == GLFW_KEY_LEFT_CONTROL || key == GLFW_KEY_RIGHT_CONTROL) c.input.ctrl = action != GLFW_RELEASE;
     if (key == GLFW_KEY_LEFT_SHIFT || key == GLFW_KEY_RIGHT_SHIFT) c.input.shift = action != GLFW_RELEASE;
@@ -100,15 +135,9 @@ int runDefault(const SceneArgs& args) {
     if (fb.width <= 0 || fb.height <= 0) continue;  // minimised
     input.scaleX = ww > 0 ? double(fb.width) / ww : 1.0;
     input.scaleY = wh > 0 ? double(fb.height) / wh : 1.0;
-    FrameInput in = input.input;
+    FrameInput in = input.take();
     in.width = fb.width;
     in.height = fb.height;
-    in.wheel = input.wheel;
-    in.characters = std::move(input.characters);
-    in.droppedFiles = std::move(input.dropped);
-    input.wheel = 0;
-    input.characters.clear();
-    input.dropped.clear();
     const double now = glfwGetTime();
     in.deltaSeconds = now - last;
     last = now;
