@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/bench_gui.h"
 #include "app/commands.h"
 #include "app/output.h"
 #include "core/errors.h"
@@ -136,6 +137,16 @@ int runBench(const BenchArgs& args) {
     return {"render/field2d-refit-redraw", {{"points", o.points}, {"size", o.size}, {"fit_ms", r.fitMs},
             {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
   });
+
+  // GUI latency (issue 4 §5): dragging a sample until the refitted view is on screen.
+  for (const auto& [dim, n] : {std::pair{3, 250}, std::pair{2, 200}}) {
+    const std::string name = "gui/drag-latency-" + std::to_string(dim) + "d/N=" + std::to_string(n);
+    jobs.emplace_back(name, [name, dim = dim, n = n, quick = args.quick]() -> Result {
+      const DragLatencyResult r = benchDragLatency(dim, quick ? 40 : n, quick ? 2 : 15, quick ? 400 : 1280, quick ? 300 : 800);
+      return {name, {{"samples", r.samples}, {"width", r.width}, {"height", r.height}, {"moves", r.moves},
+                     {"max_ms", r.maxMs}, {"fit_ms", r.fitMs}, {"view_ms", r.viewMs}}, r.medianMs, "ms"};
+    });
+  }
 
   std::vector<Result> results;
   for (auto& [name, job] : jobs) {

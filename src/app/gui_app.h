@@ -74,6 +74,10 @@ class GuiApp {
   const FitOutcome* shownFit() const { return shown_.get(); }
   std::uint64_t shownVersion() const { return shownVersion_; }
   const GuiStatus& status() const { return status_; }
+  // The view on screen shows the fit of the document's current version.
+  bool viewIsCurrent() const {
+    return shown_ && shownVersion_ == document_.version() && drawn_ && drawn_->fit == shown_.get();
+  }
   int selectedSample() const { return selected_; }
   bool quitRequested() const { return quit_; }
   // The view image last drawn (without panels) and how long it took.

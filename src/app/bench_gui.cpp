@@ -1,0 +1,83 @@
+#include "app/bench_gui.h"
+
+#include <algorithm>
+#include <chrono>
+#include <thread>
+#include <vector>
+
+#include "app/gui_app.h"
+#include "core/errors.h"
+#include "render/context.h"
+#include "render/offscreen.h"
+
+namespace hermite::app {
+
+namespace {
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0;
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int width, int height) {
+  Scene scene;
+  scene.mode = dimension == 2 ? SceneMode::Implicit2d : SceneMode::Implicit3d;
+  scene.data.preset = dimension == 2 ? "curve2d" : "bunny";
+  scene.data.count = samples;
+  const auto context = offscreenContext("osmesa", width, height);
+  render::OffscreenTarget target(width, height, false);
+  GuiApp app(Document(scene), GuiOptions{});
+  FrameInput in;
+  in.width = width;
+  in.height = height;
+  const auto frame = [&] {
+    target.bind();
+    app.frame(in);
+  };
+  const auto settled = [&] { return app.viewIsCurrent() && !app.worker().busy(); };
+  for (int k = 0; k < 2000 && !settled(); ++k) {
+    frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  if (!settled()) throw EnvironmentError("bench: the first fit never arrived: " + app.status().message);
+
+  // Grab a sample and move it a few pixels per step, like a slow drag.
+  const int i = samples / 3;
+  const auto p = app.sampleScreenPosition(i);
+  if (!p) throw EnvironmentError("bench: sample not visible");
+  const Vec<2> start = *p + app.viewOrigin();
+  in.mouseX = start.x();
+  in.mouseY = start.y();
+  frame();
+  in.mouseDown[0] = true;
+  frame();
+  std::vector<double> latency, fit, view;
+  for (int m = 1; m <= moves; ++m) {
+    in.mouseX = start.x() + 2.0 * m;
+    in.mouseY = start.y() - 1.0 * m;
+    const auto t0 = std::chrono::steady_clock::now();
+    frame();
+    for (int k = 0; k < 100000 && !app.viewIsCurrent(); ++k) frame();
+    latency.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    fit.push_back(app.shownFit()->fit2 ? app.shownFit()->fit2->report.fitMs : app.shownFit()->fit3->report.fitMs);
+    view.push_back(app.viewResult().ms);
+  }
+  in.mouseDown[0] = false;
+  frame();
+
+  DragLatencyResult r;
+  r.medianMs = median(latency);
+  r.maxMs = *std::max_element(latency.begin(), latency.end());
+  r.fitMs = median(fit);
+  r.viewMs = median(view);
+  r.samples = samples;
+  r.width = width;
+  r.height = height;
+  r.moves = moves;
+  return r;
+}
+
+}  // namespace hermite::app

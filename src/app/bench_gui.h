@@ -1,0 +1,23 @@
+#pragma once
+// The GUI latency figures of issue 4 §5 for `hermite-lab bench`: a sample dragged with scripted
+// mouse input in the real application (GuiApp on an OSMesa context, fits on the worker thread as
+// in the window), timed from the frame whose input moved the sample to the end of the frame that
+// shows the view refitted to the new position.
+
+namespace hermite::app {
+
+struct DragLatencyResult {
+  double medianMs = 0;  // input → updated image
+  double maxMs = 0;
+  double fitMs = 0;     // median fit time inside it
+  double viewMs = 0;    // median redraw time inside it
+  int samples = 0;
+  int width = 0, height = 0;  // window size (the view is the part right of the panel)
+  int moves = 0;
+};
+
+// dimension 2: the curve2d preset with `samples` points; 3: the bunny preset. Cubic + linear
+// (the demo settings).
+DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int width, int height);
+
+}  // namespace hermite::app
