@@ -29,12 +29,23 @@ std::pair<int, double> locate(const std::vector<double>& k, double x) {
 
 PatchGrid::PatchGrid(std::vector<double> uKnots, std::vector<double> vKnots,
                      const std::function<KnotData(double, double)>& surface)
+    : PatchGrid(uKnots, vKnots, sampleKnots(uKnots, vKnots, surface)) {}
+
+std::vector<KnotData> PatchGrid::sampleKnots(const std::vector<double>& u, const std::vector<double>& v,
+                                             const std::function<KnotData(double, double)>& surface) {
+  std::vector<KnotData> data(u.size() * v.size());
+  for (size_t a = 0; a < u.size(); ++a)
+    for (size_t b = 0; b < v.size(); ++b) data[a * v.size() + b] = surface(u[a], v[b]);
+  return data;
+}
+
+PatchGrid::PatchGrid(std::vector<double> uKnots, std::vector<double> vKnots, const std::vector<KnotData>& data)
     : u_(std::move(uKnots)), v_(std::move(vKnots)) {
   checkKnots(u_, "u");
   checkKnots(v_, "v");
-  std::vector<KnotData> data(u_.size() * v_.size());
-  for (size_t a = 0; a < u_.size(); ++a)
-    for (size_t b = 0; b < v_.size(); ++b) data[a * v_.size() + b] = surface(u_[a], v_[b]);
+  if (data.size() != u_.size() * v_.size())
+    throw InputError("patch grid: " + std::to_string(data.size()) + " knot data for " + std::to_string(u_.size()) +
+                     " × " + std::to_string(v_.size()) + " knots");
   patches_.resize(size_t(patchesU()) * patchesV());
   for (int i = 0; i < patchesU(); ++i) {
     const double du = u_[i + 1] - u_[i];

@@ -23,6 +23,11 @@ class PatchGrid {
   PatchGrid(std::vector<double> uKnots, std::vector<double> vKnots,
             const std::function<KnotData(double u, double v)>& surface);
 
+  // From data at every knot pair: data[a · vKnots.size() + b] at (u_a, v_b) (row-major in u).
+  PatchGrid(std::vector<double> uKnots, std::vector<double> vKnots, const std::vector<KnotData>& data);
+  static std::vector<KnotData> sampleKnots(const std::vector<double>& u, const std::vector<double>& v,
+                                           const std::function<KnotData(double u, double v)>& surface);
+
   int patchesU() const { return static_cast<int>(u_.size()) - 1; }
   int patchesV() const { return static_cast<int>(v_.size()) - 1; }
   const HermitePatch& patch(int i, int j) const { return patches_[i * patchesV() + j]; }

@@ -181,6 +181,8 @@ class SceneReader {
   ViewSpec readView(const json& v, int dim) const;
   CameraSpec readCamera(const json& v, const std::string& path) const;
   SliceSpec readSlice(const json& v, const std::string& path) const;
+  PatchSpec readPatch(const json& v) const;
+  Vec<3> vec3(const json& v, const std::string& path) const;
 
   std::string source_;
   std::string baseDirectory_;
@@ -504,8 +506,65 @@ ViewSpec SceneReader::readView(const json& v, int dim) const {
   return view;
 }
 
+Vec<3> SceneReader::vec3(const json& v, const std::string& path) const {
+  const auto a = fixed<3>(v, path, "[x, y, z]");
+  return Vec<3>(a[0], a[1], a[2]);
+}
+
+PatchSpec SceneReader::readPatch(const json& v) const {
+  object(v, "patch", {"preset", "splits", "domain", "form", "show_error", "show_iso_lines", "show_handles",
+                      "tessellation", "knots"});
+  PatchSpec p;
+  if (const json* x = find(v, "preset")) {
+    p.preset = string(*x, "patch.preset");
+    bool known = false;
+    std::string names;
+    for (const auto& [n, _] : patchPresets()) {
+      known |= n == p.preset;
+      names += (names.empty() ? "" : ", ") + n;
+    }
+    if (!known) fail("patch.preset", "unknown preset '" + p.preset + "' (expected one of: " + names + ")");
+  }
+  if (const json* x = find(v, "splits")) {
+    if (!x->is_array() || x->size() != 2) fail("patch.splits", "must be [n, m] (got " + describe(*x) + ")");
+    p.splits = {integer((*x)[0], "patch.splits[0]", 1, 16), integer((*x)[1], "patch.splits[1]", 1, 16)};
+  }
+  if (const json* x = find(v, "domain")) {
+    p.domain = fixed<4>(*x, "patch.domain", "[U0, U1, V0, V1]");
+    if (!(p.domain[0] < p.domain[1]) || !(p.domain[2] < p.domain[3]))
+      fail("patch.domain", "must satisfy U0 < U1 and V0 < V1");
+  }
+  if (const json* x = find(v, "form"))
+    p.form = choice<PatchForm>(*x, "patch.form", {{"hermite", PatchForm::Hermite}, {"bezier", PatchForm::Bezier}});
+  if (const json* x = find(v, "show_error")) p.showError = boolean(*x, "patch.show_error");
+  if (const json* x = find(v, "show_iso_lines")) p.showIsoLines = boolean(*x, "patch.show_iso_lines");
+  if (const json* x = find(v, "show_handles")) p.showHandles = boolean(*x, "patch.show_handles");
+  if (const json* x = find(v, "tessellation")) p.tessellation = integer(*x, "patch.tessellation", 2, 256);
+  if (const json* x = find(v, "knots")) {
+    if (!x->is_array()) fail("patch.knots", "must be an array of {X, Xu, Xv, Xuv} (got " + describe(*x) + ")");
+    const std::size_t want = std::size_t(p.splits[0] + 1) * std::size_t(p.splits[1] + 1);
+    if (x->size() != want)
+      fail("patch.knots", "must have (splits[0] + 1) × (splits[1] + 1) = " + std::to_string(want) + " entries (got " +
+                              std::to_string(x->size()) + ")");
+    for (std::size_t k = 0; k < x->size(); ++k) {
+      const std::string path = indexPath("patch.knots", k);
+      const json& e = (*x)[k];
+      object(e, path, {"X", "Xu", "Xv", "Xuv"});
+      KnotData d;
+      for (const auto& [key, target] : {std::pair{"X", &d.X}, std::pair{"Xu", &d.Xu}, std::pair{"Xv", &d.Xv},
+                                        std::pair{"Xuv", &d.Xuv}}) {
+        const json* c = find(e, key);
+        if (!c) fail(childPath(path, key), "missing (each knot has X, Xu, Xv and Xuv)");
+        *target = vec3(*c, childPath(path, key));
+      }
+      p.knots.push_back(d);
+    }
+  }
+  return p;
+}
+
 Scene SceneReader::read(const json& document) const {
-  object(document, "", {"version", "mode", "data", "fit", "transform", "view"});
+  object(document, "", {"version", "mode", "data", "fit", "transform", "view", "patch"});
   Scene scene;
   scene.sourceName = source_;
 
@@ -522,10 +581,15 @@ Scene SceneReader::read(const json& document) const {
   const int dim = scene.dimension();
 
   const json* data = find(document, "data");
-  if (!data)
+  if (data) {
+    scene.data = readData(*data, dim);
+  } else if (scene.mode == SceneMode::Patch) {
+    scene.data.preset = "sphere6";  // unused by the patch editor
+  } else {
     fail("data", "missing (required: {\"preset\": NAME}, {\"file\": PATH} or "
                  "{\"points\": [...], \"normals\": [...]})");
-  scene.data = readData(*data, dim);
+  }
+  if (const json* x = find(document, "patch")) scene.patch = readPatch(*x);
 
   if (const json* x = find(document, "fit")) scene.fit = readFit(*x);
   if (const json* x = find(document, "transform")) scene.transform = readTransform(*x, dim);
@@ -718,6 +782,24 @@ json sceneToJson(const Scene& scene) {
   view["trace"] = std::string(traceModeName(v.trace));
   view["slice"] = {{"enabled", v.slice.enabled}, {"normal", toArray(v.slice.normal)}, {"offset", v.slice.offset}};
   doc["view"] = std::move(view);
+  if (scene.mode == SceneMode::Patch) {
+    const PatchSpec& p = scene.patch;
+    const auto vec = [](const Vec<3>& x) { return json::array({x.x(), x.y(), x.z()}); };
+    json patch = {{"preset", p.preset},
+                  {"splits", {p.splits[0], p.splits[1]}},
+                  {"domain", toArray(p.domain)},
+                  {"form", std::string(patchFormName(p.form))},
+                  {"show_error", p.showError},
+                  {"show_iso_lines", p.showIsoLines},
+                  {"show_handles", p.showHandles},
+                  {"tessellation", p.tessellation}};
+    if (!p.knots.empty()) {
+      json knots = json::array();
+      for (const KnotData& k : p.knots) knots.push_back({{"X", vec(k.X)}, {"Xu", vec(k.Xu)}, {"Xv", vec(k.Xv)}, {"Xuv", vec(k.Xuv)}});
+      patch["knots"] = std::move(knots);
+    }
+    doc["patch"] = std::move(patch);
+  }
   return doc;
 }
 

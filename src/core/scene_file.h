@@ -14,6 +14,7 @@
 
 #include "core/dense_solver.h"
 #include "core/kernels.h"
+#include "core/patch_document.h"
 #include "core/polynomial.h"
 
 namespace hermite {
@@ -107,6 +108,7 @@ struct Scene {
   FitSpec fit;
   TransformSpec transform;
   ViewSpec view;
+  PatchSpec patch;                     // mode "patch": the patch editor's document
   std::string sourceName = "<scene>";  // file name used in messages
   int dimension() const { return mode == SceneMode::Implicit2d ? 2 : 3; }
   bool operator==(const Scene&) const = default;
