@@ -174,7 +174,7 @@ int runRender(const RenderArgs& args) {
   if (args.output.empty()) throw UsageError("render: -o OUT.png is required");
   Scene scene = loadCommandScene(args.scene);
   if (size) scene.view.size = *size;
-  if (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d)
+  if (scene.mode == SceneMode::Holefill)
     throw InputError("render: mode '" + std::string(sceneModeName(scene.mode)) +
                      "' is not available in this version");
   checkOutputPath(args.output);

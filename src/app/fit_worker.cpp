@@ -33,6 +33,8 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene) {
     out->fit2 = std::make_unique<SceneFit<2>>(fitScene<2>(scene));
   else if (scene.mode == SceneMode::Implicit3d)
     out->fit3 = std::make_unique<SceneFit<3>>(fitScene<3>(scene));
+  else if (scene.mode == SceneMode::Patch)
+    out->patch = std::make_unique<PatchView>(buildPatchView(scene.patch));
   else
     throw InputError("mode " + std::string(sceneModeName(scene.mode)) + " has no implicit fit");
   out->wallMs = msSince(t0);

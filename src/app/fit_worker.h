@@ -17,6 +17,7 @@
 #include <string>
 #include <thread>
 
+#include "core/patch_view.h"
 #include "core/scene_fit.h"
 
 namespace hermite::app {
@@ -27,6 +28,7 @@ struct FitOutcome {
   Scene scene;  // as fitted
   std::unique_ptr<SceneFit<2>> fit2;
   std::unique_ptr<SceneFit<3>> fit3;
+  std::unique_ptr<PatchView> patch;  // mode "patch": the grid, its tessellation and error
   std::string error;  // non-empty: no model
   double wallMs = 0;  // whole fitScene call, incl. the transform re-solve check
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/errors.h"
+#include "core/shading.h"
 #include "core/view_bounds.h"
 #include "render/offscreen.h"
 
@@ -85,10 +86,97 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
     out.depth = std::move(r.depth);
     out.refinedPixels = r.refinedPixels;
     out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
+  } else if (fit->patch) {
+    out = renderPatch(*fit->patch, viewScene, width, height);
+    field_ = fit;
   } else {
     throw InputError("nothing to draw: the fit has no model");
   }
   out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+void patchLines(const PatchView& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors) {
+  const PatchGrid& g = patch.grid;
+  if (spec.showIsoLines) {
+    const Vec<3> iso(0.25, 0.22, 0.18);
+    constexpr int kSegments = 24;
+    for (int i = 0; i < g.patchesU(); ++i)
+      for (int j = 0; j < g.patchesV(); ++j) {
+        const HermitePatch& p = g.patch(i, j);
+        for (int k = 0; k <= 4; ++k) {
+          const double c = k / 4.0;
+          for (int e = 0; e < kSegments; ++e) {
+            const double a = double(e) / kSegments, b = double(e + 1) / kSegments;
+            ends.push_back(p.evaluate(c, a).X);
+            ends.push_back(p.evaluate(c, b).X);
+            colors.push_back(iso);
+            ends.push_back(p.evaluate(a, c).X);
+            ends.push_back(p.evaluate(b, c).X);
+            colors.push_back(iso);
+          }
+        }
+      }
+  }
+  if (!spec.showHandles) return;
+  const std::vector<KnotData> knots = patchKnotData(spec);
+  if (spec.form == PatchForm::Hermite) {
+    const Vec<3> red(0.85, 0.15, 0.1), green(0.1, 0.6, 0.15), blue(0.15, 0.3, 0.9);
+    for (int a = 0; a <= spec.splits[0]; ++a)
+      for (int b = 0; b <= spec.splits[1]; ++b) {
+        const Vec<3> X = patchHandlePosition(spec, knots, {PatchHandle::Point, a, b, 0, 0});
+        const Vec<3> tu = patchHandlePosition(spec, knots, {PatchHandle::TangentU, a, b, 0, 0});
+        const Vec<3> tv = patchHandlePosition(spec, knots, {PatchHandle::TangentV, a, b, 0, 0});
+        const Vec<3> tw = patchHandlePosition(spec, knots, {PatchHandle::Twist, a, b, 0, 0});
+        for (const auto& [from, to, c] : {std::tuple{X, tu, red}, std::tuple{X, tv, green}, std::tuple{Vec<3>(tu + tv - X), tw, blue}}) {
+          ends.push_back(from);
+          ends.push_back(to);
+          colors.push_back(c);
+        }
+      }
+  } else {
+    const Vec<3> net(0.45, 0.2, 0.6);
+    for (int i = 0; i < g.patchesU(); ++i)
+      for (int j = 0; j < g.patchesV(); ++j) {
+        const auto c = patchControlPoints(spec, knots, i, j);
+        for (int p = 0; p < 4; ++p)
+          for (int q = 0; q < 4; ++q) {
+            if (p < 3) {
+              ends.push_back(c[p][q]);
+              ends.push_back(c[p + 1][q]);
+              colors.push_back(net);
+            }
+            if (q < 3) {
+              ends.push_back(c[p][q]);
+              ends.push_back(c[p][q + 1]);
+              colors.push_back(net);
+            }
+          }
+      }
+  }
+}
+
+SceneViewResult SceneViewRenderer::renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height) {
+  if (!meshView_) meshView_ = std::make_unique<render::MeshView>();
+  render::MeshDrawData d;
+  d.positions = patch.mesh.positions;
+  d.normals = patch.mesh.normals;
+  d.triangles = patch.mesh.triangles;
+  d.background = viewScene.view.background;
+  const PatchSpec& spec = viewScene.patch;
+  if (spec.showError && !patch.vertexError.empty() && patch.maxError > 0) {
+    // The front colour towards red as the error grows (relative to the largest error).
+    d.colors.resize(3, d.positions.cols());
+    const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]), hot(0.9, 0.12, 0.08);
+    for (Eigen::Index k = 0; k < d.positions.cols(); ++k) {
+      const double t = patch.vertexError[std::size_t(k)] / patch.maxError;
+      d.colors.col(k) = (1 - t) * front + t * hot;
+    }
+  }
+  patchLines(patch, spec, d.lineEnds, d.lineColors);
+  SceneViewResult out;
+  out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
+  out.traceMode = "rasterised";
   return out;
 }
 

@@ -15,6 +15,7 @@
 #include "render/context.h"
 #include "render/field2d_view.h"
 #include "render/implicit_tracer.h"
+#include "render/mesh_view.h"
 
 namespace hermite::app {
 
@@ -50,6 +51,8 @@ class SceneViewRenderer {
   std::shared_ptr<const FitOutcome> field_;  // what the tracer / field view reference
   std::unique_ptr<render::ImplicitTracer> tracer_;
   std::unique_ptr<render::Field2dView> view2d_;
+  std::unique_ptr<render::MeshView> meshView_;
+  SceneViewResult renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height);
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
 };
@@ -57,6 +60,10 @@ class SceneViewRenderer {
 // A hidden offscreen context of the given size on a headless backend ("osmesa", "egl"),
 // current on the calling thread (render, sweep).
 std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height);
+
+// The patch editor's lines: iso-parameter lines of every patch and, when handles are shown, the
+// Hermite tangent / twist arrows or the Bézier control net (world-space segments + colours).
+void patchLines(const PatchView& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors);
 
 // The 3D camera of a scene's view at a given pixel size.
 Camera sceneCamera(const Scene& scene, int width, int height);
