@@ -125,9 +125,15 @@ AccessorData checkedAccessor(const tinygltf::Model& model, int index, const std:
                      " accessors)");
   const tinygltf::Accessor& a = model.accessors[static_cast<std::size_t>(index)];
   if (a.sparse.isSparse) throw InputError(path + ": " + name + " is sparse, which this reader does not support");
-  if (a.type != type)
-    throw InputError(path + ": " + name + " has type " + std::to_string(a.type) + ", expected " +
+  if (a.type != type) {
+    const char* actual = a.type == TINYGLTF_TYPE_SCALAR ? "SCALAR"
+                         : a.type == TINYGLTF_TYPE_VEC2 ? "VEC2"
+                         : a.type == TINYGLTF_TYPE_VEC3 ? "VEC3"
+                         : a.type == TINYGLTF_TYPE_VEC4 ? "VEC4"
+                                                        : "a matrix type";
+    throw InputError(path + ": " + name + " has type " + actual + ", expected " +
                      (type == TINYGLTF_TYPE_VEC3 ? "VEC3" : "SCALAR"));
+  }
   const bool typeOk = indices ? (a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
                                  a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
                                  a.componentType == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
@@ -292,8 +298,9 @@ void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primi
                        " triangle corners, not a multiple of 3");
     for (std::size_t i = 0; i + 2 < corner.size(); i += 3) triangle(corner[i], corner[i + 1], corner[i + 2]);
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+    // glTF 2.0 §3.7.2.1: triangle i is (v_i, v_{i+1+i%2}, v_{i+2-i%2}), keeping one winding.
     for (std::size_t i = 0; i + 2 < corner.size(); ++i)
-      i % 2 == 0 ? triangle(corner[i], corner[i + 1], corner[i + 2]) : triangle(corner[i + 1], corner[i], corner[i + 2]);
+      triangle(corner[i], corner[i + 1 + i % 2], corner[i + 2 - i % 2]);
   } else {
     for (std::size_t i = 1; i + 1 < corner.size(); ++i) triangle(corner[0], corner[i], corner[i + 1]);
   }
@@ -334,7 +341,7 @@ TriMesh readGltf(std::string_view bytes, const std::string& path) {
   if (binary)
     checkGlbContainer(bytes, path);
   else
-    requireSingleByteText(bytes, path, "glTF");
+    requireSingleByteText(bytes, path, "glTF files");
   if (bytes.size() > std::numeric_limits<unsigned int>::max())
     throw InputError(path + ": larger than 4 GiB, which tinygltf cannot read");
 

@@ -44,7 +44,7 @@ void parseVertexLines(std::string_view bytes, const std::string& path, std::vect
 }  // namespace
 
 TriMesh readObj(std::string_view bytes, const std::string& path) {
-  requireSingleByteText(bytes, path, "OBJ");
+  requireSingleByteText(bytes, path, "OBJ files");
   std::vector<double> vertexValues, normalValues;
   parseVertexLines(bytes, path, vertexValues, normalValues);
 

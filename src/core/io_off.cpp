@@ -56,7 +56,7 @@ std::int64_t parseCount(std::string_view token, const OffLines& lines, const cha
 }  // namespace
 
 TriMesh readOff(std::string_view bytes, const std::string& path) {
-  requireSingleByteText(bytes, path, "OFF");
+  requireSingleByteText(bytes, path, "OFF files");
   OffLines lines(bytes, path);
   std::string_view line, token;
   if (!lines.next(line)) throw InputError(path + ": no OFF header or counts (only comments or blank lines)");

@@ -79,7 +79,7 @@ bool isIndexList(const Property& p) { return p.list && (p.name == "vertex_indice
 Header parseHeader(std::string_view bytes, const std::string& path) {
   // UTF-16 text would not even show the magic; say so instead of "not a PLY file".
   const std::size_t headerEnd = bytes.find("end_header");
-  requireSingleByteText(bytes.substr(0, headerEnd == std::string_view::npos ? 1024 : headerEnd), path, "PLY header");
+  requireSingleByteText(bytes.substr(0, headerEnd == std::string_view::npos ? 1024 : headerEnd), path, "a PLY header");
 
   TextLines lines(bytes);
   std::string_view line, token;

@@ -44,7 +44,7 @@ void requireSingleByteText(std::string_view bytes, const std::string& path, std:
   const bool hasNul = head.find('\0') != std::string_view::npos;
   if (utf32Bom || utf16Bom || hasNul)
     throw InputError(path + ": looks like " + (utf32Bom ? "UTF-32" : utf16Bom ? "UTF-16" : "UTF-16 or binary") +
-                     " data, but " + std::string(what) + " files must be ASCII or UTF-8 text; re-save it as UTF-8");
+                     " data, but " + std::string(what) + " must be ASCII or UTF-8 text; re-save it as UTF-8");
 }
 
 TextLines::TextLines(std::string_view text, std::size_t start) : text_(text), pos_(start) {

@@ -17,7 +17,8 @@ namespace hermite {
 std::string readFileBytes(const std::string& path, std::string_view what);
 
 // InputError when `bytes` look like UTF-16 or UTF-32 text (a byte-order mark, or NUL bytes in
-// the first kilobyte) instead of ASCII / UTF-8, which is all the text formats accept.
+// the first kilobyte) instead of ASCII / UTF-8, which is all the text formats accept. `what`
+// names the text in the message: "OBJ files", "a PLY header".
 void requireSingleByteText(std::string_view bytes, const std::string& path, std::string_view what);
 
 // Strict number parsing of one whole token (no leading '+' except before a digit or '.', no

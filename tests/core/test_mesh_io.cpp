@@ -142,7 +142,7 @@ TEST_CASE("mesh_io: OBJ polygons, relative indices, v/vt/vn corners and no mtl a
   CHECK(!m.hasNormals());
 }
 
-TEST_CASE("mesh_io: OBJ and PLY round trips (exact for OBJ, float precision for PLY)") {
+TEST_CASE("mesh_io: OBJ, PLY, GLB and glTF round trips (exact for OBJ, float precision for the others)") {
   TempDir dir;
   for (const bool normals : {false, true}) {
     CAPTURE(normals);
@@ -154,11 +154,17 @@ TEST_CASE("mesh_io: OBJ and PLY round trips (exact for OBJ, float precision for 
     const std::string ply = dir.file(normals ? "n.ply" : "p.ply");
     hermite::saveMesh(ply, original);
     checkSameMesh(hermite::loadMesh(ply), original, 1e-6);  // 32-bit floats: 2^-24 relative
+
+    for (const char* ext : {".glb", ".gltf"}) {
+      const std::string gltf = dir.file(std::string(normals ? "n" : "p") + ext);
+      hermite::saveMesh(gltf, original);
+      checkSameMesh(hermite::loadMesh(gltf), original, 1e-6);
+    }
   }
-  // Only the target remains: the temporary of the atomic write was renamed.
+  // Only the targets remain: the temporaries of the atomic writes were renamed.
   int files = 0;
   for ([[maybe_unused]] const auto& e : fs::directory_iterator(dir.path)) ++files;
-  CHECK(files == 4);
+  CHECK(files == 8);
 }
 
 TEST_CASE("mesh_io: PLY ascii, binary little and big endian with extra properties of every type") {
@@ -293,4 +299,49 @@ TEST_CASE("mesh_io: oriented point sets from PLY and OBJ through the point loade
   CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(ply, warnings),
                        (ply + ": a 3D point file (.ply) cannot be used in a 2D scene; use .xyn (x y nx ny)").c_str(),
                        InputError);
+}
+
+TEST_CASE("mesh_io: glTF node transforms, an external buffer, ushort indices, strips and POINTS") {
+  TempDir dir;
+  // Buffer: 4 float positions of a unit square, then ushort indices 0 1 2 0 2 3 and a strip 0 1 3 2.
+  std::string bin;
+  for (float v : {0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 1.f, 1.f, 0.f, 0.f, 1.f, 0.f}) put<float>(bin, v, false);
+  for (std::uint16_t i : {0, 1, 2, 0, 2, 3, 0, 1, 3, 2}) put<std::uint16_t>(bin, i, false);
+  dir.write("square.bin", bin);
+  // Node 0 translates by (10, 0, 0) and has child 1, which scales by 2 and draws the mesh.
+  const std::string json = R"({
+    "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
+    "nodes": [{"translation": [10, 0, 0], "children": [1]}, {"scale": [2, 2, 2], "mesh": 0}],
+    "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4},
+                               {"attributes": {"POSITION": 0}, "indices": 2, "mode": 5}]}],
+    "buffers": [{"byteLength": 68, "uri": "square.bin"}],
+    "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+                    {"buffer": 0, "byteOffset": 48, "byteLength": 20}],
+    "accessors": [{"bufferView": 0, "componentType": 5126, "type": "VEC3", "count": 4,
+                   "min": [0, 0, 0], "max": [1, 1, 0]},
+                  {"bufferView": 1, "componentType": 5123, "type": "SCALAR", "count": 6},
+                  {"bufferView": 1, "byteOffset": 12, "componentType": 5123, "type": "SCALAR", "count": 4}]
+  })";
+  const TriMesh m = hermite::loadMesh(dir.write("square.gltf", json));
+  REQUIRE(m.vertexCount() == 8);  // each primitive brings its vertices
+  REQUIRE(m.triangleCount() == 4);
+  CHECK(m.vertices.col(2) == Eigen::Vector3d(12, 2, 0));
+  CHECK(m.triangles.col(1) == Eigen::Vector3i(0, 2, 3));
+  // Strip 0 1 3 2 → (0 1 3), then (1 2 3): the odd triangle swaps its last two to keep the winding.
+  CHECK(m.triangles.col(2) == Eigen::Vector3i(4, 5, 7));
+  CHECK(m.triangles.col(3) == Eigen::Vector3i(5, 6, 7));
+  CHECK(!m.hasNormals());
+
+  // An oriented point set as glTF POINTS with NORMAL, through the point loader.
+  TriMesh cloud = octahedron(true);
+  cloud.triangles.resize(3, 0);
+  for (const char* ext : {".glb", ".gltf"}) {
+    const std::string path = dir.file(std::string("cloud") + ext);
+    hermite::saveMesh(path, cloud);
+    std::vector<std::string> warnings;
+    const auto samples = hermite::loadPointFile3d(path, warnings);
+    REQUIRE(samples.size() == 6);
+    CHECK((samples.points - cloud.vertices).cwiseAbs().maxCoeff() <= 1e-6);
+    CHECK((samples.normals - cloud.normals).cwiseAbs().maxCoeff() <= 1e-6);
+  }
 }
