@@ -16,6 +16,9 @@ namespace hermite {
 std::string readFileBytes(const std::string& path, std::string_view what) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open (it is a directory)");
+  // A device or fifo (/dev/zero, a pipe) could be endless: only regular files are read.
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
+    throw InputError(path + ": cannot read (not a regular file)");
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
   std::string bytes;

@@ -16,6 +16,7 @@
 #include "core/errors.h"
 #include "core/io_points.h"
 #include "core/mesh_io.h"
+#include "core/scene_fit.h"
 
 using hermite::InputError;
 using hermite::TriMesh;
@@ -363,4 +364,28 @@ TEST_CASE("mesh_io: the cube written by independent code (make_meshes.py) reads 
   const auto points = hermite::loadPointFile3d(kMeshes + "/cube_points.ply", warnings);
   REQUIRE(points.size() == 8);
   CHECK(points.points == reference.vertices);
+}
+
+TEST_CASE("mesh_io: a scene's data.file accepts an oriented PLY point set") {
+  TempDir dir;
+  const std::string scene = dir.write("scene.json", R"({"version": 1, "mode": "implicit3d", "data": {"file": ")" +
+                                                        kMeshes + R"(/cube_points.ply"}})");
+  std::vector<std::string> warnings;
+  const auto samples = hermite::sceneSamples<3>(hermite::loadSceneFile(scene), warnings);
+  REQUIRE(samples.size() == 8);
+  CHECK(samples.points.col(6) == Eigen::Vector3d(1, 1, 1));
+  CHECK((samples.normals.col(6) - Eigen::Vector3d(1, 1, 1).normalized()).norm() < 1e-7);
+}
+
+TEST_CASE("mesh_io: missing files, directories and endless devices are errors, not hangs") {
+  TempDir dir;
+  const std::string missing = dir.file("missing.ply");
+  CHECK_THROWS_WITH_AS(hermite::loadMesh(missing), (missing + ": cannot open (No such file or directory)").c_str(),
+                       InputError);
+  const std::string folder = dir.file("folder.obj");
+  fs::create_directory(folder);
+  CHECK_THROWS_WITH_AS(hermite::loadMesh(folder), (folder + ": cannot open (it is a directory)").c_str(), InputError);
+  const std::string zero = dir.file("zero.ply");
+  fs::create_symlink("/dev/zero", zero);
+  CHECK_THROWS_WITH_AS(hermite::loadMesh(zero), (zero + ": cannot read (not a regular file)").c_str(), InputError);
 }
