@@ -362,6 +362,13 @@ TriMesh readGltf(std::string_view bytes, const std::string& path) {
                      (err.empty() ? "unknown error" : err) + ")");
   }
 
+  // Extensions that change how geometry is stored; the others (materials, textures, lights)
+  // do not matter for the vertices and triangles read here.
+  for (const std::string& required : model.extensionsRequired)
+    if (required == "KHR_draco_mesh_compression" || required == "EXT_meshopt_compression" ||
+        required == "KHR_mesh_quantization")
+      throw InputError(path + ": requires the glTF extension " + required + ", which this reader does not support");
+
   Collected out;
   int scene = model.defaultScene;
   if (scene < 0 && !model.scenes.empty()) scene = 0;
