@@ -11,6 +11,7 @@ PACKAGES="
   libglfw3-dev libimgui-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev python3-glad
   libegl-mesa0 libgl1-mesa-dri
   libtinygltf-dev libtinyobjloader-dev
+  clang libclang-rt-14-dev
 "
 
 missing=""

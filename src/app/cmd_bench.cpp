@@ -5,10 +5,15 @@
 //   render/trace-baked       GPU trace of a 128³ bake at 1024×768, N = 1000 (params: bake and
 //                            exact-refinement times)
 //   render/field2d-refit-redraw   refit + redraw of a 200-point curve at 512×512
+//   io/ply-load/N=1000000    read + parse a binary PLY of N oriented points (loadMeshFile, ms;
+//                            params: the whole point loader with validateSamples, file size)
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <string>
@@ -20,6 +25,8 @@
 #include "app/output.h"
 #include "core/errors.h"
 #include "core/hrbf.h"
+#include "core/io_points.h"
+#include "core/mesh_io.h"
 #include "core/presets.h"
 #include "core/threading.h"
 #include "render/field2d_view.h"
@@ -99,6 +106,45 @@ Result benchEval(const FitCase& c, int centres, int points, int repeats) {
           median(perPair), "ns/pair/core"};
 }
 
+// N oriented points, jittered about the unit sphere, written once as binary PLY (floats).
+Result benchPlyLoad(int N, int repeats) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss;
+  TriMesh cloud;
+  cloud.vertices.resize(3, N);
+  cloud.normals.resize(3, N);
+  for (int i = 0; i < N; ++i) {
+    const Vec<3> n = Vec<3>(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    cloud.normals.col(i) = n;
+    cloud.vertices.col(i) = n * (1 + 0.01 * gauss(rng));
+  }
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("hermite_bench_points_" + std::to_string(::getpid()) + ".ply")).string();
+  saveMesh(path, cloud);
+  std::vector<double> meshMs, samplesMs;
+  std::vector<std::string> warnings;
+  try {
+    for (int r = 0; r < repeats; ++r) {
+      double t0 = nowMs();
+      const TriMesh m = loadMeshFile(path);
+      meshMs.push_back(nowMs() - t0);
+      if (m.vertexCount() != N) throw NumericalError("bench io/ply-load: read back " + std::to_string(m.vertexCount()) + " points");
+      t0 = nowMs();
+      const HermiteSamples<3> s = loadPointFile3d(path, warnings);
+      samplesMs.push_back(nowMs() - t0);
+    }
+  } catch (...) {
+    std::filesystem::remove(path);
+    throw;
+  }
+  const auto bytes = std::filesystem::file_size(path);
+  std::filesystem::remove(path);
+  return {"io/ply-load/N=" + std::to_string(N),
+          {{"N", N}, {"bytes", bytes}, {"point_loader_ms", median(samplesMs)}, {"repeats", repeats},
+           {"what", "binary little-endian PLY, float x y z nx ny nz"}},
+          median(meshMs), "ms"};
+}
+
 }  // namespace
 
 int runBench(const BenchArgs& args) {
@@ -115,6 +161,10 @@ int runBench(const BenchArgs& args) {
     const int repeats = args.quick ? 1 : 7;
     jobs.emplace_back("eval3d/" + c.label, [c, points, repeats] { return benchEval(c, 1000, points, repeats); });
   }
+
+  jobs.emplace_back("io/ply-load", [quick = args.quick] {
+    return quick ? benchPlyLoad(100000, 1) : benchPlyLoad(1000000, 5);
+  });
 
   // Rendering (issue 3 §6), on this machine's OpenGL (llvmpipe here) through OSMesa.
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {
