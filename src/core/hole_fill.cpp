@@ -3,51 +3,77 @@
 
 #include "core/hole_fill.h"
 
+#include <algorithm>
 #include <chrono>
 #include <exception>
 #include <tuple>
 
 #include "core/errors.h"
+#include "core/threading.h"
 
 namespace hermite {
 
 HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillResult result;
+  if (options.rings < 1) throw InputError("hole filling: rings must be ≥ 1");
+  if (!(options.offsetFraction > 0)) throw InputError("hole filling: the offset fraction must be > 0");
   const PreparedMesh prepared(mesh);
   const std::vector<BoundaryLoop> holes = detectHoles(mesh);
   result.holesFound = static_cast<int>(holes.size());
 
-  std::vector<HolePatch> patches;
+  // Holes are independent: one per thread, each with one BLAS thread (its system is small —
+  // 3 × the ring vertices — and threads inside it would only contend).
+  std::vector<HolePatch> perHole(holes.size());
+  std::vector<char> filled(holes.size(), 0);
+  std::vector<std::vector<std::string>> notes(holes.size());
+  std::vector<int> unconverged(holes.size(), 0);
+  std::vector<double> maxAbsF(holes.size(), 0.0);
+  const int threads = threadCount();
+  setBlasThreadCount(1);
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t h = 0; h < holes.size(); ++h) {
     const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
                              " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
-    HolePatch patch = advancingFront(prepared, holes[h], options);
-    for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
-      HoleFillOptions retry = options;
-      std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
-      patch = advancingFront(prepared, holes[h], retry);
-    }
-    if (!patch.closed) {
-      result.messages.push_back(name + " not filled: " + patch.failure);
-      continue;
-    }
-    if (options.fair) patch = fairPatch(prepared, patch);
-    if (options.fitAndProject && patch.vertices.cols() > 0) {
-      try {
-        const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
-        ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
-        result.unconverged += projected.unconverged;
-        result.maxAbsF = std::max(result.maxAbsF, projected.maxAbsF);
-        if (projected.unconverged > 0)
-          result.messages.push_back(name + ": " + std::to_string(projected.unconverged) +
-                                    " vertices did not converge onto the implicit (left faired)");
-        patch = std::move(projected.patch);
-      } catch (const NumericalError& e) {
-        result.messages.push_back(name + ": implicit fit failed (" + e.what() + "); the faired patch is kept");
+    try {
+      HolePatch patch = advancingFront(prepared, holes[h], options);
+      for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
+        HoleFillOptions retry = options;
+        std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
+        patch = advancingFront(prepared, holes[h], retry);
       }
+      if (!patch.closed) {
+        notes[h].push_back(name + " not filled: " + patch.failure);
+        continue;
+      }
+      if (options.fair) patch = fairPatch(prepared, patch);
+      if (options.fitAndProject && patch.vertices.cols() > 0) {
+        try {
+          const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
+          ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
+          unconverged[h] = projected.unconverged;
+          maxAbsF[h] = projected.maxAbsF;
+          if (projected.unconverged > 0)
+            notes[h].push_back(name + ": " + std::to_string(projected.unconverged) +
+                               " vertices did not converge onto the implicit (left faired)");
+          patch = std::move(projected.patch);
+        } catch (const NumericalError& e) {
+          notes[h].push_back(name + ": implicit fit failed (" + e.what() + "); the faired patch is kept");
+        }
+      }
+      perHole[h] = std::move(patch);
+      filled[h] = 1;
+    } catch (const std::exception& e) {  // never let an exception leave the parallel loop
+      notes[h].push_back(name + " not filled: " + e.what());
     }
-    patches.push_back(std::move(patch));
+  }
+  setThreadCount(threads);
+  std::vector<HolePatch> patches;
+  for (size_t h = 0; h < holes.size(); ++h) {
+    for (std::string& m : notes[h]) result.messages.push_back(std::move(m));
+    result.unconverged += unconverged[h];
+    result.maxAbsF = std::max(result.maxAbsF, maxAbsF[h]);
+    if (filled[h]) patches.push_back(std::move(perHole[h]));
   }
 
   // Append: the patches' new vertices get consecutive ids after the input's.

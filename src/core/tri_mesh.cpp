@@ -46,15 +46,27 @@ int findRoot(std::vector<int>& parent, int x) {
 }  // namespace
 
 std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
-  const std::vector<std::pair<std::uint64_t, int>> counts = undirectedEdgeCounts(mesh);
-  // Directed boundary edges, as the one triangle using each traverses it.
-  std::vector<std::uint64_t> boundary;
+  // One sort of the half-edges by undirected edge (the low bit keeps the direction): an edge
+  // alone in its group is a boundary edge, traversed as its one triangle does.
+  std::vector<std::uint64_t> halfEdges;
+  halfEdges.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
   for (int t = 0; t < mesh.triangleCount(); ++t)
     for (int k = 0; k < 3; ++k) {
       const int a = mesh.triangles(k, t), b = mesh.triangles((k + 1) % 3, t);
-      const auto it = std::lower_bound(counts.begin(), counts.end(), std::make_pair(edgeKey(a, b), 0));
-      if (it != counts.end() && it->first == edgeKey(a, b) && it->second == 1) boundary.push_back(directedKey(a, b));
+      halfEdges.push_back((edgeKey(a, b) << 1) | (a > b ? 1u : 0u));
     }
+  std::sort(halfEdges.begin(), halfEdges.end());
+  std::vector<std::uint64_t> boundary;  // directed keys
+  for (size_t i = 0; i < halfEdges.size();) {
+    size_t j = i + 1;
+    while (j < halfEdges.size() && (halfEdges[j] >> 1) == (halfEdges[i] >> 1)) ++j;
+    if (j == i + 1) {
+      const std::uint64_t key = halfEdges[i] >> 1;
+      const int lo = keyFrom(key), hi = keyTo(key);
+      boundary.push_back(halfEdges[i] & 1 ? directedKey(hi, lo) : directedKey(lo, hi));
+    }
+    i = j;
+  }
   std::sort(boundary.begin(), boundary.end());  // grouped by source vertex
   std::vector<char> used(boundary.size(), 0);
   // First boundary edge leaving v not used yet, or -1.
