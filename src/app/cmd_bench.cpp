@@ -7,11 +7,16 @@
 //   render/field2d-refit-redraw   refit + redraw of a 200-point curve at 512×512
 //   io/ply-load/N=1000000    read + parse a binary PLY of N oriented points (loadMeshFile, ms;
 //                            params: the whole point loader with validateSamples, file size)
+//   mesh/marching-cubes/...  marching cubes of an N = 1000 HRBF (unit sphere preset) over
+//                            [-1.25, 1.25]³ (ms; params: field-evaluation ms, triangles)
+//   holefill/100k-10holes    fillHoles on a ≈100k-triangle torus with 10 holes of ≈50 boundary
+//                            edges each (ms, whole pipeline; params: holes, edges, |f|)
 
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -24,9 +29,11 @@
 #include "app/commands.h"
 #include "app/output.h"
 #include "core/errors.h"
+#include "core/hole_fill.h"
 #include "core/hrbf.h"
 #include "core/io_points.h"
 #include "core/mesh_io.h"
+#include "core/marching.h"
 #include "core/presets.h"
 #include "core/threading.h"
 #include "render/field2d_view.h"
@@ -145,6 +152,78 @@ Result benchPlyLoad(int N, int repeats) {
           median(meshMs), "ms"};
 }
 
+Result benchMarchingCubes(int centres, int resolution, int repeats) {
+  const HrbfModel<3> model = fitHrbf<3>(makePreset3d("sphere", centres), HrbfOptions{});
+  Box<3> box;
+  box.lo = Vec<3>::Constant(-1.25);
+  box.hi = Vec<3>::Constant(1.25);
+  std::vector<double> total, evaluate;
+  int triangles = 0;
+  for (int r = 0; r < repeats; ++r) {
+    MarchingReport rep;
+    const TriMesh mesh = marchingCubes(model, box, {resolution}, &rep);
+    total.push_back(rep.totalMs);
+    evaluate.push_back(rep.evaluateMs);
+    triangles = mesh.triangleCount();
+  }
+  return {"mesh/marching-cubes/hrbf-N=" + std::to_string(centres) + "/res=" + std::to_string(resolution),
+          {{"centres", centres}, {"resolution", resolution}, {"evaluate_ms", median(evaluate)},
+           {"triangles", triangles}, {"threads", threadCount()}, {"repeats", repeats}},
+          median(total), "ms"};
+}
+
+// A closed torus (R = 0.7, r = 0.3) on an nu × nv parameter grid, counter-clockwise from outside.
+TriMesh benchTorus(int nu, int nv) {
+  TriMesh m;
+  m.vertices.resize(3, nu * nv);
+  m.triangles.resize(3, 2 * nu * nv);
+  auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+      m.vertices.col(id(i, j)) =
+          Vec<3>((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v));
+      m.triangles.col(2 * id(i, j)) = Eigen::Vector3i(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      m.triangles.col(2 * id(i, j) + 1) = Eigen::Vector3i(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  return m;
+}
+
+Result benchHoleFill(bool quick, int repeats) {
+  const int nu = quick ? 100 : 316, nv = quick ? 50 : 158;  // 2·nu·nv ≈ 100k triangles
+  const TriMesh torus = benchTorus(nu, nv);
+  // Ten balls centred on the surface, spread over u and v; radius for ≈ 50 boundary edges.
+  const double radius = quick ? 0.2 : 0.085;
+  std::vector<int> keep;
+  for (int t = 0; t < torus.triangleCount(); ++t) {
+    bool drop = false;
+    for (int h = 0; h < 10 && !drop; ++h) {
+      const double u = 2 * M_PI * h / 10, v = 2 * M_PI * ((3 * h) % 10) / 10;
+      const Vec<3> c((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v));
+      for (int k = 0; k < 3; ++k) drop = drop || (torus.vertices.col(torus.triangles(k, t)) - c).norm() < radius;
+    }
+    if (!drop) keep.push_back(t);
+  }
+  TriMesh holed = torus;
+  holed.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
+  for (size_t k = 0; k < keep.size(); ++k) holed.triangles.col(static_cast<Eigen::Index>(k)) = torus.triangles.col(keep[k]);
+  size_t edges = 0;
+  const std::vector<BoundaryLoop> loops = detectHoles(holed);
+  for (const BoundaryLoop& l : loops) edges += l.size();
+  std::vector<double> times;
+  HoleFillResult r;
+  for (int i = 0; i < repeats; ++i) {
+    r = fillHoles(holed);
+    times.push_back(r.ms);
+  }
+  return {"holefill/100k-10holes",
+          {{"triangles", holed.triangleCount()}, {"holes_found", r.holesFound}, {"holes_filled", r.holesFilled},
+           {"mean_boundary_edges", loops.empty() ? 0.0 : double(edges) / loops.size()},
+           {"triangles_added", r.trianglesAdded}, {"max_abs_f", r.maxAbsF}, {"unconverged", r.unconverged},
+           {"closed", checkMesh(r.mesh).closed()}, {"repeats", repeats}},
+          median(times), "ms"};
+}
+
 }  // namespace
 
 int runBench(const BenchArgs& args) {
@@ -165,6 +244,14 @@ int runBench(const BenchArgs& args) {
   jobs.emplace_back("io/ply-load", [quick = args.quick] {
     return quick ? benchPlyLoad(100000, 1) : benchPlyLoad(1000000, 5);
   });
+  // Meshing and hole filling (issue 8 §2–3).
+  for (int resolution : {64, 128}) {
+    const int res = args.quick ? 16 : resolution, repeats = args.quick ? 1 : 3;
+    jobs.emplace_back("mesh/marching-cubes/hrbf-N=1000/res=" + std::to_string(resolution),
+                      [res, repeats, quick = args.quick] { return benchMarchingCubes(quick ? 100 : 1000, res, repeats); });
+  }
+  jobs.emplace_back("holefill/100k-10holes",
+                    [quick = args.quick] { return benchHoleFill(quick, quick ? 1 : 5); });
 
   // Rendering (issue 3 §6), on this machine's OpenGL (llvmpipe here) through OSMesa.
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {
