@@ -13,6 +13,22 @@
 
 namespace hermite {
 
+namespace {
+
+// A 3-edge loop whose vertices are one triangle of the mesh: that triangle touches nothing.
+bool isLoneTriangle(const PreparedMesh& prepared, const BoundaryLoop& loop) {
+  if (loop.size() != 3) return false;
+  for (const int* t = prepared.trianglesBegin(loop[0]); t != prepared.trianglesEnd(loop[0]); ++t) {
+    int shared = 0;
+    for (int k = 0; k < 3; ++k)
+      for (int v : loop) shared += prepared.mesh().triangles(k, *t) == v;
+    if (shared == 3) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillResult result;
@@ -36,6 +52,10 @@ HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
     const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
                              " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
     try {
+      if (isLoneTriangle(prepared, holes[h])) {  // its "hole" is its own back side (a triangle soup?)
+        notes[h].push_back(name + " not filled: it is the boundary of a lone triangle (unwelded vertices?)");
+        continue;
+      }
       HolePatch patch = advancingFront(prepared, holes[h], options);
       for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
         HoleFillOptions retry = options;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/analytic_shapes.h"
+#include "core/errors.h"
 #include "core/hole_fill.h"
 #include "core/hrbf.h"
 #include "core/marching.h"
@@ -220,4 +221,33 @@ TEST_CASE("hole filling: pathological loops end, filled or reported") {
     REQUIRE(r.messages.size() == 1);
     CHECK(r.messages[0].find("did not close") != std::string::npos);
   }
+}
+
+TEST_CASE("hole filling: a triangle soup's lone triangles are reported, not doubled") {
+  TriMesh soup;
+  soup.vertices.resize(3, 6);
+  soup.vertices << 0, 1, 0, 2, 3, 2,  //
+      0, 0, 1, 0, 0, 1,               //
+      0, 0, 0, 0, 0, 0;
+  soup.triangles.resize(3, 2);
+  soup.triangles << 0, 3,  //
+      1, 4,                //
+      2, 5;
+  const HoleFillResult r = fillHoles(soup);
+  CHECK(r.holesFound == 2);
+  CHECK(r.holesFilled == 0);
+  CHECK(r.trianglesAdded == 0);
+  CHECK(r.messages.size() == 2);
+  CHECK(r.mesh.triangleCount() == 2);
+}
+
+TEST_CASE("hole filling: bad options are input errors; a closed mesh is returned unchanged") {
+  const TriMesh closed = parametricTorus(24, 12);
+  HoleFillOptions o;
+  o.rings = 0;
+  CHECK_THROWS_AS(fillHoles(closed, o), InputError);
+  const HoleFillResult r = fillHoles(closed);
+  CHECK(r.holesFound == 0);
+  CHECK(r.mesh.triangles == closed.triangles);
+  CHECK(r.mesh.vertices == closed.vertices);
 }
