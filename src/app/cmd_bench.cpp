@@ -159,16 +159,20 @@ Result benchMarchingCubes(int centres, int resolution, int repeats) {
   box.hi = Vec<3>::Constant(1.25);
   std::vector<double> total, evaluate;
   int triangles = 0;
+  long long evaluated = 0, points = 0;
   for (int r = 0; r < repeats; ++r) {
     MarchingReport rep;
     const TriMesh mesh = marchingCubes(model, box, {resolution}, &rep);
     total.push_back(rep.totalMs);
     evaluate.push_back(rep.evaluateMs);
     triangles = mesh.triangleCount();
+    evaluated = rep.evaluatedPoints;
+    points = rep.gridPoints;
   }
   return {"mesh/marching-cubes/hrbf-N=" + std::to_string(centres) + "/res=" + std::to_string(resolution),
           {{"centres", centres}, {"resolution", resolution}, {"evaluate_ms", median(evaluate)},
-           {"triangles", triangles}, {"threads", threadCount()}, {"repeats", repeats}},
+           {"triangles", triangles}, {"grid_points", points}, {"evaluated_points", evaluated},
+           {"threads", threadCount()}, {"repeats", repeats}},
           median(total), "ms"};
 }
 

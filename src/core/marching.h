@@ -31,12 +31,20 @@ namespace hermite {
 struct MarchingOptions {
   int resolution = 64;  // cells along the box's longest side (≥ 1); the others in proportion
   int newtonSteps = 4;  // Newton iterations along each vertex's grid edge (0: linear interpolation)
+  // Skip f at grid points far from the zero set: f is evaluated at the centre c of every block of
+  // 4³ cells, and a block with |f(c)| > L·r (L = lipschitzBound over its 16³-cell super-block, r
+  // its half-diagonal) cannot change sign, so its points only need that sign. Exact: the mesh is
+  // identical to the dense one (every value the mesh uses — on sign-changing edges and ambiguous
+  // faces — lies in a block that is not skipped).
+  bool cull = true;
 };
 
 // What the contouring measured.
 struct MarchingReport {
   std::array<int, 3> cells{0, 0, 0};  // cells per axis (the third is 1 in 2D)
   double evaluateMs = 0;              // grid values (the bulk of the time for RBF fields)
+  long long gridPoints = 0;           // points of the grid
+  long long evaluatedPoints = 0;      // of which f was evaluated (the rest culled, plus block centres)
   double totalMs = 0;
   double maxAbsF = 0;                 // max |f| over the edge vertices after refinement
 };

@@ -4,7 +4,9 @@
 
 #include "core/analytic_shapes.h"
 #include "core/errors.h"
+#include "core/hrbf.h"
 #include "core/marching.h"
+#include "core/presets.h"
 #include "core/tri_mesh.h"
 
 using namespace hermite;
@@ -22,7 +24,7 @@ class GyroidField final : public ImplicitField<3> {
     if (H) H->setZero();  // unused here
     return sx * cy + sy * cz + sz * cx - 0.1;
   }
-  double lipschitzBound(const Box<3>&) const override { return 3.0; }
+  double lipschitzBound(const Box<3>&) const override { return 2 * std::sqrt(3.0); }  // each component ≤ 2
 };
 
 // Two circles of radius 0.5 whose centres are 1.02 apart: at coarse resolution the cells between
@@ -174,4 +176,40 @@ TEST_CASE("marching squares: a curve leaving the box is open") {
   const std::vector<Polyline2d> lines = marchingSquares(circle, box, {20});
   REQUIRE(lines.size() == 1);
   CHECK_FALSE(lines[0].closed);
+}
+
+TEST_CASE("marching: culling far blocks gives exactly the dense result with fewer evaluations") {
+  const SphereField sphere(Vec<3>(0.05, -0.03, 0.02), 0.7);
+  const TorusField torus;
+  const GyroidField gyroid;
+  const HrbfModel<3> hrbf = fitHrbf<3>(makePreset3d("torus", 200), HrbfOptions{});
+  struct Case {
+    const ImplicitField<3>* field;
+    double half;
+    int resolution;
+  };
+  for (const Case& c : {Case{&sphere, 1.3, 61}, Case{&torus, 1.1, 40}, Case{&gyroid, 4.0, 13}, Case{&hrbf, 1.3, 50}}) {
+    MarchingOptions dense{c.resolution};
+    dense.cull = false;
+    MarchingOptions culled{c.resolution};
+    MarchingReport rd, rc;
+    const TriMesh a = marchingCubes(*c.field, cube(c.half), dense, &rd);
+    const TriMesh b = marchingCubes(*c.field, cube(c.half), culled, &rc);
+    CHECK(a.triangles == b.triangles);
+    CHECK(a.vertices == b.vertices);
+    CHECK(rd.evaluatedPoints == rd.gridPoints);
+    CHECK(rc.evaluatedPoints <= rc.gridPoints);
+    MESSAGE("culling evaluated ", rc.evaluatedPoints, " of ", rc.gridPoints, " grid points");
+  }
+  const CircleField circle(Vec<2>(0.1, 0.05), 0.5);
+  Box<2> box;
+  box.lo = Vec<2>(-1, -1);
+  box.hi = Vec<2>(1.2, 1);
+  MarchingOptions dense{120};
+  dense.cull = false;
+  MarchingReport r2;
+  const std::vector<Polyline2d> a = marchingSquares(circle, box, dense), b = marchingSquares(circle, box, {120}, &r2);
+  REQUIRE(a.size() == b.size());
+  CHECK(a[0].points == b[0].points);
+  CHECK(r2.evaluatedPoints < r2.gridPoints / 2);
 }
