@@ -29,9 +29,9 @@ namespace hermite {
 enum class HoleImplicitKind { RbfOffset, Hrbf };
 
 struct HoleFillOptions {
-  // Advancing front: at most frontStepsPerEdge × (boundary edges) + 10 steps, then the hole is
-  // reported as not closed (a bound, never a hang).
-  int frontStepsPerEdge = 40;
+  // Advancing front: at most frontStepFactor · (n²/4 + 40n) + 10 steps for n boundary edges, then
+  // the hole is reported as not closed (a bound, never a hang).
+  double frontStepFactor = 1.0;
   // A new vertex closer than this × l to another front vertex is merged with it (the front splits).
   double mergeDistance = 1.0;
   int clipFrontSize = 6;  // fronts of at most this many vertices are closed by clipping (no new vertices)
@@ -93,7 +93,7 @@ struct HolePatch {
 // vertex is replaced by that vertex (the front splits in two, each closed in turn); a step whose
 // new edges would repeat an edge or cross the front (in the vertex's tangent plane) is not taken
 // (the next smallest angle is tried); fronts of ≤ clipFrontSize vertices are closed by clipping.
-// Bounded: at most frontStepsPerEdge·n + 10 steps, and a front that grows past 2n + 10 vertices
+// Bounded: at most frontStepFactor · (n²/4 + 40n) + 10 steps, and a front that grows past 2n + 10 vertices
 // (or n²/4 + 4n new ones) has folded — both end with `closed` false and the reason in `failure`.
 HolePatch advancingFront(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options = {});
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <unordered_map>
 #include <unordered_set>
 
 #include <Eigen/Geometry>
@@ -151,7 +152,14 @@ HolePatch advancingFront(const PreparedMesh& prepared, const BoundaryLoop& loop,
       for (int k = 0; k < 3; ++k)
         F.edges.insert(edgeKey(prepared.mesh().triangles(k, *t), prepared.mesh().triangles((k + 1) % 3, *t)));
 
-  const long maxSteps = static_cast<long>(options.frontStepsPerEdge) * n0 + 10;
+  // A disc bounded by n edges of length l takes about n²/11 + n steps (one per triangle or
+  // vertex pair); the bound leaves room for ~3× that.
+  const long maxSteps = static_cast<long>(std::max(0.0, options.frontStepFactor) * (0.25 * n0 * n0 + 40.0 * n0)) + 10;
+  struct CachedAngle {
+    int prev = -1, next = -1;
+    double angle = 0;
+  };
+  std::unordered_map<int, CachedAngle> angleCache;
   const long maxNewVertices = static_cast<long>(n0) * n0 / 4 + 4L * n0;
   // Fronts still open: a merge splits one front in two (the hole pinched into two holes).
   std::vector<std::vector<int>> fronts;
@@ -182,15 +190,36 @@ HolePatch advancingFront(const PreparedMesh& prepared, const BoundaryLoop& loop,
     }
     ++step;
     const int n = static_cast<int>(cur.size());
+    // Angles depend only on a vertex and its two front neighbours (positions never move while
+    // the front advances): cached, recomputed where an operation changed a neighbour.
     order.clear();
     for (int i = 0; i < n; ++i) {
-      Eigen::Vector3d e1, e1p;
       const int p = cur[(i + n - 1) % n], v = cur[i], q = cur[(i + 1) % n];
-      order.emplace_back(frontAngle(F.position(p), F.position(v), F.position(q), F.normal(v), e1, e1p), i);
+      CachedAngle& c = angleCache[v];
+      if (c.prev != p || c.next != q) {
+        Eigen::Vector3d e1, e1p;
+        c = {p, q, frontAngle(F.position(p), F.position(v), F.position(q), F.normal(v), e1, e1p)};
+      }
+      order.emplace_back(c.angle, i);
     }
-    std::sort(order.begin(), order.end());
+    // Σ(π − angle) is 2π minus the curvature the front encloses; near −2π it runs the wrong way
+    // round: from the start, the boundary is an outer one (an open surface's rim, or a hole wider
+    // than a hemisphere); later, the front has folded. Either way it would only grow.
+    double turning = 0;
+    for (const auto& oa : order) turning += M_PI - oa.first;
+    if (turning < -M_PI) {  // ≈ −2π when inverted; a margin for the normals' error on curved fronts
+      patch.failure = step == 1 ? "the boundary turns the wrong way round (an open surface's outer rim, or a hole wider "
+                                  "than a hemisphere): not a hole the front can close"
+                                : "the advancing front folded over itself (it turns the wrong way round)";
+      break;
+    }
+    // The smallest angle first; the others are sorted only when it cannot be taken.
+    std::iter_swap(order.begin(), std::min_element(order.begin(), order.end()));
     bool done = false;
-    for (const auto& [angle, i] : order) {
+    for (size_t candidate = 0; candidate < order.size(); ++candidate) {
+      if (candidate == 1) std::sort(order.begin() + 1, order.end());
+      const double angle = order[candidate].first;
+      const int i = order[candidate].second;
       const int p = cur[(i + n - 1) % n], v = cur[i], q = cur[(i + 1) % n];
       const Eigen::Vector3d xv = F.position(v);
       Eigen::Vector3d e1, e1p;

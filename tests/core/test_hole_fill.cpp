@@ -214,7 +214,7 @@ TEST_CASE("hole filling: pathological loops end, filled or reported") {
   }
   SUBCASE("a front bounded to too few steps is reported, not a hang") {
     HoleFillOptions o;
-    o.frontStepsPerEdge = 0;
+    o.frontStepFactor = 0;
     const HoleFillResult r = fillHoles(cutBall(closed, Eigen::Vector3d(0, 0, 1), 0.5), o);
     CHECK(r.holesFound == 1);
     CHECK(r.holesFilled == 0);
