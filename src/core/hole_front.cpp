@@ -55,9 +55,15 @@ struct Front {
   Eigen::Vector3d normal(int id) const {
     return id < patch.baseId ? Eigen::Vector3d(prepared.normals().col(id)) : newNormals[static_cast<size_t>(id - patch.baseId)];
   }
-  int addVertex(const Eigen::Vector3d& x, const Eigen::Vector3d& n) {
+  // A new vertex's normal (the one its angles are measured about) is the inverse-square-distance
+  // mean of the hole boundary's normals: it turns with the surface across a wide hole, where the
+  // creating vertex's normal would go stale ring after ring.
+  int addVertex(const Eigen::Vector3d& x, const Eigen::Vector3d& fallback) {
+    Eigen::Vector3d n = Eigen::Vector3d::Zero();
+    const double eps = 1e-6 * patch.meanEdgeLength * patch.meanEdgeLength;
+    for (int b : patch.loop) n += prepared.normals().col(b) / ((prepared.mesh().vertices.col(b) - x).squaredNorm() + eps);
     newPositions.push_back(x);
-    newNormals.push_back(n);
+    newNormals.push_back(n.norm() > 0 && n.allFinite() ? Eigen::Vector3d(n.normalized()) : fallback);
     return patch.baseId + static_cast<int>(newPositions.size()) - 1;
   }
   // Σ (π − interior angle) over a front: 2π minus the enclosed curvature for a front with the

@@ -212,6 +212,27 @@ TEST_CASE("hole filling: pathological loops end, filled or reported") {
       CHECK(c.consistentlyOriented());
     }
   }
+  SUBCASE("an open surface's outer rim is reported at once, not grown outward") {
+    const int n = 100;  // a 100 × 100 grid: its rim (400 edges) turns −2π seen from the hole side
+    TriMesh grid;
+    grid.vertices.resize(3, (n + 1) * (n + 1));
+    grid.triangles.resize(3, 2 * n * n);
+    for (int j = 0; j <= n; ++j)
+      for (int i = 0; i <= n; ++i) grid.vertices.col(j * (n + 1) + i) = Eigen::Vector3d(double(i) / n, double(j) / n, 0);
+    for (int j = 0, t = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        const int a = j * (n + 1) + i;
+        grid.triangles.col(t++) = Eigen::Vector3i(a, a + 1, a + n + 2);
+        grid.triangles.col(t++) = Eigen::Vector3i(a, a + n + 2, a + n + 1);
+      }
+    const auto t0 = std::chrono::steady_clock::now();
+    const HoleFillResult r = fillHoles(grid);
+    CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 2);
+    CHECK(r.holesFound == 1);
+    CHECK(r.holesFilled == 0);
+    REQUIRE(r.messages.size() == 1);
+    CHECK(r.messages[0].find("wrong way") != std::string::npos);
+  }
   SUBCASE("a front bounded to too few steps is reported, not a hang") {
     HoleFillOptions o;
     o.frontStepFactor = 0;
