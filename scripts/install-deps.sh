@@ -12,6 +12,7 @@ PACKAGES="
   libegl-mesa0 libgl1-mesa-dri
   libtinygltf-dev libtinyobjloader-dev
   xvfb xauth xdotool imagemagick
+  clang libclang-rt-14-dev
 "
 
 missing=""

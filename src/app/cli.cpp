@@ -28,6 +28,8 @@ constexpr const char* kUsage =
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
     "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
     "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--size WxH] [--set KEY=VALUE ...]\n"
+    "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
+    "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
     "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
@@ -111,6 +113,33 @@ int dispatch(int argc, char** argv) {
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);
     return runSweep(a);
+  }
+  if (first == "mesh") {
+    MeshArgs a;
+    CLI::App cmd("mesh the fitted zero set over view.bounds: marching cubes (3D), marching squares (2D)", "mesh");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (2D: .obj polylines or .svg)")->required();
+    cmd.add_option("--resolution", a.resolution, "cells along the longest side of view.bounds (default 64)")
+        ->check(CLI::Range(1, 4096));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runMesh(a);
+  }
+  if (first == "holefill") {
+    HoleFillArgs a;
+    CLI::App cmd("fill the holes of a triangle mesh (advancing front, fairing, RBF projection)", "holefill");
+    cmd.add_option("input", a.input, "triangle mesh (.off, .obj, .ply, .glb, .gltf)")->required();
+    cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (written atomically)")->required();
+    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_option("--rings", a.rings, "vertex rings around each hole fitted by the implicit (default 2)")
+        ->check(CLI::Range(1, 10));
+    cmd.add_option("--implicit", a.implicit, "rbf-offset (default: cubic, linear, ±d offsets) or hrbf")
+        ->check(CLI::IsMember({"rbf-offset", "hrbf"}));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runHoleFill(a);
   }
   if (first == "patch-table") {
     PatchTableArgs a;

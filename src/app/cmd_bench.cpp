@@ -5,10 +5,20 @@
 //   render/trace-baked       GPU trace of a 128³ bake at 1024×768, N = 1000 (params: bake and
 //                            exact-refinement times)
 //   render/field2d-refit-redraw   refit + redraw of a 200-point curve at 512×512
+//   io/ply-load/N=1000000    read + parse a binary PLY of N oriented points (loadMeshFile, ms;
+//                            params: the whole point loader with validateSamples, file size)
+//   mesh/marching-cubes/...  marching cubes of an N = 1000 HRBF (unit sphere preset) over
+//                            [-1.25, 1.25]³ (ms; params: field-evaluation ms, triangles)
+//   holefill/100k-10holes    fillHoles on a ≈100k-triangle torus with 10 holes of ≈50 boundary
+//                            edges each (ms, whole pipeline; params: holes, edges, |f|)
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 #include <random>
 #include <string>
@@ -20,7 +30,11 @@
 #include "app/commands.h"
 #include "app/output.h"
 #include "core/errors.h"
+#include "core/hole_fill.h"
 #include "core/hrbf.h"
+#include "core/io_points.h"
+#include "core/mesh_io.h"
+#include "core/marching.h"
 #include "core/presets.h"
 #include "core/threading.h"
 #include "render/field2d_view.h"
@@ -100,6 +114,121 @@ Result benchEval(const FitCase& c, int centres, int points, int repeats) {
           median(perPair), "ns/pair/core"};
 }
 
+// N oriented points, jittered about the unit sphere, written once as binary PLY (floats).
+Result benchPlyLoad(int N, int repeats) {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> gauss;
+  TriMesh cloud;
+  cloud.vertices.resize(3, N);
+  cloud.normals.resize(3, N);
+  for (int i = 0; i < N; ++i) {
+    const Vec<3> n = Vec<3>(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    cloud.normals.col(i) = n;
+    cloud.vertices.col(i) = n * (1 + 0.01 * gauss(rng));
+  }
+  const std::string path = (std::filesystem::temp_directory_path() /
+                            ("hermite_bench_points_" + std::to_string(::getpid()) + ".ply")).string();
+  saveMesh(path, cloud);
+  std::vector<double> meshMs, samplesMs;
+  std::vector<std::string> warnings;
+  try {
+    for (int r = 0; r < repeats; ++r) {
+      double t0 = nowMs();
+      const TriMesh m = loadMeshFile(path);
+      meshMs.push_back(nowMs() - t0);
+      if (m.vertexCount() != N) throw NumericalError("bench io/ply-load: read back " + std::to_string(m.vertexCount()) + " points");
+      t0 = nowMs();
+      const HermiteSamples<3> s = loadPointFile3d(path, warnings);
+      samplesMs.push_back(nowMs() - t0);
+    }
+  } catch (...) {
+    std::filesystem::remove(path);
+    throw;
+  }
+  const auto bytes = std::filesystem::file_size(path);
+  std::filesystem::remove(path);
+  return {"io/ply-load/N=" + std::to_string(N),
+          {{"N", N}, {"bytes", bytes}, {"point_loader_ms", median(samplesMs)}, {"repeats", repeats},
+           {"what", "binary little-endian PLY, float x y z nx ny nz"}},
+          median(meshMs), "ms"};
+}
+
+Result benchMarchingCubes(int centres, int resolution, int repeats) {
+  const HrbfModel<3> model = fitHrbf<3>(makePreset3d("sphere", centres), HrbfOptions{});
+  Box<3> box;
+  box.lo = Vec<3>::Constant(-1.25);
+  box.hi = Vec<3>::Constant(1.25);
+  std::vector<double> total, evaluate;
+  int triangles = 0;
+  long long evaluated = 0, points = 0;
+  for (int r = 0; r < repeats; ++r) {
+    MarchingReport rep;
+    const TriMesh mesh = marchingCubes(model, box, {resolution}, &rep);
+    total.push_back(rep.totalMs);
+    evaluate.push_back(rep.evaluateMs);
+    triangles = mesh.triangleCount();
+    evaluated = rep.evaluatedPoints;
+    points = rep.gridPoints;
+  }
+  return {"mesh/marching-cubes/hrbf-N=" + std::to_string(centres) + "/res=" + std::to_string(resolution),
+          {{"centres", centres}, {"resolution", resolution}, {"evaluate_ms", median(evaluate)},
+           {"triangles", triangles}, {"grid_points", points}, {"evaluated_points", evaluated},
+           {"threads", threadCount()}, {"repeats", repeats}},
+          median(total), "ms"};
+}
+
+// A closed torus (R = 0.7, r = 0.3) on an nu × nv parameter grid, counter-clockwise from outside.
+TriMesh benchTorus(int nu, int nv) {
+  TriMesh m;
+  m.vertices.resize(3, nu * nv);
+  m.triangles.resize(3, 2 * nu * nv);
+  auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
+  for (int i = 0; i < nu; ++i)
+    for (int j = 0; j < nv; ++j) {
+      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
+      m.vertices.col(id(i, j)) =
+          Vec<3>((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v));
+      m.triangles.col(2 * id(i, j)) = Eigen::Vector3i(id(i, j), id(i + 1, j), id(i + 1, j + 1));
+      m.triangles.col(2 * id(i, j) + 1) = Eigen::Vector3i(id(i, j), id(i + 1, j + 1), id(i, j + 1));
+    }
+  return m;
+}
+
+Result benchHoleFill(bool quick, int repeats) {
+  const int nu = quick ? 100 : 316, nv = quick ? 50 : 158;  // 2·nu·nv ≈ 100k triangles
+  const TriMesh torus = benchTorus(nu, nv);
+  // Ten balls centred on the surface, spread over u and v; radius for ≈ 50 boundary edges.
+  const double radius = quick ? 0.2 : 0.085;
+  std::vector<int> keep;
+  for (int t = 0; t < torus.triangleCount(); ++t) {
+    bool drop = false;
+    for (int h = 0; h < 10 && !drop; ++h) {
+      const double u = 2 * M_PI * h / 10, v = 2 * M_PI * ((3 * h) % 10) / 10;
+      const Vec<3> c((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v));
+      for (int k = 0; k < 3; ++k) drop = drop || (torus.vertices.col(torus.triangles(k, t)) - c).norm() < radius;
+    }
+    if (!drop) keep.push_back(t);
+  }
+  TriMesh holed = torus;
+  holed.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
+  for (size_t k = 0; k < keep.size(); ++k) holed.triangles.col(static_cast<Eigen::Index>(k)) = torus.triangles.col(keep[k]);
+  size_t edges = 0;
+  const std::vector<BoundaryLoop> loops = detectHoles(holed);
+  for (const BoundaryLoop& l : loops) edges += l.size();
+  std::vector<double> times;
+  HoleFillResult r;
+  for (int i = 0; i < repeats; ++i) {
+    r = fillHoles(holed);
+    times.push_back(r.ms);
+  }
+  return {"holefill/100k-10holes",
+          {{"triangles", holed.triangleCount()}, {"holes_found", r.holesFound}, {"holes_filled", r.holesFilled},
+           {"mean_boundary_edges", loops.empty() ? 0.0 : double(edges) / loops.size()},
+           {"triangles_added", r.trianglesAdded}, {"max_abs_f", r.maxAbsF}, {"unconverged", r.unconverged},
+           {"closed", checkMesh(r.mesh).closed()}, {"repeats", repeats}},
+          median(times), "ms"};
+}
+
 }  // namespace
 
 int runBench(const BenchArgs& args) {
@@ -116,6 +245,18 @@ int runBench(const BenchArgs& args) {
     const int repeats = args.quick ? 1 : 7;
     jobs.emplace_back("eval3d/" + c.label, [c, points, repeats] { return benchEval(c, 1000, points, repeats); });
   }
+
+  jobs.emplace_back("io/ply-load", [quick = args.quick] {
+    return quick ? benchPlyLoad(100000, 1) : benchPlyLoad(1000000, 5);
+  });
+  // Meshing and hole filling (issue 8 §2–3).
+  for (int resolution : {64, 128}) {
+    const int res = args.quick ? 16 : resolution, repeats = args.quick ? 1 : 3;
+    jobs.emplace_back("mesh/marching-cubes/hrbf-N=1000/res=" + std::to_string(resolution),
+                      [res, repeats, quick = args.quick] { return benchMarchingCubes(quick ? 100 : 1000, res, repeats); });
+  }
+  jobs.emplace_back("holefill/100k-10holes",
+                    [quick = args.quick] { return benchHoleFill(quick, quick ? 1 : 5); });
 
   // Rendering (issue 3 §6), on this machine's OpenGL (llvmpipe here) through OSMesa.
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {

@@ -61,6 +61,21 @@ int runSweep(const SweepArgs& args);
 
 // "WxH" → {W, H}, each in [1, 16384]; UsageError otherwise (render, sweep).
 std::array<int, 2> parseImageSize(const std::string& text);
+struct MeshArgs {
+  SceneArgs scene;
+  std::string output;   // -o OUT.{glb,gltf,ply,obj} (3D) or OUT.{obj,svg} (2D), required
+  int resolution = 64;  // --resolution N: cells along the longest side of view.bounds
+};
+int runMesh(const MeshArgs& args);
+
+struct HoleFillArgs {
+  std::string input;                   // a triangle mesh (mesh_io.h formats)
+  std::string output;                  // -o OUT.{glb,gltf,ply,obj}, required
+  bool json = false;
+  int rings = 2;                       // --rings: vertex rings around each hole given to the fit
+  std::string implicit = "rbf-offset"; // --implicit rbf-offset | hrbf
+};
+int runHoleFill(const HoleFillArgs& args);
 
 // The program's main job without a subcommand: the GUI when one exists and a display is
 // there; in this version the fit report of the scene (or of the demo scene).

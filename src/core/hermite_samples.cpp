@@ -1,6 +1,7 @@
 #include "core/hermite_samples.h"
 
 #include <algorithm>
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
@@ -44,27 +45,40 @@ void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& war
   const Eigen::Index n = P.cols();
 
   for (Eigen::Index i = 0; i < n; ++i) {
-    const std::string sample = source + ": sample " + std::to_string(i) + ": ";
-    if (!P.col(i).allFinite()) throw InputError(sample + "non-finite coordinate " + formatVector<Dim>(P.col(i)));
-    if (!N.col(i).allFinite()) throw InputError(sample + "non-finite normal " + formatVector<Dim>(N.col(i)));
+    // Built only for a message: a string per sample cost ~100 ms per million samples.
+    const auto sample = [&] { return source + ": sample " + std::to_string(i) + ": "; };
+    if (!P.col(i).allFinite()) throw InputError(sample() + "non-finite coordinate " + formatVector<Dim>(P.col(i)));
+    if (!N.col(i).allFinite()) throw InputError(sample() + "non-finite normal " + formatVector<Dim>(N.col(i)));
     // Scaling by the largest component first keeps tiny and huge normals from under/overflowing.
     const double largest = N.col(i).cwiseAbs().maxCoeff();
-    if (largest == 0) throw InputError(sample + "normal is zero");
+    if (largest == 0) throw InputError(sample() + "normal is zero");
     const Vec<Dim> scaled = N.col(i) / largest;
     N.col(i) = scaled / scaled.norm();
   }
 
-  // Exact duplicates: sort indices lexicographically by coordinates, O(N log N).
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
-  std::iota(order.begin(), order.end(), Eigen::Index{0});
-  auto less = [&P](Eigen::Index a, Eigen::Index b) {
-    for (int k = 0; k < Dim; ++k) {
-      if (P(k, a) < P(k, b)) return true;
-      if (P(k, b) < P(k, a)) return false;
-    }
-    return a < b;  // equal points ordered by index, so the first of a run is the smallest index
+  // Exact duplicates: sort lexicographically by coordinates, O(N log N). The coordinates are
+  // copied next to their index so the sort compares contiguous keys instead of chasing indices.
+  struct Key {
+    std::array<double, Dim> p;
+    Eigen::Index index;
   };
-  std::sort(order.begin(), order.end(), less);
+  std::vector<Key> keys(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Key& k = keys[static_cast<std::size_t>(i)];
+    for (int c = 0; c < Dim; ++c) k.p[static_cast<std::size_t>(c)] = P(c, i);
+    k.index = i;
+  }
+  // Equal points ordered by index, so the first of a run is the smallest index.
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    for (std::size_t c = 0; c < Dim; ++c) {
+      if (a.p[c] < b.p[c]) return true;
+      if (b.p[c] < a.p[c]) return false;
+    }
+    return a.index < b.index;
+  });
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
+  keys = {};
 
   constexpr double kNormalTolerance = 1e-12;
   std::vector<char> removed(static_cast<std::size_t>(n), 0);

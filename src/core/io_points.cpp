@@ -12,6 +12,7 @@
 
 #include "core/atomic_file.h"
 #include "core/errors.h"
+#include "core/mesh_io.h"
 
 namespace hermite {
 
@@ -215,14 +216,31 @@ void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
   writer.commit();
 }
 
+// The vertices and vertex normals of a mesh or point-set file (.ply, .obj, .gltf, .glb, .off),
+// faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF.
+HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings) {
+  TriMesh mesh = loadMeshFile(path);
+  if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
+  if (!mesh.hasNormals())
+    throw InputError(path + ": has no normals (positions only); normal estimation is not available yet — give "
+                            "per-vertex normals (PLY nx ny nz, OBJ vn, glTF NORMAL)");
+  HermiteSamples<3> samples;
+  samples.points = std::move(mesh.vertices);
+  samples.normals = std::move(mesh.normals);
+  validateSamples(samples, warnings, path);
+  return samples;
+}
+
 }  // namespace
 
 int pointFileDimension(const std::string& path) {
   const std::string ext = lowercaseExtension(path);
   if (ext == ".xyz" || ext == ".pwn" || ext == ".xyzn") return 3;
   if (ext == ".xyn") return 2;
+  if (isMeshFileExtension(path)) return 3;
   throw InputError(path + ": unsupported point file extension '" + ext +
-                   "' (supported: .xyz, .pwn, .xyzn with x y z nx ny nz per line; .xyn with x y nx ny)");
+                   "' (supported: .xyz, .pwn, .xyzn with x y z nx ny nz per line; .xyn with x y nx ny; .ply, .obj, "
+                   ".gltf, .glb, .off with vertex normals)");
 }
 
 HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings) {
@@ -230,6 +248,7 @@ HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::stri
 }
 
 HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings) {
+  if (isMeshFileExtension(path)) return readMeshFileSamples(path, warnings);
   return loadSamples<3>(path, warnings);
 }
 

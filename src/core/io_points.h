@@ -2,9 +2,11 @@
 // Oriented point files (DESIGN.md §4):
 //   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: an error for now)
 //   .xyn                  2D: x y nx ny per line
+//   .ply .obj .gltf .glb .off  3D: the vertices and vertex normals of a mesh or point-set file
+//                         (PLY nx ny nz, OBJ v + vn, glTF POINTS/TRIANGLES with NORMAL, NOFF),
+//                         read by mesh_io; faces are ignored; no normals is an error for now.
 // Blank lines and lines starting with '#' are skipped. A malformed line is an InputError
-// "FILE:LINE: ..." saying what was expected. PLY, OBJ and glTF readers plug in here later
-// (io_ply, io_gltf) behind the same loadPointFile entry points.
+// "FILE:LINE: ..." saying what was expected.
 
 #include <string>
 #include <vector>

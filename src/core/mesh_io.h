@@ -11,7 +11,17 @@
 
 namespace hermite {
 
+// A triangle mesh (at least one triangle; InputError otherwise, e.g. for a point set).
 TriMesh loadMesh(const std::string& path);
+// Writes .glb, .gltf (buffers embedded), .ply (binary little endian) or .obj. InputError for
+// another extension or a mesh that breaks TriMesh's promises (index out of range, NaN).
 void saveMesh(const std::string& path, const TriMesh& mesh);
+
+// True for the extensions loadMesh reads (.off .obj .ply .gltf .glb, any case).
+bool isMeshFileExtension(const std::string& path);
+
+// Like loadMesh but a file without faces is fine: a point set (PLY without a face element, OBJ
+// `v` + `vn` lines only, glTF POINTS) gives a mesh with no triangles. Used by the point loaders.
+TriMesh loadMeshFile(const std::string& path);
 
 }  // namespace hermite

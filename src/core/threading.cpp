@@ -14,6 +14,8 @@ void setThreadCount(int n) {
   openblas_set_num_threads(n);
 }
 
+void setBlasThreadCount(int n) { openblas_set_num_threads(n < 1 ? 1 : n); }
+
 int threadCount() { return omp_get_max_threads(); }
 
 int availableCores() {

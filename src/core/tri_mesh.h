@@ -5,6 +5,7 @@
 // (v1 − v0) × (v2 − v0) points outward (the same side as ∇f of an implicit, DESIGN.md §3).
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 namespace hermite {
@@ -18,5 +19,68 @@ struct TriMesh {
   int triangleCount() const { return static_cast<int>(triangles.cols()); }
   bool hasNormals() const { return normals.cols() == vertices.cols() && vertices.cols() > 0; }
 };
+
+// ---- topology ------------------------------------------------------------------------------
+
+// One boundary loop: vertex indices in order, following the directed boundary edges as the
+// triangles use them (each consecutive pair (vᵢ, vᵢ₊₁), wrapping around, is an edge of exactly one
+// triangle, traversed in that triangle's counter-clockwise order; the hole lies on its right).
+using BoundaryLoop = std::vector<int>;
+
+// Boundary edges (used by exactly one triangle) chained into ordered loops. A vertex where
+// several boundary loops touch (a "figure-eight") is visited once per loop: loops are split there
+// so each returned loop is simple (no repeated vertex). Edges used by three or more triangles are
+// not boundary edges. Triangles must reference valid vertices.
+std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh);
+
+// Component index (0-based, in order of first triangle) per triangle, triangles connected when
+// they share an edge; `count` receives the number of components when not null.
+std::vector<int> triangleComponents(const TriMesh& mesh, int* count = nullptr);
+
+// Number of connected components of the mesh's triangles (edge-connected).
+int connectedComponentCount(const TriMesh& mesh);
+
+// ---- normals -------------------------------------------------------------------------------
+
+enum class NormalWeighting { Area, Angle };
+
+// Unit vertex normals (3 × V) as the weighted mean of the incident face normals (area: the
+// unnormalised cross product; angle: the corner angle times the unit face normal). A vertex with
+// no triangle, or whose weighted sum vanishes, gets (0, 0, 0).
+Eigen::Matrix3Xd vertexNormals(const TriMesh& mesh, NormalWeighting weighting = NormalWeighting::Area);
+
+// ---- checks --------------------------------------------------------------------------------
+
+struct MeshCheck {
+  int boundaryEdges = 0;       // undirected edges used by exactly one triangle
+  int nonManifoldEdges = 0;    // undirected edges used by three or more triangles
+  int inconsistentEdges = 0;   // edges used twice in the same direction (orientation flips)
+  int degenerateTriangles = 0; // area ≤ degenerateArea, or a repeated vertex index
+  int edgeCount = 0;           // undirected edges
+  int components = 0;
+  int eulerCharacteristic = 0; // V − E + F, V counting only referenced vertices
+  bool closed() const { return boundaryEdges == 0; }
+  bool edgeManifold() const { return nonManifoldEdges == 0; }
+  bool consistentlyOriented() const { return inconsistentEdges == 0; }
+  // Closed, edge-manifold, consistently oriented and without degenerate triangles.
+  bool closedManifold() const { return closed() && edgeManifold() && consistentlyOriented() && degenerateTriangles == 0; }
+};
+
+// Topology and degeneracy checks. `degenerateArea`: triangles with area ≤ it count as degenerate
+// (default: 1e-12 times the squared bounding-box diagonal).
+MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea = -1);
+
+// Triangles whose unit normal makes an angle above 90° with the reference normals' mean at their
+// corners (3 × V unit normals, e.g. vertexNormals or ∇f): a "flipped" triangle.
+int countFlippedTriangles(const TriMesh& mesh, const Eigen::Matrix3Xd& referenceNormals);
+
+// Signed volume enclosed by a closed mesh (positive when it is oriented outward).
+double signedVolume(const TriMesh& mesh);
+
+// Undirected edge key of vertices a, b (order-free).
+inline std::uint64_t edgeKey(int a, int b) {
+  const std::uint32_t lo = static_cast<std::uint32_t>(a < b ? a : b), hi = static_cast<std::uint32_t>(a < b ? b : a);
+  return (std::uint64_t(lo) << 32) | hi;
+}
 
 }  // namespace hermite

@@ -248,11 +248,11 @@ TEST_CASE("a transformed scene is the interpolant of the transformed data") {
 }
 
 TEST_CASE("bench --quick --json reports cores and results") {
-  const auto r = runCli("bench --quick --json --only /N=250");
+  const auto r = runCli("bench --quick --json --only fit3d/");
   REQUIRE(r.rc == 0);
   const json j = json::parse(r.out);
   CHECK(j["cores"].get<int>() >= 1);
-  REQUIRE(j["results"].size() == 2);
+  REQUIRE(j["results"].size() == 8);  // two fit cases × four sizes
   for (const auto& res : j["results"]) {
     CHECK(res["unit"] == "ms");
     CHECK(res["median"].get<double>() > 0);

@@ -205,9 +205,9 @@ TEST_CASE("render: exit codes") {
     CHECK(r.rc == 1);
     CHECK(r.err.find("view.colour") != std::string::npos);
   }
-  SUBCASE("a patch scene → 1, not available yet") {
-    const auto r = runCli("render " + kScene2d + " --set mode=patch -o " + outputPath("x.png"));
+  SUBCASE("a holefill scene → 1, not available yet") {
+    const auto r = runCli("render " + kScene2d + " --set mode=holefill -o " + outputPath("x.png"));
     CHECK(r.rc == 1);
-    CHECK(r.err.find("render: mode 'patch' is not available in this version") != std::string::npos);
+    CHECK(r.err.find("render: mode 'holefill' is not available in this version") != std::string::npos);
   }
 }

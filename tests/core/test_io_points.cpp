@@ -67,7 +67,7 @@ TEST_CASE("io_points: dimension from the extension") {
   CHECK(hermite::pointFileDimension("a.xyn") == 2);
   CHECK_THROWS_WITH_AS(hermite::pointFileDimension("a.txt"),
                        "a.txt: unsupported point file extension '.txt' (supported: .xyz, .pwn, .xyzn with x y z "
-                       "nx ny nz per line; .xyn with x y nx ny)",
+                       "nx ny nz per line; .xyn with x y nx ny; .ply, .obj, .gltf, .glb, .off with vertex normals)",
                        InputError);
   CHECK_THROWS_AS(hermite::pointFileDimension("noextension"), InputError);
 }
