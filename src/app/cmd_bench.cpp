@@ -28,6 +28,7 @@
 
 #include "app/bench_gui.h"
 #include "app/commands.h"
+#include "core/patch_document.h"
 #include "app/output.h"
 #include "core/errors.h"
 #include "core/hole_fill.h"
@@ -277,6 +278,29 @@ int runBench(const BenchArgs& args) {
     const render::Field2dBenchResult r = render::benchField2dRefitRedraw(o);
     return {"render/field2d-refit-redraw", {{"points", o.points}, {"size", o.size}, {"fit_ms", r.fitMs},
             {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
+  });
+
+  // Patch editor (issue 5): re-tessellating a 4 × 4 grid at 64 × 64 samples per patch after a
+  // handle moved (edit + grid + tessellation), as while dragging.
+  jobs.emplace_back("patch/retessellate-4x4-64", [quick = args.quick]() -> Result {
+    PatchSpec spec;
+    spec.splits = {4, 4};
+    spec.tessellation = 64;
+    spec.knots = patchKnotData(spec);
+    const int repeats = quick ? 3 : 51;
+    std::vector<double> ms;
+    for (int k = 0; k < repeats; ++k) {
+      const auto t0 = std::chrono::steady_clock::now();
+      spec = movePatchHandle(spec, PatchHandle{PatchHandle::TangentU, 2, 2, 0, 0},
+                             spec.knots[2 * 5 + 2].X + Vec<3>(0.1, 0.05 * (k % 3), 0.0));
+      const PatchGrid grid = buildPatchGrid(spec);
+      const PatchGrid::Tessellation t = grid.tessellate(spec.tessellation);
+      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      if (t.positions.cols() != 16 * 64 * 64) throw EnvironmentError("bench: unexpected tessellation size");
+    }
+    std::sort(ms.begin(), ms.end());
+    return {"patch/retessellate-4x4-64", {{"patches", 16}, {"samples_per_patch", 64 * 64}, {"repeats", repeats}},
+            ms[ms.size() / 2], "ms"};
   });
 
   // GUI latency (issue 4 §5): dragging a sample until the refitted view is on screen.

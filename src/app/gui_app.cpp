@@ -111,7 +111,7 @@ void GuiApp::feedImGui(const FrameInput& in) {
 }
 
 std::optional<Scene> GuiApp::compareScene(const Scene& s) const {
-  if (!compare.enabled) return std::nullopt;
+  if (!compare.enabled || s.mode == SceneMode::Patch) return std::nullopt;
   Scene c = s;
   switch (compare.with) {
     case CompareWith::RbfOffset: c.fit.method = FitMethod::RbfOffset; break;
@@ -274,6 +274,7 @@ void GuiApp::frame(const FrameInput& in) {
   redrawViewIfStale();
   drawViewImage(in);
   drawSelectionOverlay();
+  drawPatchHandles();
   if (panels.help) drawHelpOverlay();
   if (!panels.hideUi) drawStatusBar();
   ImGui::Render();

@@ -74,6 +74,8 @@ class GuiApp {
   const FitOutcome* shownFit() const { return shown_.get(); }
   std::uint64_t shownVersion() const { return shownVersion_; }
   const GuiStatus& status() const { return status_; }
+  // Screen position (view pixels) of a patch handle of the current document; nullopt if behind.
+  std::optional<Vec<2>> patchHandleScreenPosition(const PatchHandle& h) const;
   // The view on screen shows the fit of the document's current version.
   bool viewIsCurrent() const {
     return shown_ && shownVersion_ == document_.version() && drawn_ && drawn_->fit == shown_.get();
@@ -146,6 +148,11 @@ class GuiApp {
   void drawHelpOverlay();
   void drawStatusBar();
   void drawSelectionOverlay();
+  // gui_patch.cpp: the patch editor (mode "patch")
+  void drawPatchPanel();
+  void drawPatchHandles();
+  bool pressPatchHandle(const Vec<2>& mouse);  // true when a handle was grabbed
+  void dragPatchHandle(const Vec<2>& mouse, const FrameInput& in);
   // Helpers
   void openScene(const std::string& path);
   void loadPreset(const std::string& name, SceneMode mode);
@@ -183,7 +190,9 @@ class GuiApp {
 
   // Tools
   int selected_ = -1;
-  enum class Drag { None, Orbit, Pan, Sample, NormalTip } drag_ = Drag::None;
+  enum class Drag { None, Orbit, Pan, Sample, NormalTip, PatchHandle } drag_ = Drag::None;
+  PatchHandle patchHandle_;            // the grabbed patch handle
+  Vec<3> patchGrabStart_ = Vec<3>::Zero();
   Vec<2> lastMouse_ = Vec<2>::Zero();
   Vec<3> dragPlanePoint_ = Vec<3>::Zero();  // 3D sample drags move on the plane through it facing the camera
   bool prevMouseDown_[3] = {false, false, false};

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "app/gui_app.h"
+#include "app/gui_widgets.h"
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/hermite_samples.h"
@@ -31,46 +32,6 @@ namespace {
 const KernelType kKernels[] = {KernelType::Gaussian,     KernelType::Wendland, KernelType::Multiquadric,
                                KernelType::InverseMultiquadric, KernelType::Cubic, KernelType::Polyharmonic};
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
-
-std::string name(std::string_view v) { return std::string(v); }
-
-// A combo over `items` showing names; returns true when the choice changed.
-template <class T, std::size_t N, class NameOf>
-bool comboOf(const char* label, T& value, const T (&items)[N], NameOf nameOf) {
-  bool changed = false;
-  if (ImGui::BeginCombo(label, name(nameOf(value)).c_str())) {
-    for (const T& item : items) {
-      const bool selected = item == value;
-      if (ImGui::Selectable(name(nameOf(item)).c_str(), selected) && !selected) {
-        value = item;
-        changed = true;
-      }
-      if (selected) ImGui::SetItemDefaultFocus();
-    }
-    ImGui::EndCombo();
-  }
-  return changed;
-}
-
-bool inputText(const char* label, std::string& text) {
-  char buf[1024];
-  std::snprintf(buf, sizeof buf, "%s", text.c_str());
-  const bool changed = ImGui::InputText(label, buf, sizeof buf);
-  if (changed) text = buf;
-  return changed;
-}
-
-void helpMarker(const char* text) {
-  ImGui::SameLine();
-  ImGui::TextDisabled("(?)");
-  if (ImGui::IsItemHovered()) {
-    ImGui::BeginTooltip();
-    ImGui::PushTextWrapPos(ImGui::GetFontSize() * 28.0f);
-    ImGui::TextUnformatted(text);
-    ImGui::PopTextWrapPos();
-    ImGui::EndTooltip();
-  }
-}
 
 std::vector<std::filesystem::path> teachingScenes() {
   std::vector<std::filesystem::path> out;
@@ -157,22 +118,32 @@ void GuiApp::drawPanels() {
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing)) {
     ImGui::PushItemWidth(-110.0f);
-    ImGui::SetNextItemOpen(panels.data, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Data")) drawDataPanel();
-    ImGui::SetNextItemOpen(panels.fit, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Fit")) drawFitPanel();
-    ImGui::SetNextItemOpen(panels.compare, ImGuiCond_Once);
-    if (ImGui::CollapsingHeader("Compare")) drawComparePanel();
+    if (scene().mode == SceneMode::Patch) {
+      ImGui::SetNextItemOpen(true, ImGuiCond_Once);
+      if (ImGui::CollapsingHeader("Patch")) drawPatchPanel();
+      inputText("##save", savePath_);
+      ImGui::SameLine();
+      if (ImGui::Button("Save scene")) saveScene(savePath_);
+    } else {
+      ImGui::SetNextItemOpen(panels.data, ImGuiCond_Once);
+      if (ImGui::CollapsingHeader("Data")) drawDataPanel();
+      ImGui::SetNextItemOpen(panels.fit, ImGuiCond_Once);
+      if (ImGui::CollapsingHeader("Fit")) drawFitPanel();
+      ImGui::SetNextItemOpen(panels.compare, ImGuiCond_Once);
+      if (ImGui::CollapsingHeader("Compare")) drawComparePanel();
+    }
     ImGui::SetNextItemOpen(panels.view, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("View")) drawViewPanel();
-    ImGui::Checkbox("Explore r", &panels.explore);
-    ImGui::SameLine();
+    if (scene().mode != SceneMode::Patch) {
+      ImGui::Checkbox("Explore r", &panels.explore);
+      ImGui::SameLine();
+    }
     ImGui::Checkbox("Help (F1)", &panels.help);
     ImGui::PopItemWidth();
   }
   ImGui::End();
   if (panels.diagnostics) drawDiagnosticsPanel();
-  if (panels.explore) drawExplorePanel();
+  if (panels.explore && scene().mode != SceneMode::Patch) drawExplorePanel();
 }
 
 void GuiApp::drawDataPanel() {
@@ -283,7 +254,7 @@ void GuiApp::drawFitPanel() {
   ImGui::EndDisabled();
   if (!kernel.usesRadius()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
-    ImGui::TextWrapped("%s has no radius (scale-free): r is ignored", name(kernelName(fit.kernel)).c_str());
+    ImGui::TextWrapped("%s has no radius (scale-free): r is ignored", toString(kernelName(fit.kernel)).c_str());
     ImGui::PopStyleColor();
   }
 
@@ -348,7 +319,7 @@ void GuiApp::drawComparePanel() {
     double r = compare.radius;
     if (ImGui::InputDouble("r##compare", &r, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && r > 0) compare.radius = r;
   }
-  if (compare.enabled && shownCompare_) {
+  if (compare.enabled && shownCompare_ && (shownCompare_->fit2 || shownCompare_->fit3)) {
     const auto& w = shownCompare_->warnings();
     ImGui::Text("right: %s", shownCompare_->fit2 ? shownCompare_->fit2->report.solver.c_str() : shownCompare_->fit3->report.solver.c_str());
     for (const std::string& m : w) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", m.c_str());
@@ -360,10 +331,21 @@ void GuiApp::drawViewPanel() {
   ViewSpec& v = s.view;
   bool changed = false;
   std::string label = "view";
-  const char* modes[] = {"2D (implicit2d)", "3D (implicit3d)"};
-  int mode = s.mode == SceneMode::Implicit2d ? 0 : 1;
-  if (ImGui::Combo("mode", &mode, modes, 2) && mode != (s.mode == SceneMode::Implicit2d ? 0 : 1)) {
-    loadPreset(mode == 0 ? "curve2d" : "sphere6", mode == 0 ? SceneMode::Implicit2d : SceneMode::Implicit3d);
+  const char* modes[] = {"2D (implicit2d)", "3D (implicit3d)", "patch editor"};
+  const int current = s.mode == SceneMode::Implicit2d ? 0 : s.mode == SceneMode::Patch ? 2 : 1;
+  int mode = current;
+  if (ImGui::Combo("mode", &mode, modes, 3) && mode != current) {
+    if (mode == 2) {
+      Scene n = scene();
+      n.mode = SceneMode::Patch;
+      // A view of the default torus piece.
+      n.view.camera.eye = {5.0, 3.5, 3.5};
+      n.view.camera.target = {2.2, 1.3, 0.4};
+      n.view.camera.up = {0, 0, 1};
+      document_.apply(n, "patch editor");
+    } else {
+      loadPreset(mode == 0 ? "curve2d" : "sphere6", mode == 0 ? SceneMode::Implicit2d : SceneMode::Implicit3d);
+    }
     return;
   }
   if (s.mode == SceneMode::Implicit3d) {
@@ -402,9 +384,14 @@ void GuiApp::drawViewPanel() {
     changed |= ImGui::Checkbox("bounds box", &v.showBounds);
     ImGui::SameLine();
   }
-  changed |= ImGui::Checkbox("points", &v.showPoints);
-  ImGui::SameLine();
-  changed |= ImGui::Checkbox("normals", &v.showNormals);
+  if (s.mode != SceneMode::Patch) {
+    changed |= ImGui::Checkbox("points", &v.showPoints);
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("normals", &v.showNormals);
+  } else {
+    const Projection projections[] = {Projection::Perspective, Projection::Orthographic};
+    changed |= comboOf("projection", v.projection, projections, projectionName);
+  }
   float bg[3] = {float(v.background[0]), float(v.background[1]), float(v.background[2])};
   if (ImGui::ColorEdit3("background", bg, ImGuiColorEditFlags_NoInputs)) {
     v.background = {bg[0], bg[1], bg[2]};
@@ -416,7 +403,7 @@ void GuiApp::drawViewPanel() {
   if (ImGui::Button("Fit to view (F)")) fitToView();
   ImGui::SameLine();
   if (ImGui::Button("Reset (Home)")) resetView();
-  if (s.mode == SceneMode::Implicit3d) {
+  if (s.mode != SceneMode::Implicit2d) {
     if (ImGui::Button("Store view")) {
       savedViews_.push_back(scene().view.camera);
       setStatus("stored view " + std::to_string(savedViews_.size()));
@@ -445,6 +432,12 @@ void GuiApp::drawDiagnosticsPanel() {
     const FitOutcome* f = shown_.get();
     if (!f) {
       ImGui::TextDisabled(lastFitError_.empty() ? "fitting..." : "no model");
+    } else if (f->patch) {
+      const PatchView& v = *f->patch;
+      ImGui::Text("patches     %d x %d", v.grid.patchesU(), v.grid.patchesV());
+      ImGui::Text("form        %s", std::string(patchFormName(scene().patch.form)).c_str());
+      if (!v.vertexError.empty()) ImGui::Text("max error   %.3g", v.maxError);
+      if (options_.showTimings) ImGui::Text("tessellate  %.2f ms, view %.0f ms", v.tessellateMs, view_.ms);
     } else {
       const FitReport& r = f->fit2 ? f->fit2->report : f->fit3->report;
       const FitResiduals res = f->fit2 ? fitResiduals(*f->fit2) : fitResiduals(*f->fit3);
@@ -523,7 +516,7 @@ void GuiApp::drawExplorePanel() {
   ImGui::EndDisabled();
   if (!radius) {
     ImGui::SameLine();
-    ImGui::TextDisabled("%s has no radius", name(kernelName(scene().fit.kernel)).c_str());
+    ImGui::TextDisabled("%s has no radius", toString(kernelName(scene().fit.kernel)).c_str());
   }
   if (explorer_.running()) {
     ImGui::SameLine();

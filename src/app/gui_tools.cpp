@@ -320,6 +320,18 @@ void GuiApp::zoom(double notches, const Vec<2>& mouse) {
 void GuiApp::fitToView() {
   if (!shown_) return;
   const ViewSpec& v = scene().view;
+  if (shown_->patch) {
+    const Box<3> b = boundingBox<3>(shown_->patch->mesh.positions);
+    const double radius = 0.5 * b.extent().norm();
+    CameraSpec c = v.camera;
+    const Vec<3> dir = (toVec(c.eye) - toVec(c.target)).normalized();
+    const double fov = c.fovYDeg * M_PI / 180;
+    const double aspect = std::min(1.0, double(viewW_) / viewH_);
+    c.target = toArray(b.center());
+    c.eye = toArray(b.center() + radius / std::sin(0.5 * fov * aspect) * 1.05 * dir);
+    document_.setCamera(c, v.center2d, radius * 1.05);
+    return;
+  }
   if (shown_->fit2) {
     const Box<2> b = viewBounds<2>(v, shown_->fit2->data.points);
     const Vec<2> c = b.center();
@@ -395,7 +407,7 @@ void GuiApp::handleViewInput(const FrameInput& in) {
   // A drag in progress owns the mouse until release, even over a panel.
   if (drag_ != Drag::None) {
     if (!anyDown) {
-      if (drag_ == Drag::Sample || drag_ == Drag::NormalTip) document_.end();
+      if (drag_ == Drag::Sample || drag_ == Drag::NormalTip || drag_ == Drag::PatchHandle) document_.end();
       drag_ = Drag::None;
       return;
     }
@@ -404,6 +416,7 @@ void GuiApp::handleViewInput(const FrameInput& in) {
       case Drag::Pan: pan(delta.x(), delta.y()); break;
       case Drag::Sample: moveSelected(mouse, false); break;
       case Drag::NormalTip: moveSelected(mouse, true); break;
+      case Drag::PatchHandle: dragPatchHandle(mouse, in); break;
       case Drag::None: break;
     }
     return;
@@ -412,6 +425,14 @@ void GuiApp::handleViewInput(const FrameInput& in) {
   if (mouse.x() < 0 || mouse.y() < 0 || mouse.x() >= viewW_ || mouse.y() >= viewH_) return;
   if (in.wheel != 0) zoom(in.wheel, mouse);
 
+  if (leftPressed && scene().mode == SceneMode::Patch) {
+    if (!in.shift && pressPatchHandle(mouse)) {
+      drag_ = Drag::PatchHandle;
+      return;
+    }
+    drag_ = in.shift ? Drag::Pan : Drag::Orbit;
+    return;
+  }
   if (leftPressed && in.ctrl) {
     addSampleAt(mouse);
     return;

@@ -1,6 +1,7 @@
 #include "core/patch_grid.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/errors.h"
@@ -78,24 +79,44 @@ SurfacePoint PatchGrid::evaluate(double u, double v) const {
 PatchGrid::Tessellation PatchGrid::tessellate(int samples) const {
   if (samples < 2) throw InputError("tessellation needs at least 2 samples per patch edge");
   Tessellation out;
-  const int perPatch = samples * samples;
+  const int S = samples;
+  const int perPatch = S * S;
   const int nPatches = patchesU() * patchesV();
   out.positions.resize(3, perPatch * nPatches);
   out.normals.resize(3, perPatch * nPatches);
-  out.triangles.resize(3, 2 * (samples - 1) * (samples - 1) * nPatches);
-  int tri = 0;
+  out.triangles.resize(3, 2 * (S - 1) * (S - 1) * nPatches);
+  // The basis at the S sample parameters, once: rows H(a/(S−1)) and H′(a/(S−1)) (S × 4). Then
+  // per patch and coordinate X = Hs·C·Htᵀ, Xs = H′s·C·Htᵀ, Xt = Hs·C·H′tᵀ as small matrix
+  // products (the same sums as HermitePatch::evaluate, vectorised): a 4 × 4 grid at 64² samples
+  // per patch goes from ~7 ms of per-point evaluation to about 1 ms.
+  Eigen::MatrixXd H(S, 4), D(S, 4);
+  for (int a = 0; a < S; ++a) {
+    H.row(a) = hermiteBasis(double(a) / (S - 1)).transpose();
+    D.row(a) = hermiteBasisDerivative(double(a) / (S - 1)).transpose();
+  }
+#pragma omp parallel for schedule(static)
   for (int p = 0; p < nPatches; ++p) {
     const HermitePatch& hp = patches_[p];
     const int base = p * perPatch;
-    for (int a = 0; a < samples; ++a)
-      for (int b = 0; b < samples; ++b) {
-        const SurfacePoint sp = hp.evaluate(double(a) / (samples - 1), double(b) / (samples - 1));
-        out.positions.col(base + a * samples + b) = sp.X;
-        out.normals.col(base + a * samples + b) = sp.normal();
+    std::array<Eigen::MatrixXd, 3> X, Xs, Xt;  // S × S each: (a, b) = (s index, t index)
+    for (int k = 0; k < 3; ++k) {
+      const Eigen::MatrixXd CHt = hp.C[k] * H.transpose(), CDt = hp.C[k] * D.transpose();  // 4 × S
+      X[k].noalias() = H * CHt;
+      Xs[k].noalias() = D * CHt;
+      Xt[k].noalias() = H * CDt;
+    }
+    for (int a = 0; a < S; ++a)
+      for (int b = 0; b < S; ++b) {
+        const Vec<3> ps(Xs[0](a, b), Xs[1](a, b), Xs[2](a, b)), pt(Xt[0](a, b), Xt[1](a, b), Xt[2](a, b));
+        const Vec<3> n = ps.cross(pt);
+        const double len = n.norm();
+        out.positions.col(base + a * S + b) = Vec<3>(X[0](a, b), X[1](a, b), X[2](a, b));
+        out.normals.col(base + a * S + b) = len > 0 ? Vec<3>(n / len) : Vec<3>::Zero();
       }
-    for (int a = 0; a + 1 < samples; ++a)
-      for (int b = 0; b + 1 < samples; ++b) {
-        const int v00 = base + a * samples + b, v10 = v00 + samples, v01 = v00 + 1, v11 = v10 + 1;
+    int tri = 2 * (S - 1) * (S - 1) * p;
+    for (int a = 0; a + 1 < S; ++a)
+      for (int b = 0; b + 1 < S; ++b) {
+        const int v00 = base + a * S + b, v10 = v00 + S, v01 = v00 + 1, v11 = v10 + 1;
         out.triangles.col(tri++) << v00, v10, v11;  // (s, t) counter-clockwise: normal Xs × Xt
         out.triangles.col(tri++) << v00, v11, v01;
       }

@@ -254,3 +254,48 @@ TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel kee
   CHECK(h.app->shownVersion() == good);  // the cancelled fit never replaces the shown one
   CHECK(h.app->shownFit()->fit3->samples.size() < 1500);
 }
+
+TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier form shows the same edit") {
+  Scene s;
+  s.mode = SceneMode::Patch;
+  s.data.preset = "sphere6";
+  s.patch.splits = {2, 1};
+  s.view.camera.eye = {5, 3.5, 3.5};
+  s.view.camera.target = {2.2, 1.3, 0.4};
+  s.view.camera.up = {0, 0, 1};
+  Harness h(s, true, 1000, 700);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  REQUIRE(h.app->shownFit()->patch);
+  // The u-tangent handle of the middle knot (1, 0), shared by both patches.
+  const PatchHandle tangent{PatchHandle::TangentU, 1, 0, 0, 0};
+  const auto at = h.app->patchHandleScreenPosition(tangent);
+  REQUIRE(at);
+  const Vec<2> from = *at + h.app->viewOrigin(), to = from + Vec<2>(30, -20);
+  const auto before = patchKnotData(s.patch);
+  h.drag(from.x(), from.y(), to.x(), to.y());
+  const PatchSpec& edited = h.app->document().scene().patch;
+  REQUIRE(edited.knots.size() == before.size());
+  CHECK(edited.knots[2].X == before[2].X);                   // the point stays
+  CHECK((edited.knots[2].Xu - before[2].Xu).norm() > 0.05);  // the tangent moved
+  for (std::size_t k : {0u, 1u, 3u, 4u, 5u}) CHECK(edited.knots[k].Xu == before[k].Xu);
+  // The handle ended under the mouse (on the plane through it facing the camera).
+  const auto now = h.app->patchHandleScreenPosition(tangent);
+  REQUIRE(now);
+  CHECK((*now + h.app->viewOrigin() - to).norm() < 0.5);
+  // The other form: switching to Bézier does not change the surface, and patch (1, 0)'s control
+  // point b10 sits where the Hermite tip was dragged (uniform knots: the tip is b10).
+  Scene bezier = h.app->document().scene();
+  bezier.patch.form = PatchForm::Bezier;
+  h.app->document().apply(bezier, "form");
+  h.frames(2);
+  const PatchHandle b10{PatchHandle::Control, 1, 0, 1, 0};
+  const auto control = h.app->patchHandleScreenPosition(b10);
+  REQUIRE(control);
+  CHECK((*control + h.app->viewOrigin() - to).norm() < 0.5);
+  CHECK(h.app->shownFit()->patch->mesh.positions.isApprox(buildPatchView(edited).mesh.positions, 1e-14));
+  // Undo twice: the form, then the drag — the original document.
+  h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
