@@ -6,10 +6,12 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/fit_worker.h"
 #include "app/output.h"
 #include "app/output_path.h"
 #include "app/scene_loading.h"
 #include "core/atomic_file.h"
+#include "core/errors.h"
 #include "core/marching.h"
 #include "core/mesh_io.h"
 #include "core/scene_fit.h"
@@ -76,21 +78,20 @@ std::string cellsText(const MarchingReport& r, int dim) {
 
 }  // namespace
 
-int runMesh(const MeshArgs& args) {
-  const Scene scene = loadCommandScene(args.scene);
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution) {
+  const Scene& scene = fit.scene;
   const int dim = scene.dimension();
-  const std::string ext = dim == 3 ? requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"})
-                                   : requireExtension("mesh", args.output, {"obj", "svg"});
-  requireWritableLocation("mesh", args.output);
+  const std::string ext = dim == 3 ? requireExtension("mesh", output, {"glb", "gltf", "ply", "obj"})
+                                   : requireExtension("mesh", output, {"obj", "svg"});
+  requireWritableLocation("mesh", output);
   MarchingOptions options;
-  options.resolution = args.resolution;
+  options.resolution = resolution;
   MarchingReport report;
   char line[512];
-  if (dim == 3) {
-    const SceneFit<3> fit = fitScene<3>(scene);
-    const Box<3> bounds = viewBounds<3>(scene.view, fit.data.points);
-    const TriMesh mesh = marchingCubes(fit.field(), bounds, options, &report);
-    saveMesh(args.output, mesh);
+  if (fit.fit3) {
+    const Box<3> bounds = viewBounds<3>(scene.view, fit.fit3->data.points);
+    const TriMesh mesh = marchingCubes(fit.fit3->field(), bounds, options, &report);
+    saveMesh(output, mesh);
     const MeshCheck c = checkMesh(mesh);
     std::snprintf(line, sizeof line,
                   "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
@@ -98,11 +99,10 @@ int runMesh(const MeshArgs& args) {
                   mesh.vertexCount(), mesh.triangleCount(),
                   c.closedManifold() ? "closed manifold" : "open (the surface leaves view.bounds)", c.eulerCharacteristic,
                   cellsText(report, 3).c_str(), report.maxAbsF, report.totalMs, report.evaluateMs);
-  } else {
-    const SceneFit<2> fit = fitScene<2>(scene);
-    const Box<2> bounds = viewBounds<2>(scene.view, fit.data.points);
-    const std::vector<Polyline2d> lines = marchingSquares(fit.field(), bounds, options, &report);
-    writeFileAtomically(args.output, ext == "svg" ? polylinesSvg(lines, bounds) : polylinesObj(lines));
+  } else if (fit.fit2) {
+    const Box<2> bounds = viewBounds<2>(scene.view, fit.fit2->data.points);
+    const std::vector<Polyline2d> lines = marchingSquares(fit.fit2->field(), bounds, options, &report);
+    writeFileAtomically(output, ext == "svg" ? polylinesSvg(lines, bounds) : polylinesObj(lines));
     int closed = 0;
     Eigen::Index points = 0;
     for (const Polyline2d& l : lines) {
@@ -112,11 +112,19 @@ int runMesh(const MeshArgs& args) {
     std::snprintf(line, sizeof line,
                   "mesh: %zu polylines (%d closed), %ld points; %s cells, max |f| %.3g; %.1f ms -> ", lines.size(),
                   closed, static_cast<long>(points), cellsText(report, 2).c_str(), report.maxAbsF, report.totalMs);
+  } else {
+    throw InputError("mesh: mode '" + std::string(sceneModeName(scene.mode)) + "' has no implicit to mesh");
   }
-  std::string summary = line;
-  summary += args.output;
-  summary += '\n';
-  writeStdout(summary);
+  return std::string(line) + output;
+}
+
+int runMesh(const MeshArgs& args) {
+  const Scene scene = loadCommandScene(args.scene);
+  // Check the output before the (possibly long) fit.
+  if (scene.dimension() == 3) requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"});
+  else requireExtension("mesh", args.output, {"obj", "svg"});
+  requireWritableLocation("mesh", args.output);
+  writeStdout(exportZeroSet(*fitOutcomeOrThrow(scene), args.output, args.resolution) + "\n");
   return 0;
 }
 

@@ -67,6 +67,11 @@ struct MeshArgs {
   int resolution = 64;  // --resolution N: cells along the longest side of view.bounds
 };
 int runMesh(const MeshArgs& args);
+// Meshes a fitted implicit's zero set over view.bounds (marching cubes / squares) into `output`
+// (.glb .gltf .ply .obj; 2D .obj .svg); returns the one-line summary `mesh` prints. Also the GUI's
+// Export button.
+struct FitOutcome;
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution);
 
 struct HoleFillArgs {
   std::string input;                   // a triangle mesh (mesh_io.h formats)
