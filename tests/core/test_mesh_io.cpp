@@ -228,7 +228,7 @@ TEST_CASE("mesh_io: PLY ascii, binary little and big endian with extra propertie
   }
 }
 
-TEST_CASE("mesh_io: saving never destroys an existing file; bad meshes and extensions are refused") {
+TEST_CASE("mesh_io: saving never destroys an existing file, and bad meshes and extensions are refused") {
   TempDir dir;
   const std::string path = dir.write("keep.obj", "precious");
   TriMesh bad = octahedron(false);
