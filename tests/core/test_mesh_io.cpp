@@ -102,6 +102,15 @@ TEST_CASE("mesh_io: OFF with comments, a quad and the counts on the keyword line
   CHECK(m.triangles.col(1) == Eigen::Vector3i(0, 2, 3));
   CHECK(m.triangles.col(2) == Eigen::Vector3i(0, 1, 4));
   CHECK(!m.hasNormals());
+
+  // NOFF: a normal after each vertex (normalised on reading); an oriented point set without faces.
+  const std::string noff = dir.write("points.off", "NOFF\n2 0 0\n0 0 0  0 0 3\n1 2 3  -1 0 0\n");
+  const TriMesh points = hermite::loadMeshFile(noff);
+  REQUIRE(points.hasNormals());
+  CHECK(points.triangleCount() == 0);
+  CHECK(points.vertices.col(1) == Eigen::Vector3d(1, 2, 3));
+  CHECK(points.normals.col(0) == Eigen::Vector3d(0, 0, 1));
+  CHECK(points.normals.col(1) == Eigen::Vector3d(-1, 0, 0));
 }
 
 TEST_CASE("mesh_io: the OFF fixture (a cube) is a closed mesh") {
@@ -228,7 +237,7 @@ TEST_CASE("mesh_io: PLY ascii, binary little and big endian with extra propertie
   }
 }
 
-TEST_CASE("mesh_io: saving never destroys an existing file; bad meshes and extensions are refused") {
+TEST_CASE("mesh_io: saving never destroys an existing file, and bad meshes and extensions are refused") {
   TempDir dir;
   const std::string path = dir.write("keep.obj", "precious");
   TriMesh bad = octahedron(false);
@@ -302,7 +311,7 @@ TEST_CASE("mesh_io: oriented point sets from PLY and OBJ through the point loade
                        InputError);
 }
 
-TEST_CASE("mesh_io: glTF node transforms, an external buffer, ushort indices, strips and POINTS") {
+TEST_CASE("mesh_io: glTF node transforms, an external buffer, ushort indices, strips, fans and POINTS") {
   TempDir dir;
   // Buffer: 4 float positions of a unit square, then ushort indices 0 1 2 0 2 3 and a strip 0 1 3 2.
   std::string bin;
@@ -314,7 +323,8 @@ TEST_CASE("mesh_io: glTF node transforms, an external buffer, ushort indices, st
     "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}],
     "nodes": [{"translation": [10, 0, 0], "children": [1]}, {"scale": [2, 2, 2], "mesh": 0}],
     "meshes": [{"primitives": [{"attributes": {"POSITION": 0}, "indices": 1, "mode": 4},
-                               {"attributes": {"POSITION": 0}, "indices": 2, "mode": 5}]}],
+                               {"attributes": {"POSITION": 0}, "indices": 2, "mode": 5},
+                               {"attributes": {"POSITION": 0}, "mode": 6}]}],
     "buffers": [{"byteLength": 68, "uri": "square.bin"}],
     "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
                     {"buffer": 0, "byteOffset": 48, "byteLength": 20}],
@@ -324,13 +334,16 @@ TEST_CASE("mesh_io: glTF node transforms, an external buffer, ushort indices, st
                   {"bufferView": 1, "byteOffset": 12, "componentType": 5123, "type": "SCALAR", "count": 4}]
   })";
   const TriMesh m = hermite::loadMesh(dir.write("square.gltf", json));
-  REQUIRE(m.vertexCount() == 8);  // each primitive brings its vertices
-  REQUIRE(m.triangleCount() == 4);
+  REQUIRE(m.vertexCount() == 12);  // each primitive brings its vertices
+  REQUIRE(m.triangleCount() == 6);
   CHECK(m.vertices.col(2) == Eigen::Vector3d(12, 2, 0));
   CHECK(m.triangles.col(1) == Eigen::Vector3i(0, 2, 3));
   // Strip 0 1 3 2 → (0 1 3), then (1 2 3): the odd triangle swaps its last two to keep the winding.
   CHECK(m.triangles.col(2) == Eigen::Vector3i(4, 5, 7));
   CHECK(m.triangles.col(3) == Eigen::Vector3i(5, 6, 7));
+  // Fan without indices over 0 1 2 3 → (0 1 2), (0 2 3).
+  CHECK(m.triangles.col(4) == Eigen::Vector3i(8, 9, 10));
+  CHECK(m.triangles.col(5) == Eigen::Vector3i(8, 10, 11));
   CHECK(!m.hasNormals());
 
   // An oriented point set as glTF POINTS with NORMAL, through the point loader.
