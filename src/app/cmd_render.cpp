@@ -174,9 +174,6 @@ int runRender(const RenderArgs& args) {
   if (args.output.empty()) throw UsageError("render: -o OUT.png is required");
   Scene scene = loadCommandScene(args.scene);
   if (size) scene.view.size = *size;
-  if (scene.mode == SceneMode::Holefill)
-    throw InputError("render: mode '" + std::string(sceneModeName(scene.mode)) +
-                     "' is not available in this version");
   checkOutputPath(args.output);
   const ImageRgba8 image = args.ui ? renderWithPanels(scene, args) : renderView(scene, args);
   writePng(args.output, image);

@@ -36,7 +36,7 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene) {
   else if (scene.mode == SceneMode::Patch)
     out->patch = std::make_unique<PatchView>(buildPatchView(scene.patch));
   else
-    throw InputError("mode " + std::string(sceneModeName(scene.mode)) + " has no implicit fit");
+    out->holefill = std::make_unique<HolefillStages>(runHolefillStages(scene.holefill));
   out->wallMs = msSince(t0);
   return out;
 }

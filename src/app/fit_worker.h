@@ -17,6 +17,7 @@
 #include <string>
 #include <thread>
 
+#include "core/holefill_stages.h"
 #include "core/patch_view.h"
 #include "core/scene_fit.h"
 
@@ -29,6 +30,7 @@ struct FitOutcome {
   std::unique_ptr<SceneFit<2>> fit2;
   std::unique_ptr<SceneFit<3>> fit3;
   std::unique_ptr<PatchView> patch;  // mode "patch": the grid, its tessellation and error
+  std::unique_ptr<HolefillStages> holefill;  // mode "holefill": the pipeline up to the stage shown
   std::string error;  // non-empty: no model
   double wallMs = 0;  // whole fitScene call, incl. the transform re-solve check
 

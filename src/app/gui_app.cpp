@@ -111,7 +111,7 @@ void GuiApp::feedImGui(const FrameInput& in) {
 }
 
 std::optional<Scene> GuiApp::compareScene(const Scene& s) const {
-  if (!compare.enabled || s.mode == SceneMode::Patch) return std::nullopt;
+  if (!compare.enabled || (s.mode != SceneMode::Implicit2d && s.mode != SceneMode::Implicit3d)) return std::nullopt;
   Scene c = s;
   switch (compare.with) {
     case CompareWith::RbfOffset: c.fit.method = FitMethod::RbfOffset; break;

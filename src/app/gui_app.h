@@ -148,6 +148,8 @@ class GuiApp {
   void drawHelpOverlay();
   void drawStatusBar();
   void drawSelectionOverlay();
+  // gui_holefill.cpp: hole filling (mode "holefill")
+  void drawHolefillPanel();
   // gui_patch.cpp: the patch editor (mode "patch")
   void drawPatchPanel();
   void drawPatchHandles();
@@ -210,6 +212,7 @@ class GuiApp {
 
   // Panels' text fields
   std::string openPath_, savePath_, exportPath_;
+  std::string meshPath_ = "mesh.obj", meshExportPath_ = "filled.glb", zeroSetPath_ = "zero-set.glb";
   std::string pendingScreenshot_;
   bool pendingScreenshotUi_ = true;
   bool screenshotWithUi_ = false;

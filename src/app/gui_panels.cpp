@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/commands.h"
 #include "app/gui_app.h"
 #include "app/gui_widgets.h"
 #include "core/atomic_file.h"
@@ -118,9 +119,13 @@ void GuiApp::drawPanels() {
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing)) {
     ImGui::PushItemWidth(-110.0f);
-    if (scene().mode == SceneMode::Patch) {
+    if (scene().mode == SceneMode::Patch || scene().mode == SceneMode::Holefill) {
       ImGui::SetNextItemOpen(true, ImGuiCond_Once);
-      if (ImGui::CollapsingHeader("Patch")) drawPatchPanel();
+      if (scene().mode == SceneMode::Patch) {
+        if (ImGui::CollapsingHeader("Patch")) drawPatchPanel();
+      } else if (ImGui::CollapsingHeader("Hole filling")) {
+        drawHolefillPanel();
+      }
       inputText("##save", savePath_);
       ImGui::SameLine();
       if (ImGui::Button("Save scene")) saveScene(savePath_);
@@ -134,7 +139,7 @@ void GuiApp::drawPanels() {
     }
     ImGui::SetNextItemOpen(panels.view, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("View")) drawViewPanel();
-    if (scene().mode != SceneMode::Patch) {
+    if (scene().mode == SceneMode::Implicit2d || scene().mode == SceneMode::Implicit3d) {
       ImGui::Checkbox("Explore r", &panels.explore);
       ImGui::SameLine();
     }
@@ -143,7 +148,8 @@ void GuiApp::drawPanels() {
   }
   ImGui::End();
   if (panels.diagnostics) drawDiagnosticsPanel();
-  if (panels.explore && scene().mode != SceneMode::Patch) drawExplorePanel();
+  if (panels.explore && (scene().mode == SceneMode::Implicit2d || scene().mode == SceneMode::Implicit3d))
+    drawExplorePanel();
 }
 
 void GuiApp::drawDataPanel() {
@@ -198,6 +204,17 @@ void GuiApp::drawDataPanel() {
       setStatus(e.what(), true);
     }
   }
+  inputText("##zeroset", zeroSetPath_);
+  ImGui::SameLine();
+  if (ImGui::Button("Export mesh")) {
+    try {
+      if (!shown_) throw InputError("no fitted model yet");
+      setStatus(exportZeroSet(*shown_, zeroSetPath_, 96));
+    } catch (const std::exception& e) {
+      setStatus(e.what(), true);
+    }
+  }
+  helpMarker("The zero set over view.bounds by marching cubes (3D: .glb .gltf .ply .obj) or squares (2D: .obj .svg).");
   if (ImGui::Button("Export model (JSON)")) {
     try {
       if (!shown_) throw InputError("no fitted model yet");
@@ -331,11 +348,18 @@ void GuiApp::drawViewPanel() {
   ViewSpec& v = s.view;
   bool changed = false;
   std::string label = "view";
-  const char* modes[] = {"2D (implicit2d)", "3D (implicit3d)", "patch editor"};
-  const int current = s.mode == SceneMode::Implicit2d ? 0 : s.mode == SceneMode::Patch ? 2 : 1;
+  const char* modes[] = {"2D (implicit2d)", "3D (implicit3d)", "patch editor", "hole filling"};
+  const int current = s.mode == SceneMode::Implicit2d ? 0 : s.mode == SceneMode::Patch ? 2 : s.mode == SceneMode::Holefill ? 3 : 1;
   int mode = current;
-  if (ImGui::Combo("mode", &mode, modes, 3) && mode != current) {
-    if (mode == 2) {
+  if (ImGui::Combo("mode", &mode, modes, 4) && mode != current) {
+    if (mode == 3) {
+      Scene n = scene();
+      n.mode = SceneMode::Holefill;
+      n.view.camera.eye = {1.2, -1.6, 1.4};
+      n.view.camera.target = {0, 0, 0};
+      n.view.camera.up = {0, 0, 1};
+      document_.apply(n, "hole filling");
+    } else if (mode == 2) {
       Scene n = scene();
       n.mode = SceneMode::Patch;
       // A view of the default torus piece.
@@ -384,7 +408,7 @@ void GuiApp::drawViewPanel() {
     changed |= ImGui::Checkbox("bounds box", &v.showBounds);
     ImGui::SameLine();
   }
-  if (s.mode != SceneMode::Patch) {
+  if (s.mode == SceneMode::Implicit2d || s.mode == SceneMode::Implicit3d) {
     changed |= ImGui::Checkbox("points", &v.showPoints);
     ImGui::SameLine();
     changed |= ImGui::Checkbox("normals", &v.showNormals);
@@ -432,6 +456,10 @@ void GuiApp::drawDiagnosticsPanel() {
     const FitOutcome* f = shown_.get();
     if (!f) {
       ImGui::TextDisabled(lastFitError_.empty() ? "fitting..." : "no model");
+    } else if (f->holefill) {
+      ImGui::Text("stage       %s", std::string(holeFillStageName(scene().holefill.stage)).c_str());
+      ImGui::Text("holes       %d", int(f->holefill->holes.size()));
+      ImGui::Text("added       %d triangles", f->holefill->trianglesAdded);
     } else if (f->patch) {
       const PatchView& v = *f->patch;
       ImGui::Text("patches     %d x %d", v.grid.patchesU(), v.grid.patchesV());

@@ -89,6 +89,9 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
   } else if (fit->patch) {
     out = renderPatch(*fit->patch, viewScene, width, height);
     field_ = fit;
+  } else if (fit->holefill) {
+    out = renderHolefill(*fit->holefill, viewScene, width, height);
+    field_ = fit;
   } else {
     throw InputError("nothing to draw: the fit has no model");
   }
@@ -174,6 +177,65 @@ SceneViewResult SceneViewRenderer::renderPatch(const PatchView& patch, const Sce
     }
   }
   patchLines(patch, spec, d.lineEnds, d.lineColors);
+  SceneViewResult out;
+  out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
+  out.traceMode = "rasterised";
+  return out;
+}
+
+SceneViewResult SceneViewRenderer::renderHolefill(const HolefillStages& st, const Scene& viewScene, int width,
+                                                  int height) {
+  if (!meshView_) meshView_ = std::make_unique<render::MeshView>();
+  // The input in the front colour, each patch (own vertices, so it takes its own colour) in teal;
+  // hole boundaries red, ring samples of the implicit as short green normals.
+  const TriMesh& in = st.input;
+  const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]), patchColour(0.25, 0.7, 0.7);
+  int patchVertices = 0, patchTriangles = 0;
+  for (const auto& h : st.holes) {
+    patchVertices += 3 * int(h.patch.triangles.cols());
+    patchTriangles += int(h.patch.triangles.cols());
+  }
+  const int V = in.vertexCount(), T = in.triangleCount();
+  render::MeshDrawData d;
+  d.positions.resize(3, V + patchVertices);
+  d.normals.resize(3, V + patchVertices);
+  d.colors.resize(3, V + patchVertices);
+  d.triangles.resize(3, T + patchTriangles);
+  d.positions.leftCols(V) = in.vertices;
+  d.normals.leftCols(V) = vertexNormals(in);
+  d.colors.leftCols(V).colwise() = front;
+  d.triangles.leftCols(T) = in.triangles;
+  int v = V, t = T;
+  for (const auto& h : st.holes) {
+    const HolePatch& p = h.patch;
+    const auto at = [&](int id) -> Vec<3> { return id >= p.baseId ? Vec<3>(p.vertices.col(id - p.baseId)) : Vec<3>(in.vertices.col(id)); };
+    for (Eigen::Index k = 0; k < p.triangles.cols(); ++k) {
+      const Vec<3> a = at(p.triangles(0, k)), b = at(p.triangles(1, k)), c = at(p.triangles(2, k));
+      const Vec<3> n = (b - a).cross(c - a).normalized();
+      for (const Vec<3>& x : {a, b, c}) {
+        d.positions.col(v) = x;
+        d.normals.col(v) = n;
+        d.colors.col(v) = patchColour;
+        ++v;
+      }
+      d.triangles.col(t++) << v - 3, v - 2, v - 1;
+    }
+  }
+  const Box<3> box = in.vertexCount() > 0 ? boundingBox<3>(in.vertices) : Box<3>{};
+  const double diag = box.extent().norm();
+  for (const auto& h : st.holes) {
+    for (std::size_t k = 0; k < h.loop.size(); ++k) {
+      d.lineEnds.push_back(in.vertices.col(h.loop[k]));
+      d.lineEnds.push_back(in.vertices.col(h.loop[(k + 1) % h.loop.size()]));
+      d.lineColors.emplace_back(0.9, 0.1, 0.1);
+    }
+    for (Eigen::Index k = 0; k < h.ringPoints.cols(); ++k) {
+      d.lineEnds.push_back(h.ringPoints.col(k));
+      d.lineEnds.push_back(h.ringPoints.col(k) + 0.02 * diag * h.ringNormals.col(k));
+      d.lineColors.emplace_back(0.1, 0.55, 0.15);
+    }
+  }
+  d.background = viewScene.view.background;
   SceneViewResult out;
   out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
   out.traceMode = "rasterised";

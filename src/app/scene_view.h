@@ -53,6 +53,7 @@ class SceneViewRenderer {
   std::unique_ptr<render::Field2dView> view2d_;
   std::unique_ptr<render::MeshView> meshView_;
   SceneViewResult renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height);
+  SceneViewResult renderHolefill(const HolefillStages& stages, const Scene& viewScene, int width, int height);
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
 };

@@ -182,6 +182,7 @@ class SceneReader {
   CameraSpec readCamera(const json& v, const std::string& path) const;
   SliceSpec readSlice(const json& v, const std::string& path) const;
   PatchSpec readPatch(const json& v) const;
+  HolefillSpec readHolefill(const json& v) const;
   Vec<3> vec3(const json& v, const std::string& path) const;
 
   std::string source_;
@@ -563,8 +564,39 @@ PatchSpec SceneReader::readPatch(const json& v) const {
   return p;
 }
 
+HolefillSpec SceneReader::readHolefill(const json& v) const {
+  object(v, "holefill", {"mesh", "preset", "stage", "implicit", "rings"});
+  HolefillSpec h;
+  if (const json* x = find(v, "mesh")) {
+    h.mesh = string(*x, "holefill.mesh");
+    if (h.mesh.empty()) fail("holefill.mesh", "must be a file name (or leave the key out for the preset)");
+    const std::filesystem::path p(h.mesh);
+    h.resolvedMesh = p.is_absolute() || baseDirectory_.empty() ? h.mesh : (std::filesystem::path(baseDirectory_) / p).string();
+  }
+  if (const json* x = find(v, "preset")) {
+    h.preset = string(*x, "holefill.preset");
+    bool known = false;
+    std::string names;
+    for (const auto& [n, _] : holefillPresets()) {
+      known |= n == h.preset;
+      names += (names.empty() ? "" : ", ") + n;
+    }
+    if (!known) fail("holefill.preset", "unknown preset '" + h.preset + "' (expected one of: " + names + ")");
+  }
+  if (const json* x = find(v, "stage"))
+    h.stage = choice<HoleFillStage>(*x, "holefill.stage",
+                                    {{"holes", HoleFillStage::Holes}, {"front", HoleFillStage::Front},
+                                     {"fair", HoleFillStage::Fair}, {"fit", HoleFillStage::Fit},
+                                     {"project", HoleFillStage::Project}});
+  if (const json* x = find(v, "implicit"))
+    h.implicit = choice<HoleImplicitKind>(*x, "holefill.implicit",
+                                          {{"rbf-offset", HoleImplicitKind::RbfOffset}, {"hrbf", HoleImplicitKind::Hrbf}});
+  if (const json* x = find(v, "rings")) h.rings = integer(*x, "holefill.rings", 1, 10);
+  return h;
+}
+
 Scene SceneReader::read(const json& document) const {
-  object(document, "", {"version", "mode", "data", "fit", "transform", "view", "patch"});
+  object(document, "", {"version", "mode", "data", "fit", "transform", "view", "patch", "holefill"});
   Scene scene;
   scene.sourceName = source_;
 
@@ -583,13 +615,14 @@ Scene SceneReader::read(const json& document) const {
   const json* data = find(document, "data");
   if (data) {
     scene.data = readData(*data, dim);
-  } else if (scene.mode == SceneMode::Patch) {
-    scene.data.preset = "sphere6";  // unused by the patch editor
+  } else if (scene.mode == SceneMode::Patch || scene.mode == SceneMode::Holefill) {
+    scene.data.preset = "sphere6";  // unused by the patch editor and hole filling
   } else {
     fail("data", "missing (required: {\"preset\": NAME}, {\"file\": PATH} or "
                  "{\"points\": [...], \"normals\": [...]})");
   }
   if (const json* x = find(document, "patch")) scene.patch = readPatch(*x);
+  if (const json* x = find(document, "holefill")) scene.holefill = readHolefill(*x);
 
   if (const json* x = find(document, "fit")) scene.fit = readFit(*x);
   if (const json* x = find(document, "transform")) scene.transform = readTransform(*x, dim);
@@ -799,6 +832,15 @@ json sceneToJson(const Scene& scene) {
       patch["knots"] = std::move(knots);
     }
     doc["patch"] = std::move(patch);
+  }
+  if (scene.mode == SceneMode::Holefill) {
+    const HolefillSpec& h = scene.holefill;
+    json hf = {{"preset", h.preset},
+               {"stage", std::string(holeFillStageName(h.stage))},
+               {"implicit", h.implicit == HoleImplicitKind::Hrbf ? "hrbf" : "rbf-offset"},
+               {"rings", h.rings}};
+    if (!h.mesh.empty()) hf["mesh"] = h.mesh;
+    doc["holefill"] = std::move(hf);
   }
   return doc;
 }

@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/dense_solver.h"
+#include "core/holefill_stages.h"
 #include "core/kernels.h"
 #include "core/patch_document.h"
 #include "core/polynomial.h"
@@ -109,6 +110,7 @@ struct Scene {
   TransformSpec transform;
   ViewSpec view;
   PatchSpec patch;                     // mode "patch": the patch editor's document
+  HolefillSpec holefill;               // mode "holefill": the mesh and the stage shown
   std::string sourceName = "<scene>";  // file name used in messages
   int dimension() const { return mode == SceneMode::Implicit2d ? 2 : 3; }
   bool operator==(const Scene&) const = default;

@@ -205,9 +205,15 @@ TEST_CASE("render: exit codes") {
     CHECK(r.rc == 1);
     CHECK(r.err.find("view.colour") != std::string::npos);
   }
-  SUBCASE("a holefill scene → 1, not available yet") {
-    const auto r = runCli("render " + kScene2d + " --set mode=holefill -o " + outputPath("x.png"));
+  SUBCASE("a holefill scene whose mesh file is missing → 1, naming the file") {
+    const auto r = runCli("render " + kScene2d + " --set mode=holefill --set holefill.mesh=no-such-mesh.obj -o " +
+                          outputPath("x.png"));
     CHECK(r.rc == 1);
-    CHECK(r.err.find("render: mode 'holefill' is not available in this version") != std::string::npos);
+    CHECK(r.err.find("no-such-mesh.obj") != std::string::npos);
+  }
+  SUBCASE("patch and holefill scenes render") {
+    CHECK(runCli("render " + kScene2d + " --set mode=patch --size 64x48 -o " + outputPath("p.png")).rc == 0);
+    CHECK(runCli("render " + kScene2d + " --set mode=holefill --set holefill.stage=fair --size 64x48 -o " +
+                 outputPath("h.png")).rc == 0);
   }
 }
