@@ -125,7 +125,7 @@ ImageRgba8 render2d(const Scene& scene, const RenderArgs& args) {
   options.bounds = viewBounds<2>(scene.view, shown.points);
   options.outsideColor = scene.view.background;
   render::Field2dView fieldView;
-  fieldView.setField(*fit.model, view, options, shown.points, shown.normals);
+  fieldView.setField(fit.field(), view, options, shown.points, shown.normals);
 
   render::OffscreenTarget target(view.width(), view.height(), false);
   target.bind();
@@ -177,9 +177,14 @@ ImageRgba8 render3d(const Scene& scene, const RenderArgs& args) {
   const auto context = offscreenContext(args.backend, camera.width(), camera.height());
 
   render::ImplicitTracer tracer;
-  tracer.upload(*fit.model, bounds, &shown);
+  tracer.upload(fit.field(), bounds, &shown);
   render::TraceSettings settings;
   settings.mode = scene.view.trace == TraceMode::Exact ? render::TracerMode::Exact : render::TracerMode::Baked;
+  if (settings.mode == render::TracerMode::Exact && !tracer.hasExactModel()) {
+    // The exact shader sums one RadialSum; a partition-of-unity field is drawn from its bake.
+    std::fprintf(stderr, "warning: view.trace 'exact' needs a global fit; the partition-of-unity field is traced baked\n");
+    settings.mode = render::TracerMode::Baked;
+  }
   settings.refineExact = true;
   settings.showPoints = scene.view.showPoints;
   settings.showNormals = scene.view.showNormals;

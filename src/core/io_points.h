@@ -1,7 +1,8 @@
 #pragma once
 // Oriented point files (DESIGN.md §4):
-//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: an error for now)
-//   .xyn                  2D: x y nx ny per line
+//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated,
+//                         normal_estimation.h, with a warning)
+//   .xyn                  2D: x y nx ny per line (2 columns = no normals: estimated too)
 // Blank lines and lines starting with '#' are skipped. A malformed line is an InputError
 // "FILE:LINE: ..." saying what was expected. PLY, OBJ and glTF readers plug in here later
 // (io_ply, io_gltf) behind the same loadPointFile entry points.

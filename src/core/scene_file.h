@@ -15,6 +15,7 @@
 #include "core/dense_solver.h"
 #include "core/kernels.h"
 #include "core/polynomial.h"
+#include "core/pu_tree.h"
 
 namespace hermite {
 
@@ -45,6 +46,7 @@ struct PartitionSpec {
   int maxPointsPerBox = 20;  // ≥ 1
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;      // ≥ 1: support = box scaled about its centre
+  PuBlend blend = PuBlend::Smooth;  // added key: smooth (Shepard, C² bumps) | hard (box cut-off: artefact demo)
   bool operator==(const PartitionSpec&) const = default;
 };
 
