@@ -10,6 +10,9 @@
 
 #include <omp.h>
 
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
 #include "core/errors.h"
 
 extern "C" int openblas_get_num_threads(void);
@@ -69,6 +72,75 @@ double bump(const Box<Dim>& support, const Vec<Dim>& y, const bool* frozen, Vec<
   return w;
 }
 
+// Local systems up to this many unknowns are solved in-process with Eigen (LLT for the SPD case,
+// else partial-pivot LU on the whole saddle matrix): measured on the two-tori benchmark (typical
+// local systems of 30–200 unknowns) the LAPACK path of fitHrbf spent most of its time in
+// per-call overhead (NaN checks, condition estimation, workspace queries), 4–5× the solve.
+constexpr int kInProcessUnknowns = 800;
+
+// The local HRBF fit: fitHrbf for large supports, the same system solved in-process for small
+// ones. Throws NumericalError for a singular or non-finite local system (the caller grows it).
+template <int Dim>
+HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& options, FitReport& report) {
+  const int N = sub.size();
+  const int m = monomialCount<Dim>(options.polynomial);
+  constexpr int B = Dim + 1;
+  const int n = N * B;
+  if (n + m > kInProcessUnknowns || options.solver != SolverChoice::Auto) return fitHrbf<Dim>(sub, options, &report);
+  const auto t0 = std::chrono::steady_clock::now();
+  SaddleSystem sys = assembleHrbf<Dim>(sub, options);
+  Eigen::VectorXd x, c;
+  double condition = 0;
+  bool solved = false;
+  if (m == 0 && sys.definiteSign > 0) {
+    Eigen::LLT<Eigen::MatrixXd> llt(sys.A.template selfadjointView<Eigen::Lower>());
+    if (llt.info() == Eigen::Success) {
+      x = llt.solve(sys.b);
+      c.resize(0);
+      const Eigen::VectorXd d = llt.matrixLLT().diagonal();
+      const double ratio = d.maxCoeff() / d.minCoeff();
+      condition = ratio * ratio;  // a cheap estimate: (max/min pivot)² ≤ κ₂
+      solved = x.allFinite();
+      report.solver = "cholesky";
+    }
+  }
+  if (!solved) {
+    Eigen::MatrixXd K(n + m, n + m);
+    K.topLeftCorner(n, n) = sys.A.template selfadjointView<Eigen::Lower>();
+    if (m > 0) {
+      K.topRightCorner(n, m) = sys.P;
+      K.bottomLeftCorner(m, n) = sys.P.transpose();
+      K.bottomRightCorner(m, m).setZero();
+    }
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+    rhs.head(n) = sys.b;
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu(K);
+    const double rcond = lu.rcond();
+    // Near-singular or non-finite: the LAPACK path decides (pivoted fallbacks, warnings, and a
+    // NumericalError only for a failed factorisation — which makes the caller grow the support).
+    if (!(rcond > 1e-15)) return fitHrbf<Dim>(sub, options, &report);
+    const Eigen::VectorXd sol = lu.solve(rhs);
+    if (!sol.allFinite()) return fitHrbf<Dim>(sub, options, &report);
+    x = sol.head(n);
+    c = sol.tail(m);
+    condition = 1.0 / rcond;
+    report.solver = "lu";
+  }
+  Eigen::VectorXd alpha(N);
+  Points<Dim> beta(Dim, N);
+  for (int j = 0; j < N; ++j) {
+    alpha(j) = x(Eigen::Index(j) * B);
+    beta.col(j) = x.template segment<Dim>(Eigen::Index(j) * B + 1);
+  }
+  report.nSamples = N;
+  report.nUnknowns = n + m;
+  report.conditionEstimate = condition;
+  report.warnings = polynomialOrderWarnings(options.kernel, options.polynomial);
+  if (condition > 1e12) report.warnings.push_back("condition estimate " + std::to_string(condition) + " (ill-conditioned)");
+  report.fitMs = msSince(t0);
+  return HrbfModel<Dim>(options.kernel, options.polynomial, sub.points, std::move(alpha), std::move(beta), std::move(c));
+}
+
 }  // namespace
 
 template <int Dim>
@@ -85,6 +157,8 @@ PuModel<Dim>::PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOption
                       const Similarity<Dim>& frame)
     : tree_(std::move(tree)), leaves_(std::move(leaves)), options_(options), frame_(frame) {
   identityFrame_ = isIdentity(frame_);
+  minFactor_ = leaves_.empty() ? 1.0 : leaves_.front().factor;
+  for (const Leaf& l : leaves_) minFactor_ = std::min(minFactor_, l.factor);
   buildReach();
 }
 
@@ -241,7 +315,7 @@ std::vector<std::pair<int, double>> PuModel<Dim>::weights(const Vec<Dim>& x) con
 
 template <int Dim>
 double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
-  if (options_.blend == PuBlend::Hard || !(options_.overlap > 1.0)) return std::numeric_limits<double>::infinity();
+  if (options_.blend == PuBlend::Hard || !(minFactor_ > 1.0)) return std::numeric_limits<double>::infinity();
   // The box in frame coordinates (bounding box of its mapped corners), clamped to the root.
   Box<Dim> yb;
   if (identityFrame_) {
@@ -260,9 +334,9 @@ double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
   const Box<Dim>& root = tree_.root();
   yb.lo = yb.lo.cwiseMax(root.lo).cwiseMin(root.hi);
   yb.hi = yb.hi.cwiseMax(root.lo).cwiseMin(root.hi);
-  // Every root point lies in a leaf box, whose support is `overlap` times larger: there |tₖ| ≤
-  // 1/overlap on every axis, so S ≥ (1 − 1/overlap²)^(3·Dim).
-  const double u0 = 1.0 - 1.0 / (options_.overlap * options_.overlap);
+  // Every root point lies in a leaf box, whose support is at least minFactor times larger: there
+  // |tₖ| ≤ 1/minFactor on every axis, so S ≥ (1 − 1/minFactor²)^(3·Dim).
+  const double u0 = 1.0 - 1.0 / (minFactor_ * minFactor_);
   const double s0 = std::pow(u0, 3 * Dim);
   const Vec<Dim> xc = box.center();
   const double reach = 0.5 * box.extent().norm();
@@ -314,6 +388,9 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   const int minSamples =
       options.minSamples > 0 ? options.minSamples
                              : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
+  const int maxSupport = std::max(minSamples, options.maxSupportSamples > 0 ? options.maxSupportSamples
+                                                                          : 6 * options.maxPointsPerBox);
+  const double supportFloor = 0.5 * (1.0 + options.overlap);
   const int leafCount = tree.leafCount();
   std::vector<typename PuModel<Dim>::Leaf> leaves(static_cast<std::size_t>(leafCount));
   std::vector<FitReport> reports(static_cast<std::size_t>(leafCount));
@@ -327,15 +404,39 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
 #pragma omp parallel
   {
     std::vector<int> idx;
+    std::vector<double> dist;
     HermiteSamples<Dim> sub;
 #pragma omp for schedule(dynamic, 8)
     for (int i = 0; i < leafCount; ++i) {
       try {
-        Box<Dim> support = scaledBox<Dim>(tree.leafBox(i), options.overlap);
-        tree.samplesInBox(frameY, support, idx);
-        while (static_cast<int>(idx.size()) < std::min(minSamples, n)) {
-          support = scaledBox<Dim>(support, options.growth);
-          tree.samplesInBox(frameY, support, idx);
+        const Box<Dim>& box = tree.leafBox(i);
+        const Vec<Dim> c = box.center();
+        const Vec<Dim> invH = (0.5 * box.extent()).cwiseInverse();
+        // The factor s at which the support scaledBox(box, s) reaches sample j.
+        auto reachOf = [&](int j) { return ((frameY.col(j) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff(); };
+        // The support just large enough for the `rank`-th nearest sample (normalised L∞ about the
+        // box centre) among idx, but at least `floor`.
+        auto fitTo = [&](int rank, double floor) {
+          dist.resize(idx.size());
+          for (std::size_t j = 0; j < idx.size(); ++j) dist[j] = reachOf(idx[j]);
+          std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
+          // A relative 1e-9 beyond the sample: rounding of the scaled box cannot drop it (its
+          // weight there, ~1e-26, is negligible).
+          return std::max(floor, dist[rank - 1] * (1.0 + 1e-9));
+        };
+        double s = options.overlap;
+        tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+        const int want = std::min(minSamples, n);
+        if (static_cast<int>(idx.size()) < want) {
+          while (static_cast<int>(idx.size()) < want) {
+            s *= options.growth;
+            tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+          }
+          s = fitTo(want, options.overlap);
+          tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+        } else if (static_cast<int>(idx.size()) > maxSupport) {
+          s = fitTo(maxSupport, supportFloor);
+          tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
         }
         // A singular local system (e.g. collinear samples under a quadratic term) grows too.
         for (int attempt = 0;; ++attempt) {
@@ -348,16 +449,17 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
             sub.normals.col(j) = samples.normals.col(idx[j]);
           }
           try {
-            leaves[i].model = fitHrbf<Dim>(sub, local, &reports[i]);
-            leaves[i].support = support;
+            leaves[i].model = fitLocal<Dim>(sub, local, reports[i]);
+            leaves[i].support = scaledBox<Dim>(box, s);
+            leaves[i].factor = s;
             leaves[i].samples = k;
             break;
           } catch (const NumericalError& e) {
             if (attempt >= 4 || k >= n)
               throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
                                    " samples) failed: " + e.what());
-            support = scaledBox<Dim>(support, options.growth);
-            tree.samplesInBox(frameY, support, idx);
+            s *= options.growth;
+            tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
             reports[i] = FitReport{};
           }
         }
@@ -378,23 +480,27 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
     const std::vector<std::string> orderWarnings = polynomialOrderWarnings(local.kernel, local.polynomial);
     r.warnings = orderWarnings;
     std::map<std::string, int> solvers;
-    int warned = 0;
-    std::string firstWarning;
+    // Local warnings grouped by kind (the text with its numbers blanked): count + first example.
+    std::vector<std::pair<std::string, std::pair<int, std::string>>> kinds;
     for (int i = 0; i < leafCount; ++i) {
       r.maxBoxSamples = std::max(r.maxBoxSamples, tree.leafSampleCount(i));
       r.maxSupportSamples = std::max(r.maxSupportSamples, leaves[i].samples);
-      const Box<Dim> plain = scaledBox<Dim>(tree.leafBox(i), options.overlap);
-      if ((leaves[i].support.extent() - plain.extent()).maxCoeff() > 1e-12 * plain.extent().maxCoeff()) ++r.grownSupports;
+      r.meanSupportSamples += leaves[i].samples / double(leafCount);
+      if (leaves[i].factor > options.overlap) ++r.grownSupports;
       r.unknowns += reports[i].nUnknowns;
       r.maxConditionEstimate = std::max(r.maxConditionEstimate, reports[i].conditionEstimate);
       ++solvers[reports[i].solver];
-      bool own = false;
       for (const std::string& w : reports[i].warnings) {
         if (std::find(orderWarnings.begin(), orderWarnings.end(), w) != orderWarnings.end()) continue;
-        if (!own && firstWarning.empty()) firstWarning = "box " + std::to_string(i) + ": " + w;
-        own = true;
+        std::string kind;
+        for (char ch : w)
+          if (!(ch >= '0' && ch <= '9') && ch != '.' && ch != '+' && ch != 'e') kind += ch;
+        auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == kind; });
+        if (it == kinds.end())
+          kinds.push_back({kind, {1, "box " + std::to_string(i) + ": " + w}});
+        else
+          ++it->second.first;
       }
-      if (own) ++warned;
     }
     int best = -1;
     for (const auto& [name, count] : solvers)
@@ -402,9 +508,9 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
         best = count;
         r.solver = name;
       }
-    if (warned > 0)
-      r.warnings.push_back("partition: " + std::to_string(warned) + " of " + std::to_string(leafCount) +
-                           " local fits warned; first: " + firstWarning);
+    for (const auto& [kind, info] : kinds)
+      r.warnings.push_back("partition: " + std::to_string(info.first) + " of " + std::to_string(leafCount) +
+                           " local fits warned like " + info.second);
     r.fitMs = msSince(t0);
   }
   return PuModel<Dim>(std::move(tree), std::move(leaves), options, frame);

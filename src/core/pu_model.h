@@ -30,6 +30,10 @@ struct PuOptions {
   // and at least min(maxPointsPerBox, 2·(Dim + 1)) so empty boxes do not fit from one sample).
   int minSamples = 0;
   double growth = 1.5;          // > 1: factor a too-sparse support grows by per step
+  // A support holding more than this many samples (0 = automatic: 6·maxPointsPerBox, at least
+  // minSamples) shrinks towards its box, though not below the box scaled by (1 + overlap)/2:
+  // a big leaf beside a dense region would otherwise solve thousands of unknowns.
+  int maxSupportSamples = 0;
 };
 
 // What the fit reports besides the model (`fit --json` "partition").
@@ -37,6 +41,7 @@ struct PuReport {
   int boxes = 0;
   int maxBoxSamples = 0;   // most samples in one leaf box
   int maxSupportSamples = 0;  // most samples in one local fit
+  double meanSupportSamples = 0;
   int grownSupports = 0;   // supports grown to reach minSamples
   double fitMs = 0;        // tree + local fits, wall clock
   double treeMs = 0;
@@ -50,7 +55,8 @@ template <int Dim>
 class PuModel : public ImplicitField<Dim> {
  public:
   struct Leaf {
-    Box<Dim> support;     // in frame coordinates
+    Box<Dim> support;     // in frame coordinates: the leaf box scaled by `factor` about its centre
+    double factor = 1.5;  // overlap, or more for a grown support, or less (≥ the floor) for a capped one
     int samples = 0;      // samples in the support (the local fit's data)
     HrbfModel<Dim> model;  // in world coordinates
   };
@@ -87,6 +93,7 @@ class PuModel : public ImplicitField<Dim> {
   PuOptions options_;
   Similarity<Dim> frame_;
   bool identityFrame_ = true;
+  double minFactor_ = 1.0;  // smallest support factor (the weight sum's lower bound needs it)
 };
 
 // Fits a PU model to validated samples. The tree is built on frame.applyInverse(points) (its
