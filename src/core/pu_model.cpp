@@ -385,15 +385,20 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
     for (int i = 0; i < n; ++i) Y.col(i) = frame.applyInverse(samples.points.col(i));
   }
   const Points<Dim>& frameY = identity ? samples.points : Y;
-  PuTree<Dim> tree(frameY, {options.maxPointsPerBox, options.boxSize});
-  const double treeMs = msSince(t0);
-
   const int m = monomialCount<Dim>(options.local.polynomial);
   const int minSamples =
       options.minSamples > 0 ? options.minSamples
                              : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
   const int maxSupport = std::max(minSamples, options.maxSupportSamples > 0 ? options.maxSupportSamples
                                                                           : 6 * options.maxPointsPerBox);
+  PuTreeOptions treeOptions;
+  treeOptions.maxPointsPerBox = options.maxPointsPerBox;
+  treeOptions.boxSize = options.boxSize;
+  treeOptions.maxSupportSamples = maxSupport;
+  treeOptions.overlap = options.overlap;
+  PuTree<Dim> tree(frameY, treeOptions);
+  const double treeMs = msSince(t0);
+
   const double supportFloor = 0.5 * (1.0 + options.overlap);
   const int leafCount = tree.leafCount();
   std::vector<typename PuModel<Dim>::Leaf> leaves(static_cast<std::size_t>(leafCount));

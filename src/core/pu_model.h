@@ -30,9 +30,10 @@ struct PuOptions {
   // and at least min(maxPointsPerBox, 2·(Dim + 1)) so empty boxes do not fit from one sample).
   int minSamples = 0;
   double growth = 1.5;          // > 1: factor a too-sparse support grows by per step
-  // A support holding more than this many samples (0 = automatic: 6·maxPointsPerBox, at least
-  // minSamples) shrinks towards its box, though not below the box scaled by (1 + overlap)/2:
-  // a big leaf beside a dense region would otherwise solve thousands of unknowns.
+  // A box whose support holds more than this many samples (0 = automatic: 6·maxPointsPerBox, at
+  // least minSamples) is split further (pu_tree.h); where that cannot help (depth limit) the
+  // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2: a big
+  // box beside a dense region would otherwise solve thousands of unknowns.
   int maxSupportSamples = 0;
 };
 

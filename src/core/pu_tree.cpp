@@ -37,16 +37,10 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
   std::iota(order_.begin(), order_.end(), 0);
   nodes_.reserve(2 * static_cast<std::size_t>(n / std::max(1, options.maxPointsPerBox) + 1) * kChildren);
   nodes_.push_back(Node{root, -1, -1, 0, n, 0});
-  std::vector<int> stack{0};
   std::vector<int> scratch;
-  while (!stack.empty()) {
-    const int id = stack.back();
-    stack.pop_back();
+  // Splits node `id` into kChildren children (its samples bucketed by child); returns the first.
+  auto splitNode = [&](int id) {
     const Node nd = nodes_[id];
-    const int count = nd.end - nd.begin;
-    const bool tooMany = count > options.maxPointsPerBox;
-    const bool tooBig = options.boxSize > 0 && nd.box.extent().maxCoeff() > options.boxSize;
-    if (count == 0 || !(tooMany || tooBig) || nd.depth >= options.maxDepth) continue;
     // Bucket the node's samples by child: child bit k set ⇔ coordinate k ≥ the centre's.
     const Vec<Dim> c = nd.box.center();
     int counts[kChildren] = {};
@@ -78,7 +72,34 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
       child.depth = nd.depth + 1;
       nodes_.push_back(child);
     }
+    return first;
+  };
+  // Pass 1: the DESIGN.md §4 rules.
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    const Node& nd = nodes_[id];
+    const int count = nd.end - nd.begin;
+    const bool tooMany = count > options.maxPointsPerBox;
+    const bool tooBig = options.boxSize > 0 && nd.box.extent().maxCoeff() > options.boxSize;
+    if (count == 0 || !(tooMany || tooBig) || nd.depth >= options.maxDepth) continue;
+    const int first = splitNode(id);
     for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
+  }
+  // Pass 2, on the complete tree (so support queries are fast): crowded supports split further.
+  if (options.maxSupportSamples > 0) {
+    for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
+      if (nodes_[id].firstChild < 0) stack.push_back(id);
+    const int limit = options.maxSupportSamples;
+    while (!stack.empty()) {
+      const int id = stack.back();
+      stack.pop_back();
+      if (nodes_[id].depth >= options.maxDepth) continue;
+      if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
+      const int first = splitNode(id);
+      for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
+    }
   }
   // Leaves in depth-first order (children before later siblings) for locality.
   stack.assign(1, 0);
@@ -106,6 +127,28 @@ int PuTree<Dim>::locateLeaf(const Vec<Dim>& y) const {
     id = nodes_[id].firstChild + ch;
   }
   return nodes_[id].leaf;
+}
+
+template <int Dim>
+int PuTree<Dim>::countInBox(const Points<Dim>& points, const Box<Dim>& query, int limit) const {
+  int count = 0;
+  int stack[64 * kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0 && count <= limit) {
+    const Node& nd = nodes_[stack[--top]];
+    if (nd.begin == nd.end || !boxesIntersect<Dim>(nd.box, query)) continue;
+    const bool inside = (nd.box.lo.array() >= query.lo.array()).all() && (nd.box.hi.array() <= query.hi.array()).all();
+    if (inside) {
+      count += nd.end - nd.begin;
+    } else if (nd.firstChild < 0) {
+      for (int i = nd.begin; i < nd.end; ++i)
+        if (query.contains(points.col(order_[i]))) ++count;
+    } else {
+      for (int ch = 0; ch < kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+  return count;
 }
 
 template <int Dim>

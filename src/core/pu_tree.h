@@ -3,7 +3,8 @@
 // octree (3D) over the samples' bounding box (grown by a small margin so no sample sits on the
 // root's faces). A box holding samples is split into 2^Dim equal children while it holds more
 // than `maxPointsPerBox` samples or, when `boxSize` > 0, while its longest edge exceeds
-// `boxSize`; empty boxes are never split. The leaves tile the root box.
+// `boxSize`, or while its support holds more than `maxSupportSamples` (when set); other empty
+// boxes are never split. The leaves tile the root box.
 
 #include <string_view>
 #include <vector>
@@ -25,6 +26,11 @@ struct PuTreeOptions {
   int maxPointsPerBox = 20;  // ≥ 1
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   int maxDepth = 21;         // safety net for coincident samples (they cannot be separated)
+  // Also split a box (empty ones too) while its support — the box scaled by `overlap` — holds
+  // more than this many samples (0 = off): a big box beside the surface would otherwise fit
+  // thousands of samples from its margin.
+  int maxSupportSamples = 0;
+  double overlap = 1.5;
 };
 
 template <int Dim>
@@ -62,6 +68,8 @@ class PuTree {
 
   // Indices of the samples of `points` (the tree's points) inside the closed box `query`.
   void samplesInBox(const Points<Dim>& points, const Box<Dim>& query, std::vector<int>& out) const;
+  // How many samples lie in `query`, counting stops above `limit`.
+  int countInBox(const Points<Dim>& points, const Box<Dim>& query, int limit) const;
 
  private:
   std::vector<Node> nodes_;
