@@ -272,3 +272,40 @@ TEST_CASE("pu: a transformed PU model keeps its tree and equals the re-solved on
     CHECK(maxDg <= 1e-8 * (1 + maxG));
   }
 }
+
+TEST_CASE("pu: crowded supports split their box; dense samples of a sphere give |f|/|grad f| <= 1e-3 diagonal") {
+  // A dense cluster beside big empty boxes: no support may hold more than the cap, except at the
+  // depth limit.
+  const HermiteSamples<3> s = testing::goldenSphere(4000);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  o.maxPointsPerBox = 20;
+  o.maxSupportSamples = 60;
+  PuReport report;
+  const PuModel<3> pu = fitPu<3>(s, o, &report);
+  CHECK(report.maxSupportSamples <= 60);
+  // Held-out exact points of the sphere (a different spiral): first-order distance to the zero set.
+  const HermiteSamples<3> fresh = testing::goldenSphere(997);
+  Eigen::VectorXd f;
+  Points<3> G;
+  pu.evaluateBatch(fresh.points, f, &G);
+  const double diagonal = std::sqrt(12.0);
+  double worst = 0;
+  for (int i = 0; i < fresh.size(); ++i) worst = std::max(worst, std::abs(f(i)) / G.col(i).norm());
+  CHECK(worst <= 1e-3 * diagonal);
+  // The Lipschitz bound also holds for a transformed (rotated, scaled) model.
+  Similarity<3> T;
+  T.R = Eigen::AngleAxisd(0.6, Vec<3>(0.2, 1, 0.3).normalized()).toRotationMatrix();
+  T.q = 0.7;
+  T.t = Vec<3>(1, 0, -1);
+  const PuModel<3> moved = transformPu<3>(pu, T);
+  std::mt19937 rng(13);
+  for (int t = 0; t < 20; ++t) {
+    const Vec<3> c = T.apply(randomIn<3>(rng, Box<3>{Vec<3>::Constant(-1.2), Vec<3>::Constant(1.2)}));
+    const Box<3> b{c - Vec<3>::Constant(0.1), c + Vec<3>::Constant(0.1)};
+    const double L = moved.lipschitzBound(b);
+    double gmax = 0;
+    for (int k = 0; k < 100; ++k) gmax = std::max(gmax, moved.gradient(randomIn<3>(rng, b)).norm());
+    CHECK(gmax <= L);
+  }
+}
