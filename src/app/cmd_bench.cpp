@@ -12,6 +12,11 @@
 //   holefill/100k-10holes    fillHoles on a ≈100k-triangle torus with 10 holes of ≈50 boundary
 //                            edges each (ms, whole pipeline; params: holes, edges, |f|)
 
+//   pu3d/two-tori/N=...      partition-of-unity fit (cubic, linear, ≤ 20 per box, overlap 1.5)
+//                            of N random area-uniform points on two interlinked tori with exact
+//                            normals (s); params: peak memory, evaluation throughput, and the
+//                            zero set's distance |f|/‖∇f‖ at fresh exact surface points
+
 #include <unistd.h>
 
 #include <algorithm>
@@ -21,6 +26,8 @@
 #include <filesystem>
 #include <functional>
 #include <random>
+
+#include <sys/resource.h>
 #include <string>
 #include <vector>
 
@@ -37,6 +44,7 @@
 #include "core/mesh_io.h"
 #include "core/marching.h"
 #include "core/presets.h"
+#include "core/pu_model.h"
 #include "core/threading.h"
 #include "render/field2d_view.h"
 #include "render/implicit_tracer.h"
@@ -230,6 +238,88 @@ Result benchHoleFill(bool quick, int repeats) {
           median(times), "ms"};
 }
 
+// N area-uniform random points on the two-tori preset's exact tori (rejection on the tube
+// angle: the area element is ∝ R + r cos v), with exact outward normals.
+HermiteSamples<3> randomTwoTori(int N, unsigned seed) {
+  const std::vector<TorusGeometry> tori = presetTori("two-tori");
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> angle(0, 2 * M_PI), unit(0, 1);
+  HermiteSamples<3> s;
+  s.points.resize(3, N);
+  s.normals.resize(3, N);
+  for (int i = 0; i < N;) {
+    const TorusGeometry& t = tori[i % tori.size()];
+    const double u = angle(rng), v = angle(rng);
+    if (unit(rng) * (t.major + t.minor) > t.major + t.minor * std::cos(v)) continue;
+    // Orthonormal frame (e1, e2, axis).
+    const Vec<3> a = t.axis.normalized();
+    const Vec<3> e1 = (std::abs(a.x()) < 0.9 ? Vec<3>::UnitX() : Vec<3>::UnitY()).cross(a).normalized();
+    const Vec<3> e2 = a.cross(e1);
+    const Vec<3> radial = std::cos(u) * e1 + std::sin(u) * e2;
+    const Vec<3> n = std::cos(v) * radial + std::sin(v) * a;
+    s.points.col(i) = t.centre + t.major * radial + t.minor * n;
+    s.normals.col(i) = n;
+    ++i;
+  }
+  return s;
+}
+
+double peakRssMb() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return double(r.ru_maxrss) / 1024.0;  // Linux: kilobytes
+}
+
+Result benchPuTori(int N, const std::string& label) {
+  const double g0 = nowMs();
+  const HermiteSamples<3> s = randomTwoTori(N, 1);
+  const double generateMs = nowMs() - g0;
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  o.maxPointsPerBox = 20;
+  o.overlap = 1.5;
+  PuReport rep;
+  const double t0 = nowMs();
+  const PuModel<3> pu = fitPu<3>(s, o, &rep);
+  const double fitS = (nowMs() - t0) / 1000.0;
+  const double rssAfterFit = peakRssMb();
+  // Throughput: value + gradient at random points of the bounding box.
+  const Box<3> box = boundingBox<3>(s.points);
+  const int evalPoints = 200000;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0, 1);
+  Points<3> X(3, evalPoints);
+  for (int i = 0; i < evalPoints; ++i)
+    for (int k = 0; k < 3; ++k) X(k, i) = box.lo(k) + u(rng) * (box.hi(k) - box.lo(k));
+  Eigen::VectorXd f;
+  Points<3> G;
+  const double e0 = nowMs();
+  pu.evaluateBatch(X, f, &G);
+  const double evalMs = nowMs() - e0;
+  // Accuracy at fresh exact surface points: |f|/‖∇f‖ (the first-order distance to the zero set).
+  const HermiteSamples<3> fresh = randomTwoTori(20000, 2);
+  pu.evaluateBatch(fresh.points, f, &G);
+  const double diagonal = box.extent().norm();
+  double maxD = 0, sumD = 0, maxAngle = 0;
+  for (int i = 0; i < fresh.size(); ++i) {
+    const double d = std::abs(f(i)) / std::max(G.col(i).norm(), 1e-300);
+    maxD = std::max(maxD, d);
+    sumD += d;
+    maxAngle = std::max(maxAngle, std::acos(std::clamp(G.col(i).normalized().dot(fresh.normals.col(i)), -1.0, 1.0)));
+  }
+  return {"pu3d/two-tori/N=" + label,
+          {{"N", N}, {"kernel", "cubic"}, {"polynomial", "linear"}, {"max_points_per_box", o.maxPointsPerBox},
+           {"overlap", o.overlap}, {"boxes", rep.boxes}, {"max_support_samples", rep.maxSupportSamples},
+           {"mean_support_samples", rep.meanSupportSamples},
+           {"grown_supports", rep.grownSupports}, {"tree_ms", rep.treeMs}, {"generate_ms", generateMs},
+           {"peak_rss_mb", rssAfterFit}, {"eval_points_per_s", evalPoints / (evalMs / 1000.0)},
+           {"eval_what", "value+gradient, random points in the bounding box"},
+           {"held_out", fresh.size()}, {"max_distance_rel_diag", maxD / diagonal},
+           {"mean_distance_rel_diag", sumD / fresh.size() / diagonal},
+           {"max_normal_angle_deg", maxAngle * 180.0 / M_PI}, {"threads", threadCount()}},
+          fitS, "s"};
+}
+
 }  // namespace
 
 int runBench(const BenchArgs& args) {
@@ -311,6 +401,12 @@ int runBench(const BenchArgs& args) {
       return {name, {{"samples", r.samples}, {"width", r.width}, {"height", r.height}, {"moves", r.moves},
                      {"max_ms", r.maxMs}, {"fit_ms", r.fitMs}, {"view_ms", r.viewMs}}, r.medianMs, "ms"};
     });
+  }
+
+  // Partition of unity at scale (issue 6 §3): run on their own (--only pu3d), they take a while.
+  for (const auto& [label, N] : {std::pair<const char*, int>{"1e5", 100000}, {"1e6", 1000000}}) {
+    const int n = args.quick ? N / 100 : N;
+    jobs.emplace_back(std::string("pu3d/two-tori/N=") + label, [n, label = std::string(label)] { return benchPuTori(n, label); });
   }
 
   std::vector<Result> results;

@@ -49,6 +49,50 @@ json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
 }
 
 template <int Dim>
+json boxJson(const Box<Dim>& b) {
+  json lo = json::array(), hi = json::array();
+  for (int k = 0; k < Dim; ++k) {
+    lo.push_back(b.lo(k));
+    hi.push_back(b.hi(k));
+  }
+  return {{"lo", std::move(lo)}, {"hi", std::move(hi)}};
+}
+
+// A PU model: its frame (world x = scale·R·y + translate for box coordinates y), options and
+// boxes, each with its box, support and local model in the shape of the global `model`.
+template <int Dim>
+json puModelJson(const Scene& scene, const PuModel<Dim>& pu) {
+  json out;
+  out["method"] = "partition-of-unity";
+  out["kernel"] = std::string(kernelName(scene.fit.kernel));
+  out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
+  out["dimension"] = Dim;
+  out["blend"] = std::string(puBlendName(pu.options().blend));
+  out["overlap"] = pu.options().overlap;
+  json R = json::array();
+  for (int r = 0; r < Dim; ++r) {
+    json row = json::array();
+    for (int c = 0; c < Dim; ++c) row.push_back(pu.frame().R(r, c));
+    R.push_back(std::move(row));
+  }
+  json t = json::array();
+  for (int k = 0; k < Dim; ++k) t.push_back(pu.frame().t(k));
+  out["frame"] = {{"rotation", std::move(R)}, {"translate", std::move(t)}, {"scale", pu.frame().q}};
+  out["root"] = boxJson<Dim>(pu.tree().root());
+  json boxes = json::array();
+  for (int i = 0; i < static_cast<int>(pu.leaves().size()); ++i) {
+    const auto& leaf = pu.leaves()[i];
+    json b = boxJson<Dim>(pu.tree().leafBox(i));
+    b["support"] = boxJson<Dim>(leaf.support);
+    b["samples"] = leaf.samples;
+    b["model"] = modelJson<Dim>(scene, leaf.model);
+    boxes.push_back(std::move(b));
+  }
+  out["boxes"] = std::move(boxes);
+  return out;
+}
+
+template <int Dim>
 json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficients) {
   const FitResiduals r = fitResiduals(fit);
   json out;
@@ -62,7 +106,15 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["assembly_ms"] = fit.report.assemblyMs;
   out["solve_ms"] = fit.report.solveMs;
   out["warnings"] = fit.warnings;
-  out["partition"] = nullptr;
+  if (fit.pu) {
+    out["partition"] = {{"boxes", fit.puReport.boxes},
+                        {"max_box_samples", fit.puReport.maxBoxSamples},
+                        {"max_support_samples", fit.puReport.maxSupportSamples},
+                        {"grown_supports", fit.puReport.grownSupports},
+                        {"blend", std::string(puBlendName(fit.pu->options().blend))}};
+  } else {
+    out["partition"] = nullptr;
+  }
   if (fit.transformed) {
     const TransformReport& t = fit.transform;
     out["transform"] = {{"update_ms", t.updateMs},       {"resolve_ms", t.resolveMs},
@@ -80,7 +132,7 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
   out["smoothing"] = scene.fit.smoothing;
   out["mean_spacing"] = meanSampleSpacing<Dim>(fit.samples.points);
-  if (coefficients) out["model"] = modelJson<Dim>(scene, *fit.model);
+  if (coefficients) out["model"] = fit.pu ? puModelJson<Dim>(scene, *fit.pu) : modelJson<Dim>(scene, *fit.model);
   return out;
 }
 
@@ -110,6 +162,11 @@ void printReadable(const Scene& scene, const json& j) {
        sci(j["max_grad_error"]) + "\n";
   s += "fit time     " + sci(j["fit_ms"]) + " ms (assembly " + sci(j["assembly_ms"]) + " ms, solve " +
        sci(j["solve_ms"]) + " ms)\n";
+  if (!j["partition"].is_null())
+    s += "partition    " + std::to_string(j["partition"]["boxes"].get<int>()) + " boxes, at most " +
+         std::to_string(j["partition"]["max_box_samples"].get<int>()) + " samples per box, " +
+         std::to_string(j["partition"]["max_support_samples"].get<int>()) + " per local fit (" +
+         j["partition"]["blend"].get<std::string>() + " blend)\n";
   if (!j["transform"].is_null())
     s += "transform    " + j["transform"]["method"].get<std::string>() + "; update " +
          sci(j["transform"]["update_ms"]) + " ms, re-solve " + sci(j["transform"]["resolve_ms"]) +

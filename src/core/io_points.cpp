@@ -13,6 +13,7 @@
 #include "core/atomic_file.h"
 #include "core/errors.h"
 #include "core/mesh_io.h"
+#include "core/normal_estimation.h"
 
 namespace hermite {
 
@@ -133,29 +134,39 @@ HermiteSamples<Dim> readSamples(const std::string& path, std::vector<std::string
   std::string_view line;
   long lineNumber = 0;
   double values[kColumns];
+  // The first data line decides: 2·Dim columns (points and normals) or Dim (positions only:
+  // normals are estimated below). Every other line must have the same columns.
+  int columns = 0;
+  long firstLine = 0;
   while (lines.next(line, lineNumber)) {
     const int count = parseNumbers(line, values, kColumns, path, lineNumber);
-    if (count != kColumns) {
-      if (count == Dim) {
-        // Positions only, on every line? Then the whole file lacks normals.
-        LineReader again(text);
-        std::string_view other;
-        long otherNumber = 0;
-        bool allPositionsOnly = true;
-        while (allPositionsOnly && again.next(other, otherNumber))
-          allPositionsOnly = parseNumbers(other, values, kColumns, path, otherNumber) == Dim;
-        if (allPositionsOnly)
-          throw InputError(path + ": has no normals (" + std::to_string(Dim) +
-                           " columns); normal estimation is not available yet — give " +
-                           columnNames(Dim, true) + " per line");
-      }
-      throw InputError(path + ":" + std::to_string(lineNumber) + ": expected " + std::to_string(kColumns) +
-                       " numbers (" + columnNames(Dim, true) + "), got " + std::to_string(count));
+    if (columns == 0 && (count == kColumns || count == Dim)) {
+      columns = count;
+      firstLine = lineNumber;
+    }
+    if (count != columns || columns == 0) {
+      const bool withNormals = columns != Dim;
+      throw InputError(path + ":" + std::to_string(lineNumber) + ": expected " +
+                       std::to_string(withNormals ? kColumns : Dim) + " numbers (" + columnNames(Dim, withNormals) +
+                       ")" + (columns != Dim ? std::string() : " like line " + std::to_string(firstLine)) + ", got " +
+                       std::to_string(count));
     }
     points.insert(points.end(), values, values + Dim);
-    normals.insert(normals.end(), values + Dim, values + kColumns);
+    if (columns == kColumns) normals.insert(normals.end(), values + Dim, values + kColumns);
   }
   if (points.empty()) throw InputError(path + ": no points");
+  if (columns == Dim) {
+    const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
+    if (count < 2) throw InputError(path + ": has no normals and a single point; normals cannot be estimated");
+    const Points<Dim> P = Eigen::Map<const Points<Dim>>(points.data(), Dim, count);
+    NormalEstimationOptions estimation;
+    const Points<Dim> N = estimateNormals<Dim>(P, estimation);
+    normals.assign(N.data(), N.data() + N.size());
+    warnings.push_back(path + ": has no normals (" + std::to_string(Dim) +
+                       " columns): normals estimated by PCA over " + std::to_string(estimation.neighbours) +
+                       " nearest neighbours and oriented by propagation over a minimum spanning tree, "
+                       "outward from each component's centroid; check their direction (flip if inside out)");
+  }
 
   HermiteSamples<Dim> samples;
   const Eigen::Index n = static_cast<Eigen::Index>(points.size() / Dim);

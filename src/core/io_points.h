@@ -1,7 +1,8 @@
 #pragma once
 // Oriented point files (DESIGN.md §4):
-//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: an error for now)
-//   .xyn                  2D: x y nx ny per line
+//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated,
+//                         normal_estimation.h, with a warning)
+//   .xyn                  2D: x y nx ny per line (2 columns = no normals: estimated too)
 //   .ply .obj .gltf .glb .off  3D: the vertices and vertex normals of a mesh or point-set file
 //                         (PLY nx ny nz, OBJ v + vn, glTF POINTS/TRIANGLES with NORMAL, NOFF),
 //                         read by mesh_io; faces are ignored; no normals is an error for now.

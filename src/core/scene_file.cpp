@@ -356,7 +356,7 @@ DataSpec SceneReader::readData(const json& v, int dim) const {
 }
 
 PartitionSpec SceneReader::readPartition(const json& v, const std::string& path) const {
-  object(v, path, {"enabled", "max_points_per_box", "box_size", "overlap"});
+  object(v, path, {"enabled", "max_points_per_box", "box_size", "overlap", "blend"});
   PartitionSpec p;
   if (const json* x = find(v, "enabled")) p.enabled = boolean(*x, childPath(path, "enabled"));
   if (const json* x = find(v, "max_points_per_box"))
@@ -367,6 +367,7 @@ PartitionSpec SceneReader::readPartition(const json& v, const std::string& path)
     p.overlap = number(*x, key);
     if (!(p.overlap >= 1)) fail(key, "must be >= 1 (got " + describe(*x) + ")");
   }
+  if (const json* x = find(v, "blend")) p.blend = named(*x, childPath(path, "blend"), parsePuBlend);
   return p;
 }
 
@@ -787,7 +788,8 @@ json sceneToJson(const Scene& scene) {
                  {{"enabled", f.partition.enabled},
                   {"max_points_per_box", f.partition.maxPointsPerBox},
                   {"box_size", f.partition.boxSize},
-                  {"overlap", f.partition.overlap}}}};
+                  {"overlap", f.partition.overlap},
+                  {"blend", std::string(puBlendName(f.partition.blend))}}}};
 
   const TransformSpec& t = scene.transform;
   json translate = json::array();

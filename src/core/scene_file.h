@@ -17,6 +17,7 @@
 #include "core/kernels.h"
 #include "core/patch_document.h"
 #include "core/polynomial.h"
+#include "core/pu_tree.h"
 
 namespace hermite {
 
@@ -47,6 +48,7 @@ struct PartitionSpec {
   int maxPointsPerBox = 20;  // ≥ 1
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;      // ≥ 1: support = box scaled about its centre
+  PuBlend blend = PuBlend::Smooth;  // added key: smooth (Shepard, C² bumps) | hard (box cut-off: artefact demo)
   bool operator==(const PartitionSpec&) const = default;
 };
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
 
 #include "core/errors.h"
@@ -32,7 +33,87 @@ double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// Fills probes, maxAbsDf and maxGradDiff of `tr`: the transformed samples (at most 20 000 of
+// them, evenly strided) and 256 fixed pseudo-random points in their box grown by 25 %.
+template <int Dim>
+void compareOnProbes(const ImplicitField<Dim>& updated, const ImplicitField<Dim>& resolved, const Points<Dim>& moved,
+                     TransformReport& tr) {
+  Box<Dim> box = boundingBox<Dim>(moved);
+  const Vec<Dim> grow = Vec<Dim>::Constant(0.25 * box.extent().maxCoeff());
+  box.lo -= grow;
+  box.hi += grow;
+  const Eigen::Index stride = std::max<Eigen::Index>(1, (moved.cols() + 19999) / 20000);
+  const Eigen::Index nData = (moved.cols() + stride - 1) / stride;
+  Points<Dim> probes(Dim, nData + 256);
+  for (Eigen::Index i = 0; i < nData; ++i) probes.col(i) = moved.col(i * stride);
+  std::uint64_t state = 0x9E3779B97F4A7C15ull;
+  for (Eigen::Index i = nData; i < probes.cols(); ++i)
+    for (int k = 0; k < Dim; ++k) {
+      state = state * 6364136223846793005ull + 1442695040888963407ull;
+      const double u = double(state >> 11) * 0x1.0p-53;
+      probes(k, i) = box.lo(k) + u * (box.hi(k) - box.lo(k));
+    }
+  Eigen::VectorXd fu, fr;
+  Points<Dim> gu, gr;
+  updated.evaluateBatch(probes, fu, &gu);
+  resolved.evaluateBatch(probes, fr, &gr);
+  tr.probes = static_cast<int>(probes.cols());
+  tr.maxAbsDf = (fu - fr).cwiseAbs().maxCoeff();
+  tr.maxGradDiff = (gu - gr).colwise().norm().maxCoeff();
+}
+
+// The partition-of-unity path of fitScene: samples are loaded; fits, transforms, reports.
+template <int Dim>
+void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
+  const FitSpec& f = scene.fit;
+  const PuOptions options = scenePuOptions(f);
+  out.pu = std::make_unique<PuModel<Dim>>(fitPu<Dim>(out.samples, options, &out.puReport));
+  const PuReport& pr = out.puReport;
+  out.report.nSamples = out.samples.size();
+  out.report.nUnknowns = pr.unknowns;
+  out.report.solver = "partition-of-unity/" + pr.solver;
+  out.report.conditionEstimate = pr.maxConditionEstimate;
+  out.report.fitMs = pr.fitMs;
+  out.report.assemblyMs = pr.treeMs;  // the tree; the local fits are all "solve"
+  out.report.solveMs = pr.fitMs - pr.treeMs;
+  out.report.warnings = pr.warnings;
+  out.warnings.insert(out.warnings.end(), pr.warnings.begin(), pr.warnings.end());
+  if (scene.transform.isIdentity()) {
+    out.data = out.samples;
+    return;
+  }
+  const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
+  TransformReport& tr = out.transform;
+  auto t0 = std::chrono::steady_clock::now();
+  auto updated = std::make_unique<PuModel<Dim>>(transformPu<Dim>(*out.pu, T));
+  tr.updateMs = msSince(t0);
+  const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
+  // The re-solve keeps the tree too (built in the frame T), so both are the same PU construction
+  // on the transformed data; only the local solves differ.
+  t0 = std::chrono::steady_clock::now();
+  auto resolved = std::make_unique<PuModel<Dim>>(fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
+  tr.resolveMs = msSince(t0);
+  compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
+  std::string why;
+  tr.exact = coefficientUpdateIsExact(Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, &why);
+  tr.method = tr.exact ? "coefficient-update" : "re-solve";
+  if (!tr.exact) out.warnings.push_back("transform: " + why);
+  out.pu = tr.exact ? std::move(updated) : std::move(resolved);
+  out.transformed = true;
+  out.data = moved;
+}
+
 }  // namespace
+
+PuOptions scenePuOptions(const FitSpec& f) {
+  PuOptions o;
+  o.local = HrbfOptions{Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, f.solver};
+  o.maxPointsPerBox = f.partition.maxPointsPerBox;
+  o.boxSize = f.partition.boxSize;
+  o.overlap = f.partition.overlap;
+  o.blend = f.partition.blend;
+  return o;
+}
 
 template <int Dim>
 HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& warnings) {
@@ -86,13 +167,16 @@ SceneFit<Dim> fitScene(const Scene& scene) {
   if (scene.dimension() != Dim || (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d))
     throw InputError(scene.sourceName + ": mode: '" + std::string(sceneModeName(scene.mode)) +
                      "' scenes have no implicit fit");
-  if (scene.fit.partition.enabled)
-    throw InputError(scene.sourceName +
-                     ": fit.partition.enabled: partition of unity is not available in this version; "
-                     "set it to false");
+  if (scene.fit.partition.enabled && scene.fit.method != FitMethod::Hrbf)
+    throw InputError(scene.sourceName + ": fit.partition.enabled: partition of unity fits method 'hrbf' only (got '" +
+                     std::string(fitMethodName(scene.fit.method)) + "')");
   SceneFit<Dim> out;
   out.samples = sceneSamples<Dim>(scene, out.warnings);
   const FitSpec& f = scene.fit;
+  if (f.partition.enabled) {
+    fitScenePu(scene, out);
+    return out;
+  }
   auto fitOn = [&](const HermiteSamples<Dim>& s, double scale, FitReport* rep) -> std::unique_ptr<RadialSum<Dim>> {
     const Kernel kernel{f.kernel, f.radius * scale};
     if (f.method == FitMethod::Hrbf)
@@ -118,27 +202,7 @@ SceneFit<Dim> fitScene(const Scene& scene) {
     FitReport rep;
     std::unique_ptr<RadialSum<Dim>> resolved = fitOn(moved, T.q, &rep);
     tr.resolveMs = msSince(t0);
-    // Probes: the transformed samples and fixed pseudo-random points in their box grown by 25 %.
-    Box<Dim> box = boundingBox<Dim>(moved.points);
-    const Vec<Dim> grow = Vec<Dim>::Constant(0.25 * box.extent().maxCoeff());
-    box.lo -= grow;
-    box.hi += grow;
-    Points<Dim> probes(Dim, moved.size() + 256);
-    probes.leftCols(moved.size()) = moved.points;
-    std::uint64_t state = 0x9E3779B97F4A7C15ull;
-    for (Eigen::Index i = moved.size(); i < probes.cols(); ++i)
-      for (int k = 0; k < Dim; ++k) {
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        const double u = double(state >> 11) * 0x1.0p-53;
-        probes(k, i) = box.lo(k) + u * (box.hi(k) - box.lo(k));
-      }
-    Eigen::VectorXd fu, fr;
-    Points<Dim> gu, gr;
-    updated->evaluateBatch(probes, fu, &gu);
-    resolved->evaluateBatch(probes, fr, &gr);
-    tr.probes = static_cast<int>(probes.cols());
-    tr.maxAbsDf = (fu - fr).cwiseAbs().maxCoeff();
-    tr.maxGradDiff = (gu - gr).colwise().norm().maxCoeff();
+    compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
     std::string why;
     tr.exact = coefficientUpdateIsExact(Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, &why);
     tr.method = tr.exact ? "coefficient-update" : "re-solve";
@@ -158,7 +222,7 @@ FitResiduals fitResiduals(const SceneFit<Dim>& fit) {
   if (fit.data.size() == 0) return r;
   Eigen::VectorXd f;
   Points<Dim> G;
-  fit.model->evaluateBatch(fit.data.points, f, &G);
+  fit.field().evaluateBatch(fit.data.points, f, &G);
   r.maxAbsF = f.cwiseAbs().maxCoeff();
   r.maxGradError = (G - fit.data.normals).colwise().norm().maxCoeff();
   return r;

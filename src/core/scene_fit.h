@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/hrbf.h"
+#include "core/pu_model.h"
 #include "core/rbf_offset.h"
 #include "core/scene_file.h"
 #include "core/transform.h"
@@ -42,15 +43,19 @@ template <int Dim>
 struct SceneFit {
   HermiteSamples<Dim> samples;             // the scene's data, before the transform
   HermiteSamples<Dim> data;                // what the model interpolates: samples, transformed if asked
-  std::unique_ptr<RadialSum<Dim>> model;   // the fitted (and transformed) field
+  std::unique_ptr<RadialSum<Dim>> model;   // the fitted (and transformed) global field; null for PU
+  std::unique_ptr<PuModel<Dim>> pu;        // the partition-of-unity field when fit.partition.enabled
+  PuReport puReport;                       // of the PU fit on the untransformed data
   FitReport report;                        // of the fit on the untransformed data
   std::vector<std::string> warnings;       // data + fit warnings, in order
   bool transformed = false;
   TransformReport transform;
 
   // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
-  // (A partition-of-unity fit will hold its model beside `model`, which stays the global fit.)
-  const ImplicitField<Dim>& field() const { return *model; }
+  const ImplicitField<Dim>& field() const {
+    if (pu) return *pu;
+    return *model;
+  }
 };
 
 // Residuals of a fitted scene against the data it interpolates (SceneFit::data).
@@ -61,8 +66,11 @@ struct FitResiduals {
 template <int Dim>
 FitResiduals fitResiduals(const SceneFit<Dim>& fit);
 
+// The PU options of a scene's `fit` (kernel, polynomial, smoothing, solver, `fit.partition`).
+PuOptions scenePuOptions(const FitSpec& fit);
+
 // Throws InputError for scene settings that cannot be fitted (wrong mode, partition of unity
-// before it exists) and NumericalError from the solver.
+// with a method other than hrbf) and NumericalError from the solver.
 template <int Dim>
 SceneFit<Dim> fitScene(const Scene& scene);
 

@@ -340,3 +340,48 @@ TEST_CASE("patch-table --json: rows with splits, per-coordinate error and Hermit
   CHECK(r.rc == 0);
   CHECK(r.out.find("3x3") != std::string::npos);
 }
+
+TEST_CASE("a partition-of-unity scene fits, reports its boxes, transforms and evaluates") {
+  const std::string scene = writeTemp("pu.json", R"({"version": 1, "mode": "implicit3d", "data": {"preset": "torus", "count": 600},
+    "fit": {"kernel": "cubic", "polynomial": "linear", "partition": {"enabled": true, "max_points_per_box": 20}}})");
+  auto r = runCli("fit " + scene + " --json --coefficients");
+  REQUIRE(r.rc == 0);
+  json j = json::parse(r.out);
+  REQUIRE(j["partition"].is_object());
+  const int boxes = j["partition"]["boxes"].get<int>();
+  CHECK(boxes > 8);
+  CHECK(j["partition"]["max_box_samples"].get<int>() <= 20);
+  CHECK(j["max_abs_f"].get<double>() <= 1e-9);
+  CHECK(j["max_grad_error"].get<double>() <= 1e-8);
+  REQUIRE(j["model"]["boxes"].size() == static_cast<std::size_t>(boxes));
+  const json& box0 = j["model"]["boxes"][0];
+  CHECK(box0["lo"].size() == 3);
+  CHECK(box0["support"]["hi"].size() == 3);
+  CHECK(box0["model"]["alpha"].size() == box0["model"]["centres"].size());
+  CHECK(box0["model"]["poly"].size() == 4);
+
+  r = runCli("fit " + scene + " --json --set 'transform={\"translate\":[0.5,-1,2],\"rotate_axis_angle_deg\":[1,1,0,40],\"scale\":1.5}'");
+  REQUIRE(r.rc == 0);
+  j = json::parse(r.out);
+  REQUIRE(j["transform"].is_object());
+  CHECK(j["transform"]["method"] == "coefficient-update");
+  CHECK(j["transform"]["max_abs_df"].get<double>() <= 1e-9);
+  CHECK(j["transform"]["max_grad_diff"].get<double>() <= 1e-8);
+  CHECK(j["max_abs_f"].get<double>() <= 1e-9);
+
+  // The torus preset (R = 0.7, r = 0.3 about z): f ≈ 0 on the outer equator, ∇f along +x there.
+  const std::string probes = writeTemp("pu_probes.txt", "1 0 0\n");
+  const auto ev = runCli("eval " + scene + " --at " + probes);
+  REQUIRE(ev.rc == 0);
+  std::istringstream in(ev.out);
+  double f, gx, gy, gz;
+  in >> f >> gx >> gy >> gz;
+  CHECK(std::abs(f) <= 1e-3);
+  CHECK(gx / std::sqrt(gx * gx + gy * gy + gz * gz) >= 0.99);
+
+  const std::string offset = writeTemp("pu_offset.json", R"({"version": 1, "mode": "implicit2d", "data": {"preset": "curve2d"},
+    "fit": {"method": "rbf-offset", "partition": {"enabled": true}}})");
+  r = runCli("fit " + offset);
+  CHECK(r.rc == 1);
+  CHECK(r.err.find("fit.partition.enabled") != std::string::npos);
+}

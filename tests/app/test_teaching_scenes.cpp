@@ -22,10 +22,10 @@ TEST_CASE("every teaching scene in assets/scenes loads and fits") {
     const Scene again = parseScene(sceneToJson(scene), path, entry.path().parent_path().string());
     CHECK(sceneToJson(again) == sceneToJson(scene));
     auto check = [&](const auto& fit, const auto& samples) {
-      REQUIRE(fit.model);
+      REQUIRE((fit.model || fit.pu));  // a global fit or a partition of unity (fit.partition)
       CHECK(fit.report.nSamples == samples.size());
       Eigen::VectorXd f;
-      fit.model->evaluateBatch(samples.points, f);
+      fit.field().evaluateBatch(samples.points, f);
       CHECK(f.allFinite());
       const bool illConditioned = fit.report.conditionEstimate > 1e12;
       bool warned = false;

@@ -117,12 +117,17 @@ TEST_CASE("io_points: 2D files") {
   const std::string bad = dir.write("bad.xyn", "0 0 1 0\n1 1 1\n");
   CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(bad, warnings),
                        (bad + ":2: expected 4 numbers (x y nx ny), got 3").c_str(), InputError);
-  const std::string positions = dir.write("pos.xyn", "0 0\n1 1\n");
-  CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(positions, warnings),
-                       (positions + ": has no normals (2 columns); normal estimation is not available yet — give x "
-                                    "y nx ny per line")
-                           .c_str(),
-                       InputError);
+  // Positions only: normals are estimated, with a warning saying so.
+  std::string circle;
+  for (int i = 0; i < 40; ++i)
+    circle += std::to_string(std::cos(2 * M_PI * i / 40)) + " " + std::to_string(std::sin(2 * M_PI * i / 40)) + "\n";
+  const std::string positions = dir.write("pos.xyn", circle);
+  warnings.clear();
+  const auto est = hermite::loadPointFile2d(positions, warnings);
+  REQUIRE(est.size() == 40);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find("has no normals (2 columns): normals estimated") != std::string::npos);
+  for (int i = 0; i < est.size(); ++i) CHECK(est.normals.col(i).dot(est.points.col(i).normalized()) > 0.99);
   // A file of the other dimension is refused by its extension.
   CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(kPoints + "/tetra.xyzn", warnings),
                        (kPoints + "/tetra.xyzn: a 3D point file (.xyzn) cannot be used in a 2D scene; use .xyn (x y "
@@ -138,9 +143,6 @@ TEST_CASE("io_points: 2D files") {
 
 TEST_CASE("io_points: malformed files name the file and line") {
   const std::string p = kPoints;
-  CHECK(load3dError(p + "/positions_only.xyz") ==
-        p + "/positions_only.xyz: has no normals (3 columns); normal estimation is not available yet — give x y z "
-            "nx ny nz per line");
   CHECK(load3dError(p + "/short_line.xyz") == p + "/short_line.xyz:4: expected 6 numbers (x y z nx ny nz), got 5");
   CHECK(load3dError(p + "/not_a_number.xyz") == p + "/not_a_number.xyz:2: 'abc' is not a number");
   CHECK(load3dError(p + "/nan.xyz") == p + "/nan.xyz:2: 'nan' is not a finite number");
@@ -153,9 +155,11 @@ TEST_CASE("io_points: malformed files name the file and line") {
   CHECK(load3dError(four) == four + ":3: expected 6 numbers (x y z nx ny nz), got 4");
   const std::string seven = dir.write("seven.xyz", "0 0 0 0 0 1 9\n");
   CHECK(load3dError(seven) == seven + ":1: expected 6 numbers (x y z nx ny nz), got 7");
-  // Some lines with normals, some without: the first bad line is reported.
+  // Some lines with normals, some without: the first line decides, the first other line is reported.
   const std::string mixed = dir.write("mixed.xyz", "0 0 0\n1 0 0 1 0 0\n");
-  CHECK(load3dError(mixed) == mixed + ":1: expected 6 numbers (x y z nx ny nz), got 3");
+  CHECK(load3dError(mixed) == mixed + ":2: expected 3 numbers (x y z) like line 1, got 6");
+  const std::string mixed2 = dir.write("mixed2.xyz", "1 0 0 1 0 0\n0 0 0\n");
+  CHECK(load3dError(mixed2) == mixed2 + ":2: expected 6 numbers (x y z nx ny nz), got 3");
   const std::string glued = dir.write("glued.xyz", "0 0 0 0 0 1.5abc\n");
   CHECK(load3dError(glued) == glued + ":1: '1.5abc' is not a number");
   const std::string commas = dir.write("commas.xyz", "0,0,0,0,0,1\n");

@@ -303,6 +303,13 @@ TEST_CASE("scene: fit validation") {
   CHECK(s.fit.shift == 0.05);
   CHECK(s.fit.solver == hermite::SolverChoice::Cholesky);
   CHECK(s.fit.partition == hermite::PartitionSpec{true, 8, 0.25, 1.0});
+
+  // Added key fit.partition.blend: smooth (default) | hard.
+  CHECK(parse(scene3d(R"("fit": {"partition": {"blend": "hard"}})")).fit.partition.blend == hermite::PuBlend::Hard);
+  CHECK(errorOf(scene3d(R"("fit": {"partition": {"blend": "soft"}})")) ==
+        "x.json: fit.partition.blend: unknown blend 'soft' (expected smooth or hard)");
+  CHECK(errorOf(scene3d(R"("fit": {"partition": {"blend": 1}})")) ==
+        "x.json: fit.partition.blend: must be a string (got 1)");
 }
 
 TEST_CASE("scene: fixture with an out-of-range radius names the file and key") {
