@@ -173,7 +173,7 @@ TEST_CASE("scene: top-level structure errors") {
   CHECK(errorOf(R"({"version": 1, "mode": "implicit4d", "data": {"preset": "a"}})") ==
         "x.json: mode: must be one of: implicit2d, implicit3d, patch, holefill (got string \"implicit4d\")");
   CHECK(errorOf(scene3d(R"("colour": 1)")) ==
-        "x.json: colour: unknown key (expected one of: version, mode, data, fit, transform, view, patch)");
+        "x.json: colour: unknown key (expected one of: version, mode, data, fit, transform, view, patch, holefill)");
   CHECK(errorOf(scene3d(R"("fit": 3)")) == "x.json: fit: must be an object (got 3)");
 }
 
