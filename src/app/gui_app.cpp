@@ -166,11 +166,12 @@ void GuiApp::redrawViewIfStale() {
   const ViewQuality quality = interactFrames_ > kSettleFrames ? ViewQuality::Settled : ViewQuality::Interactive;
   const bool split = compare.enabled && shownCompare_ && !panels.hideUi;
   const int w = split ? std::max(1, viewW_ / 2) : viewW_;
-  Drawn now{shown_.get(), split ? shownCompare_.get() : nullptr, scene().view, viewW_, viewH_, quality, split};
+  Drawn now{shown_.get(), split ? shownCompare_.get() : nullptr, scene().view, viewW_, viewH_, colourRange_, quality, split};
   if (drawn_ && drawn_->fit == now.fit && drawn_->compare == now.compare && drawn_->view == now.view &&
       drawn_->width == now.width && drawn_->height == now.height && drawn_->quality == now.quality &&
-      drawn_->compareOn == now.compareOn)
+      drawn_->compareOn == now.compareOn && drawn_->colourRange == now.colourRange)
     return;
+  renderer_.colourRange = compareRenderer_.colourRange = colourRange_;
   // A drag draws the 3D view at half resolution (the texture is stretched): ~4× fewer rays.
   const bool half = quality == ViewQuality::Interactive && dimension() == 3;
   const int rw = half ? std::max(1, w / 2) : w, rh = half ? std::max(1, viewH_ / 2) : viewH_;
@@ -221,6 +222,54 @@ void GuiApp::drawViewImage(const FrameInput& in) {
     legend.cornerX = float(viewX_ + (drawn_->compareOn ? viewW_ / 2 : viewW_));
     legend.cornerY = float(viewY_ + viewH_);
     render::drawColorLegend(bg, legend);
+  }
+}
+
+// The partition-of-unity leaves (their boxes: supports shrunk by their factor), in the model's
+// frame mapped to the world, projected into the view as ImGui lines.
+void GuiApp::drawPartitionBoxes() {
+  const FitOutcome* f = shown_.get();
+  if (!f) return;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const ImU32 colour = IM_COL32(90, 60, 160, 170);
+  const Vec<2> o = viewOrigin();
+  constexpr std::size_t kMaxBoxes = 4000;  // beyond this the lines only hide the view
+  if (f->fit2 && f->fit2->pu) {
+    const auto& pu = *f->fit2->pu;
+    const View2d view = sceneView2d(scene(), drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_, viewH_);
+    for (std::size_t k = 0; k < std::min(pu.leaves().size(), kMaxBoxes); ++k) {
+      const auto& leaf = pu.leaves()[k];
+      const Vec<2> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;
+      ImVec2 pts[4];
+      const Vec<2> corners[4] = {c + Vec<2>(-h.x(), -h.y()), c + Vec<2>(h.x(), -h.y()), c + Vec<2>(h.x(), h.y()),
+                                 c + Vec<2>(-h.x(), h.y())};
+      for (int i = 0; i < 4; ++i) {
+        const Vec<2> q = view.worldToPixel(pu.frame().apply(corners[i])) + o;
+        pts[i] = ImVec2(float(q.x()), float(q.y()));
+      }
+      dl->AddPolyline(pts, 4, colour, ImDrawFlags_Closed, 1.0f);
+    }
+  } else if (f->fit3 && f->fit3->pu) {
+    const auto& pu = *f->fit3->pu;
+    const Camera cam = sceneCamera(scene(), drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_, viewH_);
+    for (std::size_t k = 0; k < std::min(pu.leaves().size(), kMaxBoxes); ++k) {
+      const auto& leaf = pu.leaves()[k];
+      const Vec<3> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;
+      const auto corner = [&](int i) {
+        return pu.frame().apply(Vec<3>(c.x() + ((i & 1) ? h.x() : -h.x()), c.y() + ((i & 2) ? h.y() : -h.y()),
+                                       c.z() + ((i & 4) ? h.z() : -h.z())));
+      };
+      for (int i = 0; i < 8; ++i)
+        for (int bit = 1; bit <= 4; bit <<= 1) {
+          if (i & bit) continue;
+          const Vec<3> a = corner(i), b = corner(i | bit);
+          if (cam.projection() == Projection::Perspective &&
+              ((a - cam.eye()).dot(cam.forward()) <= 0 || (b - cam.eye()).dot(cam.forward()) <= 0))
+            continue;
+          const Vec<2> pa = cam.project(a) + o, pb = cam.project(b) + o;
+          dl->AddLine(ImVec2(float(pa.x()), float(pa.y())), ImVec2(float(pb.x()), float(pb.y())), colour, 1.0f);
+        }
+    }
   }
 }
 
@@ -275,6 +324,7 @@ void GuiApp::frame(const FrameInput& in) {
   drawViewImage(in);
   drawSelectionOverlay();
   drawPatchHandles();
+  if (showPartitionBoxes_) drawPartitionBoxes();
   if (panels.help) drawHelpOverlay();
   if (!panels.hideUi) drawStatusBar();
   ImGui::Render();

@@ -184,6 +184,7 @@ class GuiApp {
     const FitOutcome* compare = nullptr;
     ViewSpec view;
     int width = 0, height = 0;
+    double colourRange = 0;
     ViewQuality quality = ViewQuality::Settled;
     bool compareOn = false;
   };
@@ -210,6 +211,9 @@ class GuiApp {
   std::string csvPath_ = "diagnostics.csv";
   std::map<std::string, std::array<float, 4>> widgets_;
 
+  bool showPartitionBoxes_ = false;
+  double colourRange_ = 0;  // 2D: 0 = automatic
+  void drawPartitionBoxes();
   // Panels' text fields
   std::string openPath_, savePath_, exportPath_;
   std::string meshPath_ = "mesh.obj", meshExportPath_ = "filled.glb", zeroSetPath_ = "zero-set.glb";

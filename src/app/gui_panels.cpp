@@ -17,6 +17,7 @@
 #include "core/errors.h"
 #include "core/hermite_samples.h"
 #include "core/io_points.h"
+#include "core/normal_estimation.h"
 #include "core/presets.h"
 #include "core/scene_fit.h"
 #include "core/view_bounds.h"
@@ -225,6 +226,37 @@ void GuiApp::drawDataPanel() {
       setStatus(e.what(), true);
     }
   }
+  if (ImGui::Button("Re-estimate normals")) {
+    try {
+      std::vector<std::string> warnings;
+      Scene n = dim == 2 ? withInlineSamples<2>(scene(), warnings) : withInlineSamples<3>(scene(), warnings);
+      if (dim == 2) {
+        HermiteSamples<2> d = inlineSamples<2>(n);
+        d.normals = estimateNormals<2>(d.points);
+        setInlineSamples<2>(n, d);
+      } else {
+        HermiteSamples<3> d = inlineSamples<3>(n);
+        d.normals = estimateNormals<3>(d.points);
+        setInlineSamples<3>(n, d);
+      }
+      document_.apply(n, "re-estimate normals");
+      setStatus("normals re-estimated (PCA over 10 neighbours, oriented along a spanning tree)");
+    } catch (const std::exception& e) {
+      setStatus(e.what(), true);
+    }
+  }
+  helpMarker("Replace every normal by the PCA estimate over its nearest neighbours, oriented consistently "
+             "(minimum spanning tree) and outward.");
+  ImGui::SameLine();
+  const bool flipAll = ImGui::Button("Flip all normals");
+  recordWidget("data.flip_all");
+  if (flipAll) {
+    std::vector<std::string> warnings;
+    Scene n = dim == 2 ? withInlineSamples<2>(scene(), warnings) : withInlineSamples<3>(scene(), warnings);
+    for (auto& normal : n.data.normals)
+      for (double& c : normal) c = -c;
+    document_.apply(n, "flip all normals");
+  }
   ImGui::Separator();
   const FitOutcome* f = shown_.get();
   if (f && f->ok()) {
@@ -415,6 +447,17 @@ void GuiApp::drawViewPanel() {
   } else {
     const Projection projections[] = {Projection::Perspective, Projection::Orthographic};
     changed |= comboOf("projection", v.projection, projections, projectionName);
+  }
+  if (s.mode == SceneMode::Implicit2d || s.mode == SceneMode::Implicit3d) {
+    ImGui::Checkbox("partition boxes", &showPartitionBoxes_);
+    recordWidget("view.partition_boxes");
+    helpMarker("The leaves of a partition-of-unity fit (Fit > partition of unity).");
+  }
+  if (s.mode == SceneMode::Implicit2d) {
+    double range = colourRange_;
+    if (ImGui::InputDouble("colour range", &range, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && range >= 0)
+      colourRange_ = range;
+    helpMarker("The heat map covers [-range, range]; 0 = the largest |f| in the view.");
   }
   float bg[3] = {float(v.background[0]), float(v.background[1]), float(v.background[2])};
   if (ImGui::ColorEdit3("background", bg, ImGuiColorEditFlags_NoInputs)) {

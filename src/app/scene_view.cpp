@@ -46,6 +46,7 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
     o.bounds = viewBounds<2>(v, f.data.points);
     o.outsideColor = v.background;
     o.gridScale = quality == ViewQuality::Interactive ? 0.5 : 1.0;
+    o.style.range = colourRange;
     const View2d view = sceneView2d(viewScene, width, height);
     view2d_->setField(f.field(), view, o, f.data.points, f.data.normals);
     render::OffscreenTarget target(width, height, false);

@@ -47,6 +47,9 @@ class SceneViewRenderer {
   SceneViewResult render(const std::shared_ptr<const FitOutcome>& fit, const Scene& viewScene, int width, int height,
                          ViewQuality quality);
 
+  // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
+  double colourRange = 0;
+
  private:
   std::shared_ptr<const FitOutcome> field_;  // what the tracer / field view reference
   std::unique_ptr<render::ImplicitTracer> tracer_;

@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 
 #include "app/gui_app.h"
@@ -296,6 +297,38 @@ TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier 
   CHECK(h.app->shownFit()->patch->mesh.positions.isApprox(buildPatchView(edited).mesh.positions, 1e-14));
   // Undo twice: the form, then the drag — the original document.
   h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
+
+TEST_CASE("UI: a partition-of-unity fit shows its boxes; Flip all normals is one undoable edit") {
+  Scene s = scene2d(120);
+  s.fit.partition.enabled = true;
+  s.fit.partition.maxPointsPerBox = 10;
+  Harness h(s, true, 1000, 700);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  REQUIRE(h.app->shownFit()->fit2);
+  REQUIRE(h.app->shownFit()->fit2->pu);
+  const ImageRgba8 without = h.target->read();
+  const auto box = h.app->widgetRect("view.partition_boxes");
+  REQUIRE(box);
+  h.click(0.5 * ((*box)[0] + (*box)[2]), 0.5 * ((*box)[1] + (*box)[3]));
+  h.frames(1);
+  const ImageRgba8 with = h.target->read();
+  int changed = 0;
+  for (int j = 0; j < with.height; ++j)
+    for (int i = int(kLeftPanelWidth) + 1; i < with.width; ++i) changed += std::memcmp(with.at(i, j), without.at(i, j), 3) != 0;
+  CHECK(changed > 500);  // the box lines over the view
+
+  const auto flip = h.app->widgetRect("data.flip_all");
+  REQUIRE(flip);
+  h.click(0.5 * ((*flip)[0] + (*flip)[2]), 0.5 * ((*flip)[1] + (*flip)[3]));
+  const Scene& flipped = h.app->document().scene();
+  REQUIRE(flipped.data.isInline());
+  std::vector<std::string> warnings;
+  const Scene original = withInlineSamples<2>(s, warnings);
+  for (std::size_t k = 0; k < flipped.data.normals.size(); ++k) CHECK(flipped.data.normals[k][0] == -original.data.normals[k][0]);
   h.key(GLFW_KEY_Z, true);
   CHECK(h.app->document().scene() == s);
 }
