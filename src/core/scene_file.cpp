@@ -55,13 +55,29 @@ std::string_view traceModeName(TraceMode t) {
   return "auto";
 }
 
+std::string_view transformMethodName(TransformMethod m) {
+  switch (m) {
+    case TransformMethod::Auto: return "auto";
+    case TransformMethod::Update: return "update";
+    case TransformMethod::Resolve: return "re-solve";
+  }
+  return "auto";
+}
+
+bool TransformSpec::matrixIsIdentity() const {
+  const std::size_t n = matrix.size() == 4 ? 2 : 3;
+  for (std::size_t i = 0; i < matrix.size(); ++i)
+    if (matrix[i] != (i / n == i % n ? 1.0 : 0.0)) return false;
+  return true;
+}
+
 bool TransformSpec::isIdentity() const {
   const bool noTranslation =
       std::all_of(translate.begin(), translate.end(), [](double v) { return v == 0.0; });
   // A whole number of turns is the identity rotation exactly, whatever the axis.
   const bool noRotation3d = std::fmod(rotateAxisAngleDeg[3], 360.0) == 0.0;
   const bool noRotation2d = std::fmod(rotateDeg, 360.0) == 0.0;
-  return noTranslation && noRotation3d && noRotation2d && scale == 1.0;
+  return noTranslation && noRotation3d && noRotation2d && scale == 1.0 && matrixIsIdentity();
 }
 
 namespace {
@@ -389,7 +405,7 @@ FitSpec SceneReader::readFit(const json& v) const {
 }
 
 TransformSpec SceneReader::readTransform(const json& v, int dim) const {
-  object(v, "transform", {"translate", "rotate_axis_angle_deg", "rotate_deg", "scale"});
+  object(v, "transform", {"translate", "rotate_axis_angle_deg", "rotate_deg", "scale", "method", "matrix"});
   TransformSpec t;
   t.translate.assign(static_cast<std::size_t>(dim), 0.0);
   if (dim == 2) {
@@ -416,6 +432,22 @@ TransformSpec SceneReader::readTransform(const json& v, int dim) const {
     }
   }
   if (const json* x = find(v, "scale")) t.scale = positive(*x, "transform.scale");
+  if (const json* x = find(v, "method"))
+    t.method = choice<TransformMethod>(*x, "transform.method",
+                                       {{"auto", TransformMethod::Auto}, {"update", TransformMethod::Update},
+                                        {"re-solve", TransformMethod::Resolve}});
+  if (const json* x = find(v, "matrix")) {
+    const std::size_t n = std::size_t(dim) * std::size_t(dim);
+    t.matrix = numbers(*x, "transform.matrix", n, dim == 2 ? "[m00, m01, m10, m11] (row-major)" : "9 numbers, row-major");
+    double det = 0;
+    const auto& m = t.matrix;
+    if (dim == 2) det = m[0] * m[3] - m[1] * m[2];
+    else det = m[0] * (m[4] * m[8] - m[5] * m[7]) - m[1] * (m[3] * m[8] - m[5] * m[6]) + m[2] * (m[3] * m[7] - m[4] * m[6]);
+    double norm = 0;
+    for (double e : m) norm = std::max(norm, std::abs(e));
+    if (!(std::abs(det) > 1e-12 * std::pow(norm, dim)))
+      fail("transform.matrix", "must be invertible (its determinant is " + formatNumber(det) + ")");
+  }
   return t;
 }
 
@@ -797,6 +829,8 @@ json sceneToJson(const Scene& scene) {
     translate.push_back(static_cast<std::size_t>(i) < t.translate.size() ? t.translate[static_cast<std::size_t>(i)] : 0.0);
   json transform = {{"translate", std::move(translate)}, {"scale", t.scale}};
   if (dim == 2) transform["rotate_deg"] = t.rotateDeg;
+  transform["method"] = std::string(transformMethodName(t.method));
+  if (!t.matrix.empty()) transform["matrix"] = t.matrix;
   else transform["rotate_axis_angle_deg"] = toArray(t.rotateAxisAngleDeg);
   doc["transform"] = std::move(transform);
 

@@ -64,11 +64,23 @@ struct FitSpec {
   bool operator==(const FitSpec&) const = default;
 };
 
+// Which model a transformed similarity fit uses: auto = the coefficient update where it is the
+// re-solved interpolant (DESIGN.md §3 conditions), else the re-solve; update / re-solve force one
+// (the GUI's switch, to compare them live).
+enum class TransformMethod { Auto, Update, Resolve };
+std::string_view transformMethodName(TransformMethod m);  // auto, update, re-solve
+
 struct TransformSpec {
   std::vector<double> translate;                     // 3 numbers (3D) or 2 (2D); default zeros
   std::array<double, 4> rotateAxisAngleDeg{0, 0, 1, 0};  // 3D: axis (non-zero) + degrees
   double rotateDeg = 0.0;                            // 2D: counter-clockwise degrees
   double scale = 1.0;                                // > 0, uniform
+  TransformMethod method = TransformMethod::Auto;    // added key `method`
+  // Added key `matrix`: a general linear map M (Dim × Dim, row-major; empty = identity) applied
+  // after scale·R: x ↦ M·scale·R·x + translate. A non-similarity M (non-uniform scale, shear)
+  // makes the field the exact composition f(T⁻¹x), which is not the re-solved interpolant.
+  std::vector<double> matrix;
+  bool matrixIsIdentity() const;
   bool isIdentity() const;
   bool operator==(const TransformSpec&) const = default;
 };

@@ -62,6 +62,75 @@ void compareOnProbes(const ImplicitField<Dim>& updated, const ImplicitField<Dim>
   tr.maxGradDiff = (gu - gr).colwise().norm().maxCoeff();
 }
 
+// Whether the transformed fit uses the coefficient update (else the re-solve): transform.method,
+// with `auto` = the update exactly where it is the re-solved interpolant. Records the choice and
+// its warning in the report.
+template <int Dim>
+bool chooseUpdate(const Scene& scene, SceneFit<Dim>& out) {
+  const FitSpec& f = scene.fit;
+  TransformReport& tr = out.transform;
+  std::string why;
+  tr.exact = coefficientUpdateIsExact(Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, &why);
+  const TransformMethod m = scene.transform.method;
+  const bool update = m == TransformMethod::Update || (m == TransformMethod::Auto && tr.exact);
+  tr.method = update ? "coefficient-update" : "re-solve";
+  if (!tr.exact && update)
+    out.warnings.push_back("transform: the coefficient update (transform.method 'update') is q·f(T⁻¹x), not the "
+                           "re-solved interpolant: " + why);
+  else if (!tr.exact)
+    out.warnings.push_back("transform: " + why);
+  return update;
+}
+
+// transform.matrix outside the similarities: g(x) = f(A⁻¹(x − b)) with A = M·q·R, b = translate,
+// compared with a re-solve on the transformed data (points Apᵢ + b, normals A⁻ᵀnᵢ normalised,
+// radius and shift scaled by |det A|^(1/Dim)) so the report says how far it is from one.
+template <int Dim>
+void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
+  const Similarity<Dim> S = sceneSimilarity<Dim>(scene.transform);
+  Mat<Dim> M;
+  for (int i = 0; i < Dim; ++i)
+    for (int j = 0; j < Dim; ++j) M(i, j) = scene.transform.matrix[std::size_t(i * Dim + j)];
+  const Mat<Dim> A = M * (S.q * S.R);
+  TransformReport& tr = out.transform;
+  auto t0 = std::chrono::steady_clock::now();
+  const ImplicitField<Dim>& inner = out.pu ? static_cast<const ImplicitField<Dim>&>(*out.pu) : *out.model;
+  // Non-owning: the wrapped model lives in `out` beside the composition (moves keep it in place).
+  auto composed = std::make_unique<AffineComposedField<Dim>>(
+      std::shared_ptr<const ImplicitField<Dim>>(&inner, [](const ImplicitField<Dim>*) {}), A, S.t);
+  tr.updateMs = msSince(t0);
+  HermiteSamples<Dim> moved;
+  moved.points = (A * out.samples.points).colwise() + S.t;
+  moved.normals = (A.inverse().transpose() * out.samples.normals).colwise().normalized();
+  t0 = std::chrono::steady_clock::now();
+  Scene re = scene;
+  re.transform = TransformSpec{};
+  re.transform.translate.assign(Dim, 0.0);
+  re.data = DataSpec{};
+  for (int i = 0; i < moved.size(); ++i) {
+    re.data.points.emplace_back(moved.points.col(i).data(), moved.points.col(i).data() + Dim);
+    re.data.normals.emplace_back(moved.normals.col(i).data(), moved.normals.col(i).data() + Dim);
+  }
+  const double s = std::pow(std::abs(A.determinant()), 1.0 / Dim);
+  re.fit.radius *= s;
+  re.fit.shift *= s;
+  try {
+    const SceneFit<Dim> resolved = fitScene<Dim>(re);
+    tr.resolveMs = msSince(t0);
+    compareOnProbes<Dim>(*composed, resolved.field(), moved.points, tr);
+  } catch (const std::exception& e) {
+    out.warnings.push_back(std::string("transform: the re-solve for comparison failed: ") + e.what());
+  }
+  tr.exact = false;
+  tr.method = "composition";
+  out.warnings.push_back(
+      "transform: transform.matrix is not a similarity: the field is the composition f(T⁻¹x), not the re-solved "
+      "interpolant of the transformed data");
+  out.composed = std::move(composed);
+  out.transformed = true;
+  out.data = moved;
+}
+
 // The partition-of-unity path of fitScene: samples are loaded; fits, transforms, reports.
 template <int Dim>
 void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
@@ -82,6 +151,10 @@ void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
     out.data = out.samples;
     return;
   }
+  if (!scene.transform.matrixIsIdentity()) {
+    composeAffine(scene, out);
+    return;
+  }
   const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
   TransformReport& tr = out.transform;
   auto t0 = std::chrono::steady_clock::now();
@@ -94,11 +167,7 @@ void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
   auto resolved = std::make_unique<PuModel<Dim>>(fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
   tr.resolveMs = msSince(t0);
   compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
-  std::string why;
-  tr.exact = coefficientUpdateIsExact(Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, &why);
-  tr.method = tr.exact ? "coefficient-update" : "re-solve";
-  if (!tr.exact) out.warnings.push_back("transform: " + why);
-  out.pu = tr.exact ? std::move(updated) : std::move(resolved);
+  out.pu = chooseUpdate(scene, out) ? std::move(updated) : std::move(resolved);
   out.transformed = true;
   out.data = moved;
 }
@@ -186,7 +255,9 @@ SceneFit<Dim> fitScene(const Scene& scene) {
   };
   out.model = fitOn(out.samples, 1.0, &out.report);
   out.warnings.insert(out.warnings.end(), out.report.warnings.begin(), out.report.warnings.end());
-  if (!scene.transform.isIdentity()) {
+  if (!scene.transform.isIdentity() && !scene.transform.matrixIsIdentity()) {
+    composeAffine(scene, out);
+  } else if (!scene.transform.isIdentity()) {
     const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
     TransformReport& tr = out.transform;
     auto t0 = std::chrono::steady_clock::now();
@@ -203,11 +274,7 @@ SceneFit<Dim> fitScene(const Scene& scene) {
     std::unique_ptr<RadialSum<Dim>> resolved = fitOn(moved, T.q, &rep);
     tr.resolveMs = msSince(t0);
     compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
-    std::string why;
-    tr.exact = coefficientUpdateIsExact(Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, &why);
-    tr.method = tr.exact ? "coefficient-update" : "re-solve";
-    if (!tr.exact) out.warnings.push_back("transform: " + why);
-    out.model = tr.exact ? std::move(updated) : std::move(resolved);
+    out.model = chooseUpdate(scene, out) ? std::move(updated) : std::move(resolved);
     out.transformed = true;
     out.data = moved;
   } else {

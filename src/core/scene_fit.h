@@ -15,6 +15,7 @@
 #include "core/pu_model.h"
 #include "core/rbf_offset.h"
 #include "core/scene_file.h"
+#include "core/affine_field.h"
 #include "core/transform.h"
 
 namespace hermite {
@@ -52,7 +53,11 @@ struct SceneFit {
   TransformReport transform;
 
   // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
+  // transform.matrix outside the similarities: the exact composition f(T⁻¹x) of the fitted field
+  // (model or pu stay the untransformed fit it wraps).
+  std::unique_ptr<ImplicitField<Dim>> composed;
   const ImplicitField<Dim>& field() const {
+    if (composed) return *composed;
     if (pu) return *pu;
     return *model;
   }
