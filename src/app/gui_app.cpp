@@ -325,6 +325,7 @@ void GuiApp::frame(const FrameInput& in) {
   drawSelectionOverlay();
   drawPatchHandles();
   if (showPartitionBoxes_) drawPartitionBoxes();
+  if (showGizmo_ && (scene().mode == SceneMode::Implicit2d || scene().mode == SceneMode::Implicit3d)) drawGizmo();
   if (panels.help) drawHelpOverlay();
   if (!panels.hideUi) drawStatusBar();
   ImGui::Render();

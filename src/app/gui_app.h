@@ -88,7 +88,7 @@ class GuiApp {
 
   // Panels' visibility (`render --ui` shows them all; tests toggle them).
   struct Panels {
-    bool data = true, fit = true, compare = false, diagnostics = true, view = true, explore = false, help = false;
+    bool data = true, fit = true, compare = false, transform = false, diagnostics = true, view = true, explore = false, help = false;
     bool hideUi = false;  // Tab: only the view
   } panels;
 
@@ -109,6 +109,8 @@ class GuiApp {
   // ("fit.radius", "fit.kernel", "diagnostics.cancel", ...): how scripted UI tests find them.
   std::optional<std::array<float, 4>> widgetRect(const std::string& name) const;
   Vec<2> viewOrigin() const { return Vec<2>(viewX_, viewY_); }
+  // The transform gizmo (tests switch it on and find its handles).
+  void setGizmoVisible(bool on) { showGizmo_ = on; }
   // Saves a screenshot of the next frame to `path` (with or without the panels).
   void requestScreenshot(const std::string& path, bool withUi);
 
@@ -148,6 +150,23 @@ class GuiApp {
   void drawHelpOverlay();
   void drawStatusBar();
   void drawSelectionOverlay();
+  // gui_transform.cpp: the Transform panel and gizmo (issue 7)
+  struct GizmoHandle {
+    enum Kind { Translate, Rotate, Scale } kind = Translate;
+    int axis = 0;
+  };
+  void drawTransformPanel();
+  void drawGizmo();
+  bool pressGizmo(const Vec<2>& mouse);
+  void dragGizmo(const Vec<2>& mouse);
+  std::optional<GizmoHandle> pickGizmo(const Vec<2>& mouse) const;
+  std::vector<GizmoHandle> gizmoHandles() const;
+  std::vector<Vec<2>> gizmoShape(const GizmoHandle& h) const;
+  bool gizmoFrame(Vec<3>& pivot, double& size) const;
+  std::optional<Vec<2>> worldToView(const Vec<3>& x) const;
+  bool showGizmo_ = false;
+  GizmoHandle gizmo_;
+  Vec<2> lastGizmoMouse_ = Vec<2>::Zero();
   // gui_holefill.cpp: hole filling (mode "holefill")
   void drawHolefillPanel();
   // gui_patch.cpp: the patch editor (mode "patch")
@@ -193,7 +212,7 @@ class GuiApp {
 
   // Tools
   int selected_ = -1;
-  enum class Drag { None, Orbit, Pan, Sample, NormalTip, PatchHandle } drag_ = Drag::None;
+  enum class Drag { None, Orbit, Pan, Sample, NormalTip, PatchHandle, Gizmo } drag_ = Drag::None;
   PatchHandle patchHandle_;            // the grabbed patch handle
   Vec<3> patchGrabStart_ = Vec<3>::Zero();
   Vec<2> lastMouse_ = Vec<2>::Zero();

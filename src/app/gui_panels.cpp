@@ -137,6 +137,8 @@ void GuiApp::drawPanels() {
       if (ImGui::CollapsingHeader("Fit")) drawFitPanel();
       ImGui::SetNextItemOpen(panels.compare, ImGuiCond_Once);
       if (ImGui::CollapsingHeader("Compare")) drawComparePanel();
+      ImGui::SetNextItemOpen(panels.transform, ImGuiCond_Once);
+      if (ImGui::CollapsingHeader("Transform")) drawTransformPanel();
     }
     ImGui::SetNextItemOpen(panels.view, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("View")) drawViewPanel();

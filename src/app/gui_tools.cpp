@@ -407,7 +407,8 @@ void GuiApp::handleViewInput(const FrameInput& in) {
   // A drag in progress owns the mouse until release, even over a panel.
   if (drag_ != Drag::None) {
     if (!anyDown) {
-      if (drag_ == Drag::Sample || drag_ == Drag::NormalTip || drag_ == Drag::PatchHandle) document_.end();
+      if (drag_ == Drag::Sample || drag_ == Drag::NormalTip || drag_ == Drag::PatchHandle || drag_ == Drag::Gizmo)
+        document_.end();
       drag_ = Drag::None;
       return;
     }
@@ -417,6 +418,7 @@ void GuiApp::handleViewInput(const FrameInput& in) {
       case Drag::Sample: moveSelected(mouse, false); break;
       case Drag::NormalTip: moveSelected(mouse, true); break;
       case Drag::PatchHandle: dragPatchHandle(mouse, in); break;
+      case Drag::Gizmo: dragGizmo(mouse); break;
       case Drag::None: break;
     }
     return;
@@ -431,6 +433,10 @@ void GuiApp::handleViewInput(const FrameInput& in) {
       return;
     }
     drag_ = in.shift ? Drag::Pan : Drag::Orbit;
+    return;
+  }
+  if (leftPressed && !in.ctrl && !in.shift && showGizmo_ && pressGizmo(mouse)) {
+    drag_ = Drag::Gizmo;
     return;
   }
   if (leftPressed && in.ctrl) {
