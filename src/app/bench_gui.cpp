@@ -33,9 +33,15 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   FrameInput in;
   in.width = width;
   in.height = height;
+  // As the window does: draw, present (offscreen: glFinish, so frames do not queue up in the GL
+  // pipeline) and keep to 60 frames per second (the window's vsync), leaving the cores to the fit.
+  auto lastFrame = std::chrono::steady_clock::now() - std::chrono::milliseconds(17);
   const auto frame = [&] {
+    std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
+    lastFrame = std::chrono::steady_clock::now();
     target.bind();
     app.frame(in);
+    context->present();
   };
   const auto settled = [&] { return app.viewIsCurrent() && !app.worker().busy(); };
   for (int k = 0; k < 2000 && !settled(); ++k) {
