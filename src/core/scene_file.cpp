@@ -829,9 +829,9 @@ json sceneToJson(const Scene& scene) {
     translate.push_back(static_cast<std::size_t>(i) < t.translate.size() ? t.translate[static_cast<std::size_t>(i)] : 0.0);
   json transform = {{"translate", std::move(translate)}, {"scale", t.scale}};
   if (dim == 2) transform["rotate_deg"] = t.rotateDeg;
+  else transform["rotate_axis_angle_deg"] = toArray(t.rotateAxisAngleDeg);
   transform["method"] = std::string(transformMethodName(t.method));
   if (!t.matrix.empty()) transform["matrix"] = t.matrix;
-  else transform["rotate_axis_angle_deg"] = toArray(t.rotateAxisAngleDeg);
   doc["transform"] = std::move(transform);
 
   const ViewSpec& v = scene.view;
