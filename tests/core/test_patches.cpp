@@ -91,6 +91,21 @@ TEST_CASE("a patch grid is C¹ across shared edges") {
   const auto tess = g.tessellate(5);
   CHECK(tess.positions.cols() == 6 * 25);
   CHECK(tess.triangles.cols() == 6 * 32);
+  // Every tessellation vertex is the patch evaluated at its (s, t) — vertex (patch p, a, b) at
+  // s = a/4, t = b/4 — with the unit normal Xs × Xt; triangles face that normal.
+  for (int pi = 0; pi < 6; ++pi)
+    for (int a = 0; a < 5; ++a)
+      for (int b = 0; b < 5; ++b) {
+        const SurfacePoint q = g.patch(pi / g.patchesV(), pi % g.patchesV()).evaluate(a / 4.0, b / 4.0);
+        const int k = pi * 25 + a * 5 + b;
+        CHECK((Vec<3>(tess.positions.col(k)) - q.X).norm() <= 1e-13);
+        CHECK((Vec<3>(tess.normals.col(k)) - q.normal()).norm() <= 1e-12);
+      }
+  for (Eigen::Index t = 0; t < tess.triangles.cols(); ++t) {
+    const Vec<3> a = tess.positions.col(tess.triangles(0, t)), b = tess.positions.col(tess.triangles(1, t)),
+                 c = tess.positions.col(tess.triangles(2, t));
+    CHECK((b - a).cross(c - a).dot(Vec<3>(tess.normals.col(tess.triangles(0, t)))) > 0);
+  }
 }
 
 TEST_CASE("torus patch study: sanity anchors and decreasing error under refinement") {
