@@ -17,7 +17,6 @@
 #include "app/commands.h"
 #include "app/gui_app.h"
 #include "app/scene_loading.h"
-#include "app/ui_panels.h"
 #include "core/errors.h"
 #include "core/image.h"
 #include "core/scene_fit.h"
