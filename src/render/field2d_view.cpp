@@ -1,4 +1,5 @@
 #include "render/field2d_view.h"
+#include "render/glm_convert.h"
 
 #include <algorithm>
 #include <chrono>
@@ -20,8 +21,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
-
-glm::vec3 toGlm(const std::array<double, 3>& a) { return glm::vec3(float(a[0]), float(a[1]), float(a[2])); }
 
 // One instance of marks2d.vert: segment in GL pixel coordinates, colour and full width.
 struct Mark {

@@ -1,4 +1,5 @@
 #include "render/implicit_tracer.h"
+#include "render/glm_convert.h"
 
 #include <algorithm>
 #include <chrono>
@@ -28,15 +29,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
-
-glm::vec3 toGlm(const Vec<3>& v) { return glm::vec3(float(v.x()), float(v.y()), float(v.z())); }
-
-glm::mat4 toGlm(const Eigen::Matrix4d& m) {
-  glm::mat4 out(1.0f);
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) out[c][r] = float(m(r, c));
-  return out;
 }
 
 
@@ -389,8 +381,8 @@ void setTraceUniforms(const Program& p, const Camera& camera, const Box<3>& boun
                                         shading::toByte(settings.background[2]) / 255.0f));
   const auto& fc = shading::kFrontColor;
   const auto& bc = shading::kBackColor;
-  p.setUniform("uFrontColor", glm::vec3(float(fc[0]), float(fc[1]), float(fc[2])));
-  p.setUniform("uBackColor", glm::vec3(float(bc[0]), float(bc[1]), float(bc[2])));
+  p.setUniform("uFrontColor", toGlm(fc));
+  p.setUniform("uBackColor", toGlm(bc));
   p.setUniform("uAmbient", float(shading::kAmbient));
   for (int k = 0; k < 2; ++k) {
     const shading::Light& l = shading::kLights[k];

@@ -1,4 +1,5 @@
 #include "render/mesh_view.h"
+#include "render/glm_convert.h"
 
 #include <glm/glm.hpp>
 
@@ -22,15 +23,6 @@ struct LineVertex {
   float position[3];
   float color[4];
 };
-
-glm::vec3 toGlm(const Vec<3>& v) { return glm::vec3(float(v.x()), float(v.y()), float(v.z())); }
-
-glm::mat4 toGlm(const Eigen::Matrix4d& m) {
-  glm::mat4 out(1.0f);
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) out[c][r] = float(m(r, c));
-  return out;
-}
 
 }  // namespace
 
@@ -96,8 +88,7 @@ ImageRgba8 MeshView::render(const Camera& camera, const MeshDrawData& data) {
       surface_.setUniform("uLightIntensity[" + std::to_string(k) + "]", float(shading::kLights[k].intensity));
     }
     surface_.setUniform("uAmbient", float(shading::kAmbient));
-    surface_.setUniform("uBackColor",
-                        glm::vec3(float(shading::kBackColor[0]), float(shading::kBackColor[1]), float(shading::kBackColor[2])));
+    surface_.setUniform("uBackColor", toGlm(shading::kBackColor));
     surfaceVao_.bind();
     glDrawElements(GL_TRIANGLES, GLsizei(data.triangles.size()), GL_UNSIGNED_INT, nullptr);
   }

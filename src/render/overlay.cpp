@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "render/glm_convert.h"
 #include "render/shader_library.h"
 
 namespace hermite::render {
@@ -59,9 +60,8 @@ void OverlayRenderer::draw(const Camera& camera, const glm::mat4& viewProj, cons
   vertexArray_.setVertexBuffer(0, vertices_, 0, sizeof(OverlayVertex));
   program_.use();
   program_.setUniform("uViewProj", viewProj);
-  program_.setUniform("uEye", glm::vec3(float(camera.eye().x()), float(camera.eye().y()), float(camera.eye().z())));
-  program_.setUniform("uForward", glm::vec3(float(camera.forward().x()), float(camera.forward().y()),
-                                            float(camera.forward().z())));
+  program_.setUniform("uEye", toGlm(camera.eye()));
+  program_.setUniform("uForward", toGlm(camera.forward()));
   program_.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
   // Samples lie on the surface: pull them 0.5 % of the diagonal towards the eye so they win
   // the depth test against their own surface but not against surface in front of them.
