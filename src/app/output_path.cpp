@@ -1,16 +1,15 @@
 #include "app/output_path.h"
 
-#include <cctype>
 #include <filesystem>
 
 #include "core/errors.h"
+#include "core/mesh_io.h"
 
 namespace hermite::app {
 
 std::string lowerExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
+  std::string ext = lowercaseExtension(path);
   if (!ext.empty()) ext.erase(0, 1);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   return ext;
 }
 

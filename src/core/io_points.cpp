@@ -19,13 +19,6 @@ namespace hermite {
 
 namespace {
 
-std::string lowercaseExtension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return ext;
-}
-
 // The whole file in memory: one read, then a pointer walk over the lines.
 std::string readWholeFile(const std::string& path) {
   std::error_code ec;

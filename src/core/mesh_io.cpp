@@ -16,17 +16,17 @@ namespace hermite {
 
 namespace {
 
+constexpr const char* kReadable = ".off, .obj, .ply, .gltf, .glb";
+constexpr const char* kWritable = ".glb, .gltf, .ply, .obj";
+
+}  // namespace
+
 std::string lowercaseExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return ext;
 }
-
-constexpr const char* kReadable = ".off, .obj, .ply, .gltf, .glb";
-constexpr const char* kWritable = ".glb, .gltf, .ply, .obj";
-
-}  // namespace
 
 bool isMeshFileExtension(const std::string& path) {
   const std::string ext = lowercaseExtension(path);

@@ -11,6 +11,10 @@
 
 namespace hermite {
 
+// The extension of `path` in lower case, with its dot (".ply" for "Scan.PLY"; "" when none):
+// what picks the format of mesh, point and output files.
+std::string lowercaseExtension(const std::string& path);
+
 // A triangle mesh (at least one triangle; InputError otherwise, e.g. for a point set).
 TriMesh loadMesh(const std::string& path);
 // Writes .glb, .gltf (buffers embedded), .ply (binary little endian) or .obj. InputError for
