@@ -35,6 +35,7 @@
 
 #include "app/bench_gui.h"
 #include "app/commands.h"
+#include "core/mesh_shapes.h"
 #include "core/patch_document.h"
 #include "app/output.h"
 #include "core/errors.h"
@@ -186,41 +187,16 @@ Result benchMarchingCubes(int centres, int resolution, int repeats) {
           median(total), "ms"};
 }
 
-// A closed torus (R = 0.7, r = 0.3) on an nu × nv parameter grid, counter-clockwise from outside.
-TriMesh benchTorus(int nu, int nv) {
-  TriMesh m;
-  m.vertices.resize(3, nu * nv);
-  m.triangles.resize(3, 2 * nu * nv);
-  auto id = [&](int i, int j) { return (i % nu) * nv + (j % nv); };
-  for (int i = 0; i < nu; ++i)
-    for (int j = 0; j < nv; ++j) {
-      const double u = 2 * M_PI * i / nu, v = 2 * M_PI * j / nv;
-      m.vertices.col(id(i, j)) =
-          Vec<3>((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v));
-      m.triangles.col(2 * id(i, j)) = Eigen::Vector3i(id(i, j), id(i + 1, j), id(i + 1, j + 1));
-      m.triangles.col(2 * id(i, j) + 1) = Eigen::Vector3i(id(i, j), id(i + 1, j + 1), id(i, j + 1));
-    }
-  return m;
-}
-
 Result benchHoleFill(bool quick, int repeats) {
   const int nu = quick ? 100 : 316, nv = quick ? 50 : 158;  // 2·nu·nv ≈ 100k triangles
-  const TriMesh torus = benchTorus(nu, nv);
   // Ten balls centred on the surface, spread over u and v; radius for ≈ 50 boundary edges.
   const double radius = quick ? 0.2 : 0.085;
-  std::vector<int> keep;
-  for (int t = 0; t < torus.triangleCount(); ++t) {
-    bool drop = false;
-    for (int h = 0; h < 10 && !drop; ++h) {
-      const double u = 2 * M_PI * h / 10, v = 2 * M_PI * ((3 * h) % 10) / 10;
-      const Vec<3> c((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v));
-      for (int k = 0; k < 3; ++k) drop = drop || (torus.vertices.col(torus.triangles(k, t)) - c).norm() < radius;
-    }
-    if (!drop) keep.push_back(t);
+  TriMesh holed = parametricTorusMesh(nu, nv, 0.7, 0.3);
+  for (int h = 0; h < 10; ++h) {
+    const double u = 2 * M_PI * h / 10, v = 2 * M_PI * ((3 * h) % 10) / 10;
+    holed = cutBall(holed, Vec<3>((0.7 + 0.3 * std::cos(v)) * std::cos(u), (0.7 + 0.3 * std::cos(v)) * std::sin(u), 0.3 * std::sin(v)),
+                    radius);
   }
-  TriMesh holed = torus;
-  holed.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
-  for (size_t k = 0; k < keep.size(); ++k) holed.triangles.col(static_cast<Eigen::Index>(k)) = torus.triangles.col(keep[k]);
   size_t edges = 0;
   const std::vector<BoundaryLoop> loops = detectHoles(holed);
   for (const BoundaryLoop& l : loops) edges += l.size();
