@@ -72,7 +72,7 @@ void GuiApp::drawHolefillPanel() {
       ImGui::Text("max |f| %.2g, unconverged %d", st.maxAbsF, st.unconverged);
     if (options_.showTimings) ImGui::Text("%.1f ms", st.ms);
     for (const auto& hole : st.holes)
-      if (!hole.note.empty()) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", hole.note.c_str());
+      for (const std::string& note : hole.notes) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", note.c_str());
     inputText("##export", meshExportPath_);
     ImGui::SameLine();
     if (ImGui::Button("Export mesh")) {

@@ -29,6 +29,78 @@ bool isLoneTriangle(const PreparedMesh& prepared, const BoundaryLoop& loop) {
 
 }  // namespace
 
+HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options,
+                     HoleFillStage last, const std::string& name) {
+  HoleOutcome out;
+  if (last == HoleFillStage::Holes) return out;
+  try {
+    if (isLoneTriangle(prepared, loop)) {  // its "hole" is its own back side (a triangle soup?)
+      out.notes.push_back(name + " not filled: it is the boundary of a lone triangle (unwelded vertices?)");
+      return out;
+    }
+    HolePatch patch = advancingFront(prepared, loop, options);
+    for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
+      HoleFillOptions retry = options;
+      std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
+      patch = advancingFront(prepared, loop, retry);
+    }
+    if (!patch.closed) {
+      out.notes.push_back(name + " not filled: " + patch.failure);
+      out.patch = std::move(patch);  // the front as far as it got, for display
+      return out;
+    }
+    if (options.fair && last >= HoleFillStage::Fair) patch = fairPatch(prepared, patch);
+    if (options.fitAndProject && last >= HoleFillStage::Fit && patch.vertices.cols() > 0) {
+      try {
+        const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
+        out.ringPoints = implicit.points;
+        out.ringNormals = implicit.normals;
+        if (last >= HoleFillStage::Project) {
+          ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
+          out.unconverged = projected.unconverged;
+          out.maxAbsF = projected.maxAbsF;
+          if (projected.unconverged > 0)
+            out.notes.push_back(name + ": " + std::to_string(projected.unconverged) +
+                                " vertices did not converge onto the implicit (left faired)");
+          patch = std::move(projected.patch);
+        }
+      } catch (const NumericalError& e) {
+        out.notes.push_back(name + ": implicit fit failed (" + e.what() + "); the faired patch is kept");
+      }
+    }
+    out.patch = std::move(patch);
+    out.filled = true;
+  } catch (const std::exception& e) {  // never let an exception leave a caller's parallel loop
+    out.notes.push_back(name + " not filled: " + e.what());
+  }
+  return out;
+}
+
+TriMesh appendPatches(const TriMesh& mesh, const std::vector<const HolePatch*>& patches) {
+  TriMesh out;
+  Eigen::Index V = mesh.vertices.cols(), T = mesh.triangles.cols();
+  for (const HolePatch* p : patches) {
+    V += p->vertices.cols();
+    T += p->triangles.cols();
+  }
+  out.vertices.resize(3, V);
+  out.triangles.resize(3, T);
+  out.vertices.leftCols(mesh.vertices.cols()) = mesh.vertices;
+  out.triangles.leftCols(mesh.triangles.cols()) = mesh.triangles;
+  Eigen::Index v = mesh.vertices.cols(), t = mesh.triangles.cols();
+  for (const HolePatch* p : patches) {
+    const int shift = static_cast<int>(v) - p->baseId;
+    out.vertices.middleCols(v, p->vertices.cols()) = p->vertices;
+    for (Eigen::Index k = 0; k < p->triangles.cols(); ++k, ++t)
+      for (int c = 0; c < 3; ++c) {
+        const int id = p->triangles(c, k);
+        out.triangles(c, t) = id >= p->baseId ? id + shift : id;
+      }
+    v += p->vertices.cols();
+  }
+  return out;
+}
+
 HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillResult result;
@@ -40,84 +112,28 @@ HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
 
   // Holes are independent: one per thread, each with one BLAS thread (its system is small —
   // 3 × the ring vertices — and threads inside it would only contend).
-  std::vector<HolePatch> perHole(holes.size());
-  std::vector<char> filled(holes.size(), 0);
-  std::vector<std::vector<std::string>> notes(holes.size());
-  std::vector<int> unconverged(holes.size(), 0);
-  std::vector<double> maxAbsF(holes.size(), 0.0);
+  std::vector<HoleOutcome> perHole(holes.size());
   const int threads = threadCount();
   setBlasThreadCount(1);
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t h = 0; h < holes.size(); ++h) {
     const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
                              " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
-    try {
-      if (isLoneTriangle(prepared, holes[h])) {  // its "hole" is its own back side (a triangle soup?)
-        notes[h].push_back(name + " not filled: it is the boundary of a lone triangle (unwelded vertices?)");
-        continue;
-      }
-      HolePatch patch = advancingFront(prepared, holes[h], options);
-      for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
-        HoleFillOptions retry = options;
-        std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
-        patch = advancingFront(prepared, holes[h], retry);
-      }
-      if (!patch.closed) {
-        notes[h].push_back(name + " not filled: " + patch.failure);
-        continue;
-      }
-      if (options.fair) patch = fairPatch(prepared, patch);
-      if (options.fitAndProject && patch.vertices.cols() > 0) {
-        try {
-          const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
-          ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
-          unconverged[h] = projected.unconverged;
-          maxAbsF[h] = projected.maxAbsF;
-          if (projected.unconverged > 0)
-            notes[h].push_back(name + ": " + std::to_string(projected.unconverged) +
-                               " vertices did not converge onto the implicit (left faired)");
-          patch = std::move(projected.patch);
-        } catch (const NumericalError& e) {
-          notes[h].push_back(name + ": implicit fit failed (" + e.what() + "); the faired patch is kept");
-        }
-      }
-      perHole[h] = std::move(patch);
-      filled[h] = 1;
-    } catch (const std::exception& e) {  // never let an exception leave the parallel loop
-      notes[h].push_back(name + " not filled: " + e.what());
-    }
+    perHole[h] = fillHole(prepared, holes[h], options, HoleFillStage::Project, name);
   }
   setThreadCount(threads);
-  std::vector<HolePatch> patches;
-  for (size_t h = 0; h < holes.size(); ++h) {
-    for (std::string& m : notes[h]) result.messages.push_back(std::move(m));
-    result.unconverged += unconverged[h];
-    result.maxAbsF = std::max(result.maxAbsF, maxAbsF[h]);
-    if (filled[h]) patches.push_back(std::move(perHole[h]));
+  std::vector<const HolePatch*> patches;
+  for (HoleOutcome& o : perHole) {
+    for (std::string& m : o.notes) result.messages.push_back(std::move(m));
+    result.unconverged += o.unconverged;
+    result.maxAbsF = std::max(result.maxAbsF, o.maxAbsF);
+    if (o.filled) {
+      patches.push_back(&o.patch);
+      result.trianglesAdded += static_cast<int>(o.patch.triangles.cols());
+    }
   }
-
-  // Append: the patches' new vertices get consecutive ids after the input's.
-  Eigen::Index V = mesh.vertices.cols(), T = mesh.triangles.cols();
-  for (const HolePatch& p : patches) {
-    V += p.vertices.cols();
-    T += p.triangles.cols();
-  }
-  result.mesh.vertices.resize(3, V);
-  result.mesh.triangles.resize(3, T);
-  result.mesh.vertices.leftCols(mesh.vertices.cols()) = mesh.vertices;
-  result.mesh.triangles.leftCols(mesh.triangles.cols()) = mesh.triangles;
-  Eigen::Index v = mesh.vertices.cols(), t = mesh.triangles.cols();
-  for (const HolePatch& p : patches) {
-    const int shift = static_cast<int>(v) - p.baseId;
-    result.mesh.vertices.middleCols(v, p.vertices.cols()) = p.vertices;
-    for (Eigen::Index k = 0; k < p.triangles.cols(); ++k, ++t)
-      for (int c = 0; c < 3; ++c) {
-        const int id = p.triangles(c, k);
-        result.mesh.triangles(c, t) = id >= p.baseId ? id + shift : id;
-      }
-    v += p.vertices.cols();
-    result.trianglesAdded += static_cast<int>(p.triangles.cols());
-  }
+  // The patches' new vertices get consecutive ids after the input's.
+  result.mesh = appendPatches(mesh, patches);
   result.holesFilled = static_cast<int>(patches.size());
   if (mesh.hasNormals()) {  // keep the input's normals; the new vertices get area-weighted ones
     const Eigen::Matrix3Xd computed = vertexNormals(result.mesh);

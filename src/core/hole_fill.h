@@ -124,6 +124,29 @@ struct ProjectionResult {
 ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& patch, const ImplicitField<3>& field,
                               const HoleFillOptions& options = {});
 
+// How far fillHole goes: the GUI's holefill mode stops at each stage in turn; fillHoles goes to
+// the end.
+enum class HoleFillStage { Holes, Front, Fair, Fit, Project };
+
+// One hole through the stages up to `last` (front with its retries, fairing, implicit fit,
+// projection — as the options enable them). Never throws: what went wrong is in `notes`, each
+// starting with `name`.
+struct HoleOutcome {
+  HolePatch patch;           // as the last stage left it (the unclosed front when not filled)
+  Points<3> ringPoints;      // Fit and later: the samples of the implicit
+  Points<3> ringNormals;
+  bool filled = false;       // the front closed and the stages ran
+  int unconverged = 0;       // Project: vertices left at their faired position
+  double maxAbsF = 0;        // Project: max |f| over the new vertices
+  std::vector<std::string> notes;
+};
+HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options,
+                     HoleFillStage last = HoleFillStage::Project, const std::string& name = "hole");
+
+// `mesh` with the patches' new vertices appended after its own (consecutive ids, in order) and
+// their triangles after its triangles; normals are not set.
+TriMesh appendPatches(const TriMesh& mesh, const std::vector<const HolePatch*>& patches);
+
 // Everything: the filled mesh and what `holefill --json` reports.
 struct HoleFillResult {
   TriMesh mesh;                       // input vertices first (same ids), then the patches'

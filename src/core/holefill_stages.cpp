@@ -2,7 +2,6 @@
 
 #include <chrono>
 #include <cmath>
-#include <tuple>
 
 #include "core/errors.h"
 #include "core/mesh_io.h"
@@ -59,58 +58,20 @@ HolefillStages runHolefillStages(const HolefillSpec& spec) {
   const PreparedMesh prepared(out.input);
   const std::vector<BoundaryLoop> loops = detectHoles(out.input);
   out.holes.resize(loops.size());
-  out.result = out.input;
+  std::vector<const HolePatch*> patches;
   for (std::size_t h = 0; h < loops.size(); ++h) {
     HolefillStageHole& hole = out.holes[h];
+    static_cast<HoleOutcome&>(hole) = fillHole(prepared, loops[h], options, spec.stage, "hole " + std::to_string(h));
     hole.loop = loops[h];
-    if (spec.stage == HoleFillStage::Holes) continue;
-    try {
-      HolePatch patch = advancingFront(prepared, loops[h], options);
-      for (std::size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
-        HoleFillOptions retry = options;
-        std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
-        patch = advancingFront(prepared, loops[h], retry);
-      }
-      if (!patch.closed) {
-        hole.note = "not closed: " + patch.failure;
-        hole.patch = std::move(patch);
-        continue;
-      }
-      if (spec.stage >= HoleFillStage::Fair) patch = fairPatch(prepared, patch);
-      if (spec.stage >= HoleFillStage::Fit && patch.vertices.cols() > 0) {
-        const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
-        hole.ringPoints = implicit.points;
-        hole.ringNormals = implicit.normals;
-        if (spec.stage >= HoleFillStage::Project) {
-          ProjectionResult p = projectPatch(prepared, patch, *implicit.field, options);
-          out.unconverged += p.unconverged;
-          out.maxAbsF = std::max(out.maxAbsF, p.maxAbsF);
-          if (p.unconverged > 0) hole.note = std::to_string(p.unconverged) + " vertices did not converge";
-          patch = std::move(p.patch);
-        }
-      }
-      hole.patch = std::move(patch);
-      hole.filled = true;
-    } catch (const std::exception& e) {
-      hole.note = std::string("not filled: ") + e.what();
+    out.unconverged += hole.unconverged;
+    out.maxAbsF = std::max(out.maxAbsF, hole.maxAbsF);
+    if (hole.filled) {
+      patches.push_back(&hole.patch);
+      out.trianglesAdded += int(hole.patch.triangles.cols());
     }
   }
-  // The combined mesh: the input, then each filled patch's new vertices (ids shifted).
-  for (const HolefillStageHole& hole : out.holes) {
-    if (!hole.filled) continue;
-    const HolePatch& p = hole.patch;
-    const int base = out.result.vertexCount();
-    out.result.vertices.conservativeResize(3, base + p.vertices.cols());
-    out.result.vertices.rightCols(p.vertices.cols()) = p.vertices;
-    const int t0i = out.result.triangleCount();
-    out.result.triangles.conservativeResize(3, t0i + p.triangles.cols());
-    for (Eigen::Index t = 0; t < p.triangles.cols(); ++t)
-      for (int k = 0; k < 3; ++k) {
-        const int v = p.triangles(k, t);
-        out.result.triangles(k, t0i + t) = v >= p.baseId ? base + (v - p.baseId) : v;
-      }
-    out.trianglesAdded += int(p.triangles.cols());
-  }
+  // The combined mesh: the input, then each filled patch's new vertices.
+  out.result = appendPatches(out.input, patches);
   out.result.normals.resize(3, 0);
   out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;

@@ -11,7 +11,6 @@
 
 namespace hermite {
 
-enum class HoleFillStage { Holes, Front, Fair, Fit, Project };
 std::string_view holeFillStageName(HoleFillStage s);  // holes, front, fair, fit, project
 
 struct HolefillSpec {
@@ -28,13 +27,8 @@ const std::vector<std::pair<std::string, std::string>>& holefillPresets();
 // The preset's closed surface with holes cut (InputError for an unknown name).
 TriMesh holefillPresetMesh(const std::string& name);
 
-struct HolefillStageHole {
+struct HolefillStageHole : HoleOutcome {
   BoundaryLoop loop;
-  HolePatch patch;           // at the stage (empty before "front")
-  Points<3> ringPoints;      // "fit" and later: the samples of the implicit
-  Points<3> ringNormals;
-  bool filled = false;
-  std::string note;          // why not filled, or what the projection reported
 };
 
 struct HolefillStages {
