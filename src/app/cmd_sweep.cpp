@@ -80,17 +80,7 @@ int runSweep(const SweepArgs& args) {
     rows.push_back(std::move(row));
     images.push_back(std::move(image));
   }
-  // diagnostics.csv: the sweep's columns plus the image of each row.
-  const std::string csv = radiusSweepCsv(rows);
-  std::string withImages;
-  std::size_t line = 0, start = 0;
-  while (start < csv.size()) {
-    const std::size_t end = csv.find('\n', start);
-    withImages += csv.substr(start, end - start) + "," + (line == 0 ? std::string("image") : images[line - 1]) + "\n";
-    start = end + 1;
-    ++line;
-  }
-  writeFileAtomically((dir / "diagnostics.csv").string(), withImages);
+  writeFileAtomically((dir / "diagnostics.csv").string(), radiusSweepCsv(rows, &images));
 
   const int best = suggestedRadiusIndex(rows);
   std::string out;

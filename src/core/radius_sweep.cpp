@@ -101,10 +101,11 @@ int suggestedRadiusIndex(const std::vector<RadiusSweepRow>& rows) {
   return best;
 }
 
-std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows) {
+std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows, const std::vector<std::string>* images) {
   std::string out =
       "radius,radius_in_spacing,solver,condition_estimate,max_abs_f,max_grad_error,loo_rms_value,loo_rms_gradient,"
-      "loo_combined,fit_ms,suggested,error\n";
+      "loo_combined,fit_ms,suggested,error";
+  out += images ? ",image\n" : "\n";
   const int best = suggestedRadiusIndex(rows);
   char buf[512];
   for (int i = 0; i < int(rows.size()); ++i) {
@@ -112,10 +113,12 @@ std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows) {
     std::string err = r.error;
     for (char& c : err)
       if (c == '"' || c == '\n' || c == ',') c = c == ',' ? ';' : ' ';
-    std::snprintf(buf, sizeof buf, "%.17g,%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%d,\"%s\"\n", r.radius,
+    std::snprintf(buf, sizeof buf, "%.17g,%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%d,\"%s\"", r.radius,
                   r.radiusInSpacing, r.solver.c_str(), r.conditionEstimate, r.maxAbsF, r.maxGradError, r.looRmsValue,
                   r.looRmsGradient, r.looCombined, r.fitMs, i == best ? 1 : 0, err.c_str());
     out += buf;
+    if (images) out += "," + (*images)[std::size_t(i)];
+    out += "\n";
   }
   return out;
 }

@@ -51,7 +51,8 @@ RadiusSweepRow radiusSweepRow(const Scene& scene, const SceneFit<Dim>& fit, doub
 // Index of the row with the smallest finite looCombined (−1 when none).
 int suggestedRadiusIndex(const std::vector<RadiusSweepRow>& rows);
 
-// The rows as CSV with a header line (what `sweep` writes as diagnostics.csv and the GUI exports).
-std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows);
+// The rows as CSV with a header line (what `sweep` writes as diagnostics.csv and the GUI exports);
+// with `images` (one per row) a last column `image` names each row's picture.
+std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows, const std::vector<std::string>* images = nullptr);
 
 }  // namespace hermite
