@@ -72,6 +72,12 @@ class GuiApp {
   FitWorker& worker() { return worker_; }
   // The fit on screen (the last good one), or null.
   const FitOutcome* shownFit() const { return shown_.get(); }
+  // The fit on screen when it is of the document's mode, else null: right after a mode switch
+  // (2D ⇄ 3D, patch, hole filling) the previous mode's result stays on screen until the new fit
+  // arrives, and tools that read samples must not take it for the current one.
+  const FitOutcome* currentFit() const {
+    return shown_ && shown_->scene.mode == document_.scene().mode ? shown_.get() : nullptr;
+  }
   std::uint64_t shownVersion() const { return shownVersion_; }
   const GuiStatus& status() const { return status_; }
   // Screen position (view pixels) of a patch handle of the current document; nullopt if behind.

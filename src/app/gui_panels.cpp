@@ -199,9 +199,10 @@ void GuiApp::drawDataPanel() {
   ImGui::SameLine();
   if (ImGui::Button("Export samples")) {
     try {
-      if (!shown_) throw InputError("no samples to export yet");
-      if (dim == 2) savePointFile(exportPath_, shown_->fit2->data);
-      else savePointFile(exportPath_, shown_->fit3->data);
+      const FitOutcome* fit = currentFit();
+      if (!fit) throw InputError("no samples to export yet");
+      if (dim == 2) savePointFile(exportPath_, fit->fit2->data);
+      else savePointFile(exportPath_, fit->fit3->data);
       setStatus("exported samples to " + exportPath_);
     } catch (const std::exception& e) {
       setStatus(e.what(), true);
@@ -211,8 +212,8 @@ void GuiApp::drawDataPanel() {
   ImGui::SameLine();
   if (ImGui::Button("Export mesh")) {
     try {
-      if (!shown_) throw InputError("no fitted model yet");
-      setStatus(exportZeroSet(*shown_, zeroSetPath_, 96));
+      if (!currentFit()) throw InputError("no fitted model yet");
+      setStatus(exportZeroSet(*currentFit(), zeroSetPath_, 96));
     } catch (const std::exception& e) {
       setStatus(e.what(), true);
     }
@@ -220,9 +221,9 @@ void GuiApp::drawDataPanel() {
   helpMarker("The zero set over view.bounds by marching cubes (3D: .glb .gltf .ply .obj) or squares (2D: .obj .svg).");
   if (ImGui::Button("Export model (JSON)")) {
     try {
-      if (!shown_) throw InputError("no fitted model yet");
+      if (!currentFit()) throw InputError("no fitted model yet");
       const std::string path = std::filesystem::path(savePath_).replace_extension(".model.json").string();
-      writeFileAtomically(path, fittedModelJson(*shown_) + "\n");
+      writeFileAtomically(path, fittedModelJson(*currentFit()) + "\n");
       setStatus("exported the model to " + path);
     } catch (const std::exception& e) {
       setStatus(e.what(), true);
@@ -260,7 +261,7 @@ void GuiApp::drawDataPanel() {
     document_.apply(n, "flip all normals");
   }
   ImGui::Separator();
-  const FitOutcome* f = shown_.get();
+  const FitOutcome* f = currentFit();
   if (f && f->ok()) {
     const int n = dim == 2 ? sampleCount<2>(f) : sampleCount<3>(f);
     const double spacing = dim == 2 ? meanSampleSpacing<2>(f->fit2->samples.points) : meanSampleSpacing<3>(f->fit3->samples.points);

@@ -148,14 +148,15 @@ void GuiApp::moveSelected(const Vec<2>& mouse, bool tip) {
 }
 
 void GuiApp::addSampleAt(const Vec<2>& mouse) {
-  if (!shown_) return;
+  const FitOutcome* fit = currentFit();
+  if (!fit) return;
   std::vector<std::string> warnings;
   const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
   if (dimension() == 2) {
     Scene s = withInlineSamples<2>(scene(), warnings);
     HermiteSamples<2> d = inlineSamples<2>(s);
     const Vec<2> x = sceneView2d(s, w, viewH_).pixelToWorld(mouse.x(), mouse.y());
-    Vec<2> n = shown_->fit2->field().gradient(x);
+    Vec<2> n = fit->fit2->field().gradient(x);
     n = n.norm() > 1e-12 ? Vec<2>(n.normalized()) : Vec<2>(0, 1);
     const Similarity<2> T = sceneSimilarity<2>(s.transform);
     d.points.conservativeResize(2, d.size() + 1);
@@ -193,7 +194,7 @@ void GuiApp::addSampleAt(const Vec<2>& mouse) {
   }
   Scene s = withInlineSamples<3>(scene(), warnings);
   HermiteSamples<3> d = inlineSamples<3>(s);
-  Vec<3> n = shown_->fit3->field().gradient(*hit);
+  Vec<3> n = fit->fit3->field().gradient(*hit);
   n = n.norm() > 1e-12 ? Vec<3>(n.normalized()) : Vec<3>(-ray.direction);
   const Similarity<3> T = sceneSimilarity<3>(s.transform);
   d.points.conservativeResize(3, d.size() + 1);
@@ -235,8 +236,9 @@ Scene editSample(const Scene& scene, int index, bool remove) {
 
 void GuiApp::deleteSelected() {
   if (selected_ < 0) return;
-  if (!shown_) return;
-  const int n = shown_->fit2 ? shown_->fit2->data.size() : shown_->fit3->data.size();
+  const FitOutcome* fit = currentFit();
+  if (!fit) return;
+  const int n = fit->fit2 ? fit->fit2->data.size() : fit->fit3->data.size();
   if (n <= 1) {
     setStatus("cannot delete the last sample", true);
     return;
@@ -320,18 +322,6 @@ void GuiApp::zoom(double notches, const Vec<2>& mouse) {
 void GuiApp::fitToView() {
   if (!shown_) return;
   const ViewSpec& v = scene().view;
-  if (shown_->patch) {
-    const Box<3> b = boundingBox<3>(shown_->patch->mesh.positions);
-    const double radius = 0.5 * b.extent().norm();
-    CameraSpec c = v.camera;
-    const Vec<3> dir = (toVec(c.eye) - toVec(c.target)).normalized();
-    const double fov = c.fovYDeg * M_PI / 180;
-    const double aspect = std::min(1.0, double(viewW_) / viewH_);
-    c.target = toArray(b.center());
-    c.eye = toArray(b.center() + radius / std::sin(0.5 * fov * aspect) * 1.05 * dir);
-    document_.setCamera(c, v.center2d, radius * 1.05);
-    return;
-  }
   if (shown_->fit2) {
     const Box<2> b = viewBounds<2>(v, shown_->fit2->data.points);
     const Vec<2> c = b.center();
@@ -339,15 +329,28 @@ void GuiApp::fitToView() {
     document_.setCamera(v.camera, {c.x(), c.y()}, 0.5 * std::max(b.extent().y(), b.extent().x() / aspect) * 1.05);
     return;
   }
-  const Box<3> b = viewBounds<3>(v, shown_->fit3->data.points);
+  // 3D: the box to frame (the view bounds of an implicit, already padded; a mesh's own box, with
+  // a little more room) seen along the current direction.
+  Box<3> b;
+  double margin = 1.02;
+  if (shown_->fit3) {
+    b = viewBounds<3>(v, shown_->fit3->data.points);
+  } else if (shown_->patch) {
+    b = boundingBox<3>(shown_->patch->mesh.positions);
+    margin = 1.05;
+  } else if (shown_->holefill && shown_->holefill->input.vertexCount() > 0) {
+    b = boundingBox<3>(shown_->holefill->input.vertices);
+    margin = 1.05;
+  } else {
+    return;
+  }
   const double radius = 0.5 * b.extent().norm();
   CameraSpec c = v.camera;
   const Vec<3> dir = (toVec(c.eye) - toVec(c.target)).normalized();
   const double fov = c.fovYDeg * M_PI / 180;
   const double aspect = std::min(1.0, double(viewW_) / viewH_);
-  const double dist = radius / std::sin(0.5 * fov * aspect) * 1.02;
   c.target = toArray(b.center());
-  c.eye = toArray(b.center() + dist * dir);
+  c.eye = toArray(b.center() + radius / std::sin(0.5 * fov * aspect) * margin * dir);
   document_.setCamera(c, v.center2d, radius * 1.05);
 }
 

@@ -121,7 +121,7 @@ std::vector<Vec<2>> GuiApp::gizmoShape(const GizmoHandle& h) const {
       break;
     }
     case GizmoHandle::Scale:
-      if (const auto p = worldToView(pivot)) pts.push_back(*p + Vec<2>(0, -0.0) + Vec<2>(28, 28));
+      if (const auto p = worldToView(pivot)) pts.push_back(*p + Vec<2>(28, 28));  // beside the pivot
       break;
   }
   return pts;

@@ -370,3 +370,21 @@ TEST_CASE("UI: the transform gizmo translates and rotates the fitted model by co
   h.key(GLFW_KEY_Z, true);
   CHECK(h.app->document().scene() == s);
 }
+
+TEST_CASE("UI: right after a mode switch the previous mode's fit stays on screen and nothing reads it as the new one") {
+  Harness h(scene3d("sphere", 40), true, 900, 600);
+  h.frames(2);
+  REQUIRE(h.app->shownFit()->fit3);
+  // Switch to 2D outside the panels: the next frame draws the panels before the new fit runs.
+  h.app->document().apply(scene2d(), "to 2D");
+  h.frame();
+  REQUIRE(h.app->shownFit()->fit2);
+  h.key(GLFW_KEY_DELETE);  // no sample selected: nothing happens, nothing crashes
+  Scene patch = h.app->document().scene();
+  patch.mode = SceneMode::Patch;
+  h.app->document().apply(patch, "to patch");
+  CHECK(h.app->currentFit() == nullptr);  // the 2D fit is still shown but is not the patch's
+  h.frame();
+  REQUIRE(h.app->shownFit()->patch);
+  CHECK(h.app->currentFit() == h.app->shownFit());
+}
