@@ -23,6 +23,13 @@ uniform ivec3 uBrickCount;
 uniform vec3 uBrickSize;
 uniform float uMinStep;     // ε of the march, world units
 uniform int uMaxSteps;
+// Loop iterations one pixel may spend on the march (fieldValue counts its own loops into gLoops).
+// Mesa's software rasterisers (llvmpipe, softpipe) end every loop of a shader invocation once
+// 65 535 iterations of all its loops together have run, so a long march over many centres would
+// silently evaluate a truncated field; past this budget the pixel is reported undecided instead
+// (t = −2 in outHit) and the CPU traces it. Other drivers get a budget that never binds.
+uniform int uLoopBudget;
+int gLoops = 0;
 uniform int uShowSurface;
 uniform vec3 uBackground;   // exact bytes / 255
 
@@ -94,7 +101,7 @@ float exitParameter(vec3 o, vec3 d, vec3 lo, vec3 hi) {
 // One loop with one texture / field fetch per iteration and no return inside it: llvmpipe
 // runs both sides of divergent branches under masks, so every fetch sits on the common path,
 // control flow stays simple, and the loop ends as soon as all lanes are done.
-bool march(vec3 o, vec3 d, float t0, float t1, out float tHit) {
+bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecided) {
   float nudge = 1e-6 * length(uBoundsHi - uBoundsLo);
   vec3 invBrick = 1.0 / uBrickSize;
   float t = t0;
@@ -102,7 +109,9 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit) {
   bool negA = fa < 0.0;
   float tb = t, fb = fa;
   bool found = fa == 0.0;
-  for (int it = 0; it < uMaxSteps && !found && t < t1; ++it) {
+  int it = 0;
+  for (; it < uMaxSteps && gLoops < uLoopBudget && !found && t < t1; ++it) {
+    gLoops += 4;  // this iteration and exitParameter's axis loop, if not unrolled
     vec3 p = o + min(t + nudge, t1) * d;
     ivec3 b = clamp(ivec3(floor((p - uBoundsLo) * invBrick)), ivec3(0), uBrickCount - 1);
     vec2 info = brickInfo(b);
@@ -126,6 +135,7 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit) {
       fa = fs;
     }
   }
+  undecided = !found && t < t1;  // out of steps or budget before the end of the ray
   // Secant on the bracket [t, tb] (fa, fb of opposite signs, or fb = 0); stays inside.
   float w = fa == 0.0 ? 0.0 : fa / (fa - fb);
   tHit = mix(t, tb, clamp(w, 0.0, 1.0));
@@ -191,7 +201,8 @@ void main() {
   bool surface = false;
   if (uShowSurface == 1) {
     float tHit;
-    if (march(o, d, t0, t1, tHit)) {
+    bool undecided;
+    if (march(o, d, t0, t1, tHit, undecided)) {
       surface = true;
       tSurface = tHit;
       vec3 p = o + tHit * d;
@@ -201,6 +212,8 @@ void main() {
       outHit = vec4(tHit, n);
       outColor = vec4(shadeHit(n, d), 1.0);
       gl_FragDepth = windowDepth(p);
+    } else if (undecided) {
+      outHit = vec4(-2.0, 0.0, 0.0, 0.0);
     }
   }
 #ifdef TRACE_SLICE

@@ -256,6 +256,28 @@ void RadialSum<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Poi
 }
 
 template <int Dim>
+double RadialSum<Dim>::termMagnitude(const Vec<Dim>& x) const {
+  double sum = 0.0;
+  for (Eigen::Index j = 0; j < centres_.cols(); ++j) {
+    const Vec<Dim> d = x - centres_.col(j);
+    const RadialTerms t = kernel_.terms(d.norm());
+    sum += std::abs(alpha_(j) * t.phi);
+    if (hasBeta()) sum += std::abs(t.a * d.dot(beta_.col(j)));  // ∇φ(d) = a·d
+  }
+  if (polynomial_ != Polynomial::None) {
+    // Monomials in the order of polynomial.h: 1, x…, then xᵢxⱼ (i ≤ j).
+    sum += std::abs(poly_(0));
+    for (int i = 0; i < Dim; ++i) sum += std::abs(poly_(1 + i) * x(i));
+    if (polynomial_ == Polynomial::Quadratic) {
+      int k = 1 + Dim;
+      for (int i = 0; i < Dim; ++i)
+        for (int j = i; j < Dim; ++j, ++k) sum += std::abs(poly_(k) * x(i) * x(j));
+    }
+  }
+  return sum;
+}
+
+template <int Dim>
 double RadialSum<Dim>::lipschitzBound(const Box<Dim>& box) const {
   // ‖∇f‖ ≤ Σⱼ |αⱼ| sup|φ′| + ‖βⱼ‖ sup‖Hφ‖ + sup‖∇p‖ over the box; ‖Hφ‖₂ = max(|a|, |φ″|).
   double L = 0.0;

@@ -34,4 +34,11 @@ std::string describeCurrentContext() {
   return str(GL_VERSION) + " (" + str(GL_VENDOR) + ", " + str(GL_RENDERER) + ")";
 }
 
+bool isMesaSoftwareRenderer() {
+  const GLubyte* renderer = glGetString(GL_RENDERER);
+  if (renderer == nullptr) return false;
+  const std::string name(reinterpret_cast<const char*>(renderer));
+  return name.find("llvmpipe") != std::string::npos || name.find("softpipe") != std::string::npos;
+}
+
 }  // namespace hermite::render

@@ -21,4 +21,10 @@ GlVersion loadGl(GlProcLoader loader);
 // "4.5 (Mesa llvmpipe ...)": version, vendor and renderer of the current context, for logs.
 std::string describeCurrentContext();
 
+// True when the current context is Mesa's llvmpipe or softpipe (GL_RENDERER). Their shaders stop
+// every loop once 65 535 loop iterations have run in one invocation (kMesaSoftwareLoopLimit):
+// shaders with long nested loops must budget for it.
+bool isMesaSoftwareRenderer();
+constexpr int kMesaSoftwareLoopLimit = 65535;
+
 }  // namespace hermite::render

@@ -428,6 +428,10 @@ void Program::setUniform(const std::string& name, float value) const {
   glProgramUniform1f(id_, uniformLocation(name), value);
   checkGl("uniform " + name);
 }
+void Program::setUniform(const std::string& name, double value) const {
+  glProgramUniform1d(id_, uniformLocation(name), value);
+  checkGl("uniform " + name);
+}
 void Program::setUniform(const std::string& name, const glm::vec2& value) const {
   glProgramUniform2fv(id_, uniformLocation(name), 1, glm::value_ptr(value));
   checkGl("uniform " + name);

@@ -197,6 +197,7 @@ class Program {
   GLint uniformLocation(const std::string& name) const;
   void setUniform(const std::string& name, int value) const;
   void setUniform(const std::string& name, float value) const;
+  void setUniform(const std::string& name, double value) const;  // a `double` uniform (GLSL 4.00)
   void setUniform(const std::string& name, const glm::vec2& value) const;
   void setUniform(const std::string& name, const glm::vec3& value) const;
   void setUniform(const std::string& name, const glm::vec4& value) const;

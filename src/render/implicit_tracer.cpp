@@ -1,4 +1,5 @@
 #include "render/implicit_tracer.h"
+#include "render/gl_loader.h"
 #include "render/glm_convert.h"
 
 #include <algorithm>
@@ -10,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "core/color_map.h"
+#include "core/cpu_tracer.h"
 #include "core/errors.h"
 #include "core/hrbf.h"
 #include "core/presets.h"
@@ -250,36 +252,63 @@ std::vector<T> readTexture(const Texture& texture, GLenum format, GLenum type, s
   return data;
 }
 
-// The trace program of a mode, with or without the slice plane (a compile-time switch: llvmpipe
+// Trace programs: baked, exact in float, exact in double.
+enum TraceProgramKind { kBakedProgram = 0, kExactFloatProgram = 1, kExactDoubleProgram = 2 };
+
+// The trace program of a kind, with or without the slice plane (a compile-time switch: llvmpipe
 // executes untaken branches under a mask, so an unused slice would still cost its fetches).
-Program buildTraceProgram(TracerMode mode, bool slice) {
-  const char* file = mode == TracerMode::Baked ? "trace_baked.frag" : "trace_exact.frag";
+Program buildTraceProgram(TraceProgramKind kind, bool slice) {
+  const char* file = kind == kBakedProgram ? "trace_baked.frag" : "trace_exact.frag";
   std::string fragment = slice ? "#define TRACE_SLICE 1\n" : "";
+  if (kind == kExactDoubleProgram) fragment += "#define EXACT_DOUBLE 1\n";
   fragment += shaderSource(file);
   return buildProgram({ShaderSource{GL_VERTEX_SHADER, std::string(shaderSource("fullscreen.vert")), "fullscreen.vert"},
                        ShaderSource{GL_FRAGMENT_SHADER, fragment, file}});
 }
 
+// Rounding of a float sum errs by about 2⁻²⁴·√N·Σ|terms| (random-walk growth over N terms; the
+// terms' own rounding is of the same order). HRBF and RBF-offset fits have |∇f| ≈ 1 at the data,
+// so that error moves the surface by about as much in world units: above 1e-4 of the diagonal
+// (the exact march's ε) use double. RBF-offset dipoles and polyharmonic kernels over wide
+// bounds get there (Σ|terms| of 10⁵–10⁶ against f ≈ 1: float drew false surfaces).
+bool floatEvaluationTooCoarse(const RadialSum<3>& model, const Box<3>& bounds) {
+  constexpr int kProbes = 6;
+  double terms = 0.0;
+  for (int k = 0; k < kProbes; ++k)
+    for (int j = 0; j < kProbes; ++j)
+      for (int i = 0; i < kProbes; ++i) {
+        const Vec<3> u = (Vec<3>(i, j, k).array() + 0.5) / double(kProbes);
+        terms = std::max(terms, model.termMagnitude(bounds.lo + bounds.extent().cwiseProduct(u)));
+      }
+  const double n = double(std::max<Eigen::Index>(model.centres().cols(), 1));
+  const double floatError = std::ldexp(1.0, -24) * std::sqrt(n) * terms;
+  return floatError > 1e-4 * bounds.extent().norm();
+}
+
 }  // namespace
 
 struct ImplicitTracer::Gpu {
-  std::unique_ptr<Program> programs[2][2];  // [mode][slice], built on first use
+  std::unique_ptr<Program> programs[3][2];  // [TraceProgramKind][slice], built on first use
   VertexArray empty;
   Texture volume;
   Texture bricks;
   Texture bakedBricks;  // baked mode: per fine brick (L of the interpolant, brick distance)
   Eigen::Array3i bakedBrickCount = Eigen::Array3i::Zero();
   Vec<3> bakedBrickSize = Vec<3>::Zero();
-  Buffer centres;
-  Buffer betas;
+  Buffer centres;        // exact mode: vec4 (c − origin, α) per centre
+  Buffer betas;          // vec4 (β, 0)
+  Buffer centresDouble;  // the same in dvec4, for the double program
+  Buffer betasDouble;
   std::unique_ptr<TraceTarget> target;
   std::unique_ptr<OverlayRenderer> overlay;
   std::array<double, 10> shiftedPoly{};
   Vec<3> origin = Vec<3>::Zero();
+  int paddedCentres = 0;  // centres in the SSBOs: N rounded up to a multiple of 4 (α = β = 0 pads)
+  bool softwareLoopLimit = isMesaSoftwareRenderer();
 };
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
-  gpu_->programs[0][0] = std::make_unique<Program>(buildTraceProgram(TracerMode::Baked, false));
+  gpu_->programs[kBakedProgram][0] = std::make_unique<Program>(buildTraceProgram(kBakedProgram, false));
   gpu_->overlay = std::make_unique<OverlayRenderer>();
 }
 
@@ -330,21 +359,28 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   field_ = &field;
   radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
   bounds_ = bounds;
+  exactNeedsDouble_ = false;
   if (radialSum_) {
-    // Centres relative to the bounds centre (float precision in the shader).
+    // Centres relative to the bounds centre, in float and in double (both programs may run).
     gpu_->origin = bounds.center();
     const int n = int(radialSum_->centres().cols());
-    std::vector<float> ca(4 * std::size_t(std::max(n, 1)), 0.0f), beta(4 * std::size_t(std::max(n, 1)), 0.0f);
+    gpu_->paddedCentres = std::max(4, (n + 3) / 4 * 4);  // the shader takes 4 centres per loop iteration
+    const std::size_t slots = 4 * std::size_t(gpu_->paddedCentres);
+    std::vector<double> ca(slots, 0.0), beta(slots, 0.0);
     for (int j = 0; j < n; ++j) {
       const Vec<3> c = radialSum_->centres().col(j) - gpu_->origin;
-      for (int k = 0; k < 3; ++k) ca[4 * j + k] = float(c(k));
-      ca[4 * j + 3] = float(radialSum_->alpha()(j));
+      for (int k = 0; k < 3; ++k) ca[4 * j + k] = c(k);
+      ca[4 * j + 3] = radialSum_->alpha()(j);
       if (radialSum_->hasBeta())
-        for (int k = 0; k < 3; ++k) beta[4 * j + k] = float(radialSum_->beta()(k, j));
+        for (int k = 0; k < 3; ++k) beta[4 * j + k] = radialSum_->beta()(k, j);
     }
-    gpu_->centres.setData(ca.data(), ca.size() * sizeof(float), GL_STATIC_DRAW);
-    gpu_->betas.setData(beta.data(), beta.size() * sizeof(float), GL_STATIC_DRAW);
+    const std::vector<float> caFloat(ca.begin(), ca.end()), betaFloat(beta.begin(), beta.end());
+    gpu_->centres.setData(caFloat.data(), caFloat.size() * sizeof(float), GL_STATIC_DRAW);
+    gpu_->betas.setData(betaFloat.data(), betaFloat.size() * sizeof(float), GL_STATIC_DRAW);
+    gpu_->centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
+    gpu_->betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
     gpu_->shiftedPoly = shiftPolynomial(radialSum_->polynomial(), radialSum_->poly(), gpu_->origin);
+    exactNeedsDouble_ = floatEvaluationTooCoarse(*radialSum_, bounds);
   }
   hasSamples_ = samples != nullptr && samples->size() > 0;
   if (hasSamples_) samples_ = *samples;
@@ -375,6 +411,7 @@ void setTraceUniforms(const Program& p, const Camera& camera, const Box<3>& boun
   p.setUniform("uBrickSize", toGlm(bake.bricks.size));
   p.setUniform("uMinStep", float(minStep));
   p.setUniform("uMaxSteps", 4096);
+  p.setUniform("uLoopBudget", 1 << 30);  // exact mode on a software renderer sets its own
   p.setUniform("uShowSurface", settings.showSurface ? 1 : 0);
   p.setUniform("uBackground", glm::vec3(shading::toByte(settings.background[0]) / 255.0f,
                                         shading::toByte(settings.background[1]) / 255.0f,
@@ -470,9 +507,27 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
   glDepthMask(GL_TRUE);
-  const int modeIndex = settings.mode == TracerMode::Baked ? 0 : 1;
-  std::unique_ptr<Program>& slot = gpu_->programs[modeIndex][settings.slice.enabled ? 1 : 0];
-  if (!slot) slot = std::make_unique<Program>(buildTraceProgram(settings.mode, settings.slice.enabled));
+  // Loop budget of the exact march (uLoopBudget in trace_common.glsl): the software rasterisers'
+  // limit less the evaluations after the march (∇f at the hit, the slice's f and ∇f) and the small
+  // fixed loops; pixels that run out are traced on the CPU below.
+  int exactLoopBudget = 1 << 30;
+  if (settings.mode == TracerMode::Exact && gpu_->softwareLoopLimit) {
+    const int perEvaluation = gpu_->paddedCentres / 4;
+    exactLoopBudget = kMesaSoftwareLoopLimit - 3 * perEvaluation - 256;
+    if (exactLoopBudget < 4 * perEvaluation)
+      throw InputError("implicit tracer: exact mode on this software renderer (Mesa llvmpipe) handles at most " +
+                       std::to_string((kMesaSoftwareLoopLimit - 256) / 7 * 4) + " centres (the model has " +
+                       std::to_string(radialSum_->centres().cols()) + "); use the baked mode");
+  }
+  const bool exactDouble =
+      settings.mode == TracerMode::Exact && (settings.exactPrecision == ExactPrecision::Double ||
+                                              (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble_));
+  const TraceProgramKind kind = settings.mode == TracerMode::Baked ? kBakedProgram
+                                : exactDouble                      ? kExactDoubleProgram
+                                                                   : kExactFloatProgram;
+  result.exactDouble = exactDouble;
+  std::unique_ptr<Program>& slot = gpu_->programs[kind][settings.slice.enabled ? 1 : 0];
+  if (!slot) slot = std::make_unique<Program>(buildTraceProgram(kind, settings.slice.enabled));
   const Program* program = slot.get();
   const double minStep = settings.mode == TracerMode::Baked ? settings.minStepCells * bake.spacing().minCoeff()
                                                             : settings.minStepCells * 1e-3 * diagonal;
@@ -493,16 +548,23 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     program->setUniform("uBakedBricks", 2);
   } else {
     const RadialSum<3>& m = *radialSum_;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, gpu_->centres.id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, gpu_->betas.id());
-    program->setUniform("uCount", int(m.centres().cols()));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, (exactDouble ? gpu_->centresDouble : gpu_->centres).id());
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, (exactDouble ? gpu_->betasDouble : gpu_->betas).id());
+    program->setUniform("uCount", gpu_->paddedCentres);
+    program->setUniform("uLoopBudget", exactLoopBudget);
     program->setUniform("uHasBeta", m.hasBeta() ? 1 : 0);
     program->setUniform("uKernel", kernelIndex(m.kernel().type));
-    program->setUniform("uRadius", float(m.kernel().radius));
     const int polyCount = m.polynomial() == Polynomial::None ? 0 : m.polynomial() == Polynomial::Linear ? 4 : 10;
     program->setUniform("uPolyCount", polyCount);
-    for (int k = 0; k < 10; ++k)
-      program->setUniform("uPoly[" + std::to_string(k) + "]", float(gpu_->shiftedPoly[k]));
+    // `real` uniforms: double or float to match the program.
+    auto setReal = [&](const std::string& name, double v) {
+      if (exactDouble)
+        program->setUniform(name, v);
+      else
+        program->setUniform(name, float(v));
+    };
+    setReal("uRadius", m.kernel().radius);
+    for (int k = 0; k < 10; ++k) setReal("uPoly[" + std::to_string(k) + "]", gpu_->shiftedPoly[k]);
     program->setUniform("uOrigin", toGlm(gpu_->origin));
   }
   gpu_->bricks.bind(1);
@@ -538,8 +600,14 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     return (tp >= a && tp <= b) ? tp : std::numeric_limits<double>::infinity();
   };
 
+  // Pixels whose march ran out of steps or loop budget (t = −2): traced on the CPU below.
+  std::vector<int> undecided;
+  for (std::size_t p = 0; p < npx; ++p)
+    if (surfaceT[p] < -1.5f) undecided.push_back(int(p));
+  result.cpuTracedPixels = int(undecided.size());
+
   // ---- exact refinement on the CPU ------------------------------------------------------------
-  if (settings.refineExact && settings.showSurface) {
+  if ((settings.refineExact || !undecided.empty()) && settings.showSurface) {
     t0 = Clock::now();
     const ImplicitField<3>& field = *field_;
     const double cell = bake.spacing().norm();
@@ -552,6 +620,11 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     for (std::size_t p = 0; p < npx; ++p) {
       if (surfaceT[p] < 0) continue;
       hasGpuHit[p] = 1;
+      if (!settings.refineExact) {  // here only for the undecided pixels: GPU hits stand as they are
+        refinedT[p] = surfaceT[p];
+        refinedG[p] = Vec<3>(result.normal[3 * p], result.normal[3 * p + 1], result.normal[3 * p + 2]);
+        continue;
+      }
       const Ray ray = camera.pixelRay(int(p % W), int(p / W));
       double a = 0, b = 0;
       clipRayToBox(ray, bounds_, a, b);
@@ -639,9 +712,23 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
         ++dropped;
       }
     }
+    if (!undecided.empty()) {
+      CpuTraceOptions cpuOptions;
+      cpuOptions.minStep = settings.minStepCells * 1e-3;  // the exact march's ε, relative to the diagonal
+      const CpuTracer cpu(field, bounds_, cpuOptions);
+#pragma omp parallel for schedule(dynamic, 16)
+      for (std::size_t q = 0; q < undecided.size(); ++q) {
+        const int p = undecided[q];
+        const RayHit hit = cpu.trace(camera.pixelRay(p % W, p / W));
+        if (hit.hit) {
+          refinedT[p] = hit.t;
+          refinedG[p] = hit.normal;
+        }
+      }
+    }
     // Silhouette ring: misses with a hit among their 8 neighbours.
     std::vector<std::pair<int, std::array<double, 2>>> ring;
-    for (int j = 0; j < H; ++j)
+    for (int j = 0; j < H && settings.refineExact; ++j)
       for (int i = 0; i < W; ++i) {
         const std::size_t p = std::size_t(j) * W + i;
         if (hasGpuHit[p]) continue;

@@ -50,6 +50,10 @@ enum class TracerMode {
   Exact,  // per-pixel evaluation of a RadialSum<3> in the shader
 };
 
+// Arithmetic of the exact shader's sum. Auto picks double where float rounding of the
+// cancelling terms could move the surface (ImplicitTracer::exactNeedsDouble), else float.
+enum class ExactPrecision { Auto, Float, Double };
+
 struct SliceSettings {
   bool enabled = false;
   std::array<double, 3> normal{0, 0, 1};  // normalised by the tracer (must be non-zero)
@@ -67,6 +71,7 @@ struct TraceSettings {
   SliceSettings slice;
   std::array<double, 3> background{1, 1, 1};  // each in [0, 1]; misses get round(255·c) exactly
   double minStepCells = 0.1;  // ε of the shader's march, in bake cells (baked) or 1e-3·diagonal units (exact)
+  ExactPrecision exactPrecision = ExactPrecision::Auto;
 };
 
 // A render's pixels and what tests and tools need besides them. Arrays are W·H, row 0 = top.
@@ -81,6 +86,8 @@ struct TraceResult {
   int refinedPixels = 0;          // hit pixels refined against the true field
   int ringHits = 0;               // silhouette-ring pixels the refinement added
   int droppedHits = 0;            // baked hits the true field does not confirm (turned to misses)
+  bool exactDouble = false;       // exact mode summed in double precision
+  int cpuTracedPixels = 0;        // pixels the GPU march left undecided (steps or loop budget), traced on the CPU
   Vec<3> normalAt(int i, int j) const {
     const std::size_t p = std::size_t(j) * image.width + i;
     return Vec<3>(normal[3 * p], normal[3 * p + 1], normal[3 * p + 2]);
@@ -113,6 +120,11 @@ class ImplicitTracer {
 
   // True when exact mode is available (the uploaded field is a RadialSum<3>).
   bool hasExactModel() const;
+  // True when float evaluation of the uploaded RadialSum could move its surface by more than
+  // 1e-4 of the bounds diagonal: 2⁻²⁴·√N times the largest sum of term magnitudes
+  // (RadialSum::termMagnitude) on a 6³ grid, read as a distance since fits have |∇f| ≈ 1 at the
+  // data. RBF-offset dipoles and polyharmonic kernels typically need double.
+  bool exactNeedsDouble() const { return exactNeedsDouble_; }
   const VolumeBake& bake() const;
   double bakeMs() const { return bakeMs_; }      // CPU bake of the last upload (samples + bricks)
   double uploadMs() const { return uploadMs_; }  // texture / SSBO upload of the last upload
@@ -124,6 +136,7 @@ class ImplicitTracer {
   std::unique_ptr<Gpu> gpu_;
   const ImplicitField<3>* field_ = nullptr;
   const RadialSum<3>* radialSum_ = nullptr;
+  bool exactNeedsDouble_ = false;
   Box<3> bounds_;
   std::unique_ptr<VolumeBake> bake_;
   HermiteSamples<3> samples_;
