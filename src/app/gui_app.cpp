@@ -176,11 +176,12 @@ void GuiApp::redrawViewIfStale() {
   const bool half = quality == ViewQuality::Interactive && dimension() == 3;
   const int rw = half ? std::max(1, w / 2) : w, rh = half ? std::max(1, viewH_ / 2) : viewH_;
   try {
-    view_ = renderer_.render(shown_, scene(), rw, rh, quality);
-    uploadImage(viewTexture_, view_.image);
+    // 2D views stay on the GPU (no read-back and re-upload per frame); 3D ones are read back.
+    view_ = renderer_.render(shown_, scene(), rw, rh, quality, true);
+    if (!view_.gpuImage) uploadImage(viewTexture_, view_.image);
     if (split) {
-      compareView_ = compareRenderer_.render(shownCompare_, scene(), rw, rh, quality);
-      uploadImage(compareTexture_, compareView_.image);
+      compareView_ = compareRenderer_.render(shownCompare_, scene(), rw, rh, quality, true);
+      if (!compareView_.gpuImage) uploadImage(compareTexture_, compareView_.image);
     }
   } catch (const std::exception& e) {
     setStatus(std::string("drawing failed: ") + e.what(), true);
@@ -194,12 +195,19 @@ void GuiApp::drawViewImage(const FrameInput& in) {
   const auto& b = scene().view.background;
   bg->AddRectFilled(ImVec2(0, 0), ImVec2(float(in.width), float(in.height)),
                     ImGui::GetColorU32(ImVec4(float(b[0]), float(b[1]), float(b[2]), 1.0f)));
-  if (!viewTexture_.valid() || !drawn_) return;
+  if (!drawn_ || (!view_.gpuImage && !viewTexture_.valid())) return;
   const float x0 = float(viewX_), y0 = float(viewY_), y1 = float(viewY_ + viewH_);
   const float w = drawn_->compareOn ? float(viewW_ / 2) : float(viewW_);
-  bg->AddImage(textureId(viewTexture_), ImVec2(x0, y0), ImVec2(x0 + w, y1));
-  if (drawn_->compareOn && compareTexture_.valid()) {
-    bg->AddImage(textureId(compareTexture_), ImVec2(x0 + w, y0), ImVec2(x0 + 2 * w, y1));
+  // A GPU-kept view has GL rows bottom-up: flip v.
+  auto addView = [&](const SceneViewResult& r, const render::Texture& uploaded, float left) {
+    if (r.gpuImage)
+      bg->AddImage(textureId(*r.gpuImage), ImVec2(left, y0), ImVec2(left + w, y1), ImVec2(0, 1), ImVec2(1, 0));
+    else
+      bg->AddImage(textureId(uploaded), ImVec2(left, y0), ImVec2(left + w, y1));
+  };
+  addView(view_, viewTexture_, x0);
+  if (drawn_->compareOn && (compareView_.gpuImage || compareTexture_.valid())) {
+    addView(compareView_, compareTexture_, x0 + w);
     bg->AddLine(ImVec2(x0 + w, y0), ImVec2(x0 + w, y1), IM_COL32(60, 60, 60, 255), 2.0f);
     const auto label = [&](float x, const FitOutcome* f) {
       if (!f) return;
@@ -291,7 +299,7 @@ void GuiApp::screenshotNow(const std::string& path, bool withUi, const FrameInpu
       image = target.read();
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
     } else {
-      image = view_.image;
+      image = view_.gpuImage ? renderer_.readGpuImage() : view_.image;
     }
     writePng(path, image);
     setStatus("saved screenshot " + path);

@@ -173,7 +173,7 @@ void GuiApp::addSampleAt(const Vec<2>& mouse) {
   const Ray ray = cam.ray(mouse.x(), mouse.y());
   // On the surface (the traced depth under the cursor) or else on the slice plane.
   std::optional<Vec<3>> hit;
-  const int rw = view_.image.width, rh = view_.image.height;
+  const int rw = view_.width, rh = view_.height;
   if (rw > 0 && !view_.depth.empty()) {
     const int i = std::clamp(int(mouse.x() * rw / w), 0, rw - 1), j = std::clamp(int(mouse.y() * rh / viewH_), 0, rh - 1);
     const float depth = view_.depth[std::size_t(j) * rw + i];

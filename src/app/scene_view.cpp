@@ -30,11 +30,18 @@ View2d sceneView2d(const Scene& scene, int width, int height) {
   return View2d(Vec<2>(scene.view.center2d[0], scene.view.center2d[1]), scene.view.halfHeight2d, width, height);
 }
 
+ImageRgba8 SceneViewRenderer::readGpuImage() const {
+  if (!target2d_) throw InputError("no view drawn on the GPU yet");
+  return target2d_->read();
+}
+
 SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome>& fit, const Scene& viewScene,
-                                          int width, int height, ViewQuality quality) {
+                                          int width, int height, ViewQuality quality, bool keepOnGpu) {
   if (!fit || !fit->ok()) throw InputError("nothing to draw: " + (fit ? fit->error : std::string("no fit")));
   const auto t0 = std::chrono::steady_clock::now();
   SceneViewResult out;
+  out.width = width;
+  out.height = height;
   const ViewSpec& v = viewScene.view;
 
   if (fit->fit2) {
@@ -50,10 +57,19 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
     o.style.range = colourRange;
     const View2d view = sceneView2d(viewScene, width, height);
     view2d_->setField(f.field(), view, o, f.data.points, f.data.normals);
-    render::OffscreenTarget target(width, height, false);
-    target.bind();
-    view2d_->draw();
-    out.image = target.read();
+    if (keepOnGpu) {
+      if (!target2d_ || target2d_->width() != width || target2d_->height() != height)
+        target2d_ = std::make_unique<render::OffscreenTarget>(width, height, false);
+      target2d_->bind();
+      view2d_->draw();
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      out.gpuImage = &target2d_->framebuffer().color();
+    } else {
+      render::OffscreenTarget target(width, height, false);
+      target.bind();
+      view2d_->draw();
+      out.image = target.read();
+    }
     out.colourRange = view2d_->range();
     out.isoSpacing = view2d_->isoSpacing();
     field_ = fit;
@@ -180,6 +196,8 @@ SceneViewResult SceneViewRenderer::renderPatch(const PatchView& patch, const Sce
   }
   patchLines(patch, spec, d.lineEnds, d.lineColors);
   SceneViewResult out;
+  out.width = width;
+  out.height = height;
   out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
   out.traceMode = "rasterised";
   return out;
@@ -239,6 +257,8 @@ SceneViewResult SceneViewRenderer::renderHolefill(const HolefillStages& st, cons
   }
   d.background = viewScene.view.background;
   SceneViewResult out;
+  out.width = width;
+  out.height = height;
   out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
   out.traceMode = "rasterised";
   return out;

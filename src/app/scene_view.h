@@ -16,6 +16,7 @@
 #include "render/field2d_view.h"
 #include "render/implicit_tracer.h"
 #include "render/mesh_view.h"
+#include "render/offscreen.h"
 
 namespace hermite::app {
 
@@ -25,7 +26,8 @@ enum class ViewQuality {
 };
 
 struct SceneViewResult {
-  ImageRgba8 image;
+  int width = 0, height = 0;  // the view's size in pixels
+  ImageRgba8 image;           // its pixels (empty when gpuImage is set)
   // 3D only: per-pixel surface hits (depth = ray parameter, +inf where none), for picking.
   std::vector<float> depth;
   double ms = 0;            // whole render (bake when the field changed, trace, refinement)
@@ -33,6 +35,9 @@ struct SceneViewResult {
   double isoSpacing = 0;    // 2D
   int refinedPixels = 0;    // 3D
   std::string traceMode;    // 3D: "baked", "baked + refined" or "exact"
+  // Set instead of `image` when the render was asked to stay on the GPU (2D): the colour texture
+  // of the renderer's own target, GL rows bottom-up, valid until its next render.
+  const render::Texture* gpuImage = nullptr;
 };
 
 class SceneViewRenderer {
@@ -44,8 +49,13 @@ class SceneViewRenderer {
 
   // Renders `fit` with the view of `viewScene` at width × height pixels. Throws InputError for
   // a failed fit (nothing to draw) and EnvironmentError from GL.
+  // keepOnGpu: a 2D view is drawn into a target kept here and not read back (result.gpuImage;
+  // readGpuImage() when pixels are wanted) — the window's path, which saves a read-back and a
+  // re-upload of the whole view per frame. 3D views are always read back (picking needs depth).
   SceneViewResult render(const std::shared_ptr<const FitOutcome>& fit, const Scene& viewScene, int width, int height,
-                         ViewQuality quality);
+                         ViewQuality quality, bool keepOnGpu = false);
+  // The pixels of the last keepOnGpu render (row 0 = top). Throws InputError when there is none.
+  ImageRgba8 readGpuImage() const;
 
   // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
   double colourRange = 0;
@@ -55,6 +65,7 @@ class SceneViewRenderer {
   std::unique_ptr<render::ImplicitTracer> tracer_;
   std::unique_ptr<render::Field2dView> view2d_;
   std::unique_ptr<render::MeshView> meshView_;
+  std::unique_ptr<render::OffscreenTarget> target2d_;  // keepOnGpu renders, resized on demand
   SceneViewResult renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height);
   SceneViewResult renderHolefill(const HolefillStages& stages, const Scene& viewScene, int width, int height);
   int bakeResolution_ = 0;

@@ -115,7 +115,7 @@ TEST_CASE("UI: dragging a 2D sample moves it and the field is refitted through i
   const Scene& s = h.app->document().scene();
   REQUIRE(s.data.isInline());  // the first edit wrote the preset's samples into the scene
   // Where the sample went, in world coordinates, and the refitted field vanishes there.
-  const View2d view = sceneView2d(s, h.app->viewResult().image.width, h.app->viewResult().image.height);
+  const View2d view = sceneView2d(s, h.app->viewResult().width, h.app->viewResult().height);
   const Vec<2> expected = view.pixelToWorld(to.x() - origin.x(), to.y() - origin.y());
   const Vec<2> moved(s.data.points[i][0], s.data.points[i][1]);
   CHECK((moved - expected).norm() < 1e-9);
@@ -216,7 +216,7 @@ TEST_CASE("UI: every panel renders, with the explorer, the compare view and the 
   h.app->explorer().wait();
   h.frames(2);
   CHECK(h.app->explorer().entries().size() == 3);
-  CHECK(h.app->viewResult().image.width == (1100 - int(kLeftPanelWidth)) / 2);
+  CHECK(h.app->viewResult().width == (1100 - int(kLeftPanelWidth)) / 2);
 }
 
 TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel keeps the previous result") {
