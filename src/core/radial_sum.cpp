@@ -265,14 +265,11 @@ double RadialSum<Dim>::termMagnitude(const Vec<Dim>& x) const {
     if (hasBeta()) sum += std::abs(t.a * d.dot(beta_.col(j)));  // ∇φ(d) = a·d
   }
   if (polynomial_ != Polynomial::None) {
-    // Monomials in the order of polynomial.h: 1, x…, then xᵢxⱼ (i ≤ j).
-    sum += std::abs(poly_(0));
-    for (int i = 0; i < Dim; ++i) sum += std::abs(poly_(1 + i) * x(i));
-    if (polynomial_ == Polynomial::Quadratic) {
-      int k = 1 + Dim;
-      for (int i = 0; i < Dim; ++i)
-        for (int j = i; j < Dim; ++j, ++k) sum += std::abs(poly_(k) * x(i) * x(j));
-    }
+    const int m = monomialCount<Dim>(polynomial_);
+    Eigen::VectorXd values(m);
+    Eigen::Matrix<double, Dim, Eigen::Dynamic> gradients(Dim, m);
+    monomials<Dim>(polynomial_, x, values, gradients);
+    sum += (poly_.array() * values.array()).abs().sum();
   }
   return sum;
 }

@@ -265,3 +265,19 @@ TEST_CASE("regression: the LU fallback after a failed Cholesky factorises the or
   CHECK(a.solver == "lu");
   CHECK((a.x - b.x).norm() == 0.0);
 }
+
+TEST_CASE("termMagnitude is the sum of the magnitudes of the terms that make up f") {
+  // One centre with α, β and a quadratic polynomial, so every term can be written out.
+  const Points<2> centre = (Points<2>(2, 1) << 0.2, -0.1).finished();
+  const Eigen::VectorXd alpha = (Eigen::VectorXd(1) << 1.5).finished();
+  const Points<2> beta = (Points<2>(2, 1) << -0.3, 0.4).finished();
+  const Eigen::VectorXd poly = (Eigen::VectorXd(6) << 0.5, -1, 2, 0.25, -0.5, 3).finished();  // 1 x y xx xy yy
+  const HrbfModel<2> m(Kernel{KernelType::Cubic, 1.0}, Polynomial::Quadratic, centre, alpha, beta, poly);
+  const Vec<2> x(0.7, -0.6);
+  const Vec<2> d = x - centre.col(0);
+  const double r = d.norm();
+  const double expected = std::abs(1.5 * r * r * r) + std::abs(3 * r * d.dot(beta.col(0))) + 0.5 + 0.7 + 1.2 +
+                          0.25 * 0.49 + 0.5 * 0.42 + 3 * 0.36;
+  CHECK(m.termMagnitude(x) == doctest::Approx(expected).epsilon(1e-14));
+  CHECK(m.termMagnitude(x) >= std::abs(m.value(x)));
+}
