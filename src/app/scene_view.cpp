@@ -104,11 +104,10 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
     out.depth = std::move(r.depth);
     out.refinedPixels = r.refinedPixels;
     out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
-  } else if (fit->patch) {
-    out = renderPatch(*fit->patch, viewScene, width, height);
-    field_ = fit;
-  } else if (fit->holefill) {
-    out = renderHolefill(*fit->holefill, viewScene, width, height);
+  } else if (fit->patch || fit->holefill) {
+    out.image = fit->patch ? renderPatch(*fit->patch, viewScene, width, height)
+                           : renderHolefill(*fit->holefill, viewScene, width, height);
+    out.traceMode = "rasterised";
     field_ = fit;
   } else {
     throw InputError("nothing to draw: the fit has no model");
@@ -177,7 +176,7 @@ void patchLines(const PatchView& patch, const PatchSpec& spec, std::vector<Vec<3
   }
 }
 
-SceneViewResult SceneViewRenderer::renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height) {
+ImageRgba8 SceneViewRenderer::renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height) {
   if (!meshView_) meshView_ = std::make_unique<render::MeshView>();
   render::MeshDrawData d;
   d.positions = patch.mesh.positions;
@@ -195,15 +194,10 @@ SceneViewResult SceneViewRenderer::renderPatch(const PatchView& patch, const Sce
     }
   }
   patchLines(patch, spec, d.lineEnds, d.lineColors);
-  SceneViewResult out;
-  out.width = width;
-  out.height = height;
-  out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
-  out.traceMode = "rasterised";
-  return out;
+  return meshView_->render(sceneCamera(viewScene, width, height), d);
 }
 
-SceneViewResult SceneViewRenderer::renderHolefill(const HolefillStages& st, const Scene& viewScene, int width,
+ImageRgba8 SceneViewRenderer::renderHolefill(const HolefillStages& st, const Scene& viewScene, int width,
                                                   int height) {
   if (!meshView_) meshView_ = std::make_unique<render::MeshView>();
   // The input in the front colour, each patch (own vertices, so it takes its own colour) in teal;
@@ -256,12 +250,7 @@ SceneViewResult SceneViewRenderer::renderHolefill(const HolefillStages& st, cons
     }
   }
   d.background = viewScene.view.background;
-  SceneViewResult out;
-  out.width = width;
-  out.height = height;
-  out.image = meshView_->render(sceneCamera(viewScene, width, height), d);
-  out.traceMode = "rasterised";
-  return out;
+  return meshView_->render(sceneCamera(viewScene, width, height), d);
 }
 
 }  // namespace hermite::app

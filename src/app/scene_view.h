@@ -34,7 +34,7 @@ struct SceneViewResult {
   double colourRange = 0;   // 2D: the heat map covers ±range
   double isoSpacing = 0;    // 2D
   int refinedPixels = 0;    // 3D
-  std::string traceMode;    // 3D: "baked", "baked + refined" or "exact"
+  std::string traceMode;    // 3D: "baked", "baked + refined" or "exact"; patch / hole filling: "rasterised"
   // Set instead of `image` when the render was asked to stay on the GPU (2D): the colour texture
   // of the renderer's own target, GL rows bottom-up, valid until its next render.
   const render::Texture* gpuImage = nullptr;
@@ -66,8 +66,9 @@ class SceneViewRenderer {
   std::unique_ptr<render::Field2dView> view2d_;
   std::unique_ptr<render::MeshView> meshView_;
   std::unique_ptr<render::OffscreenTarget> target2d_;  // keepOnGpu renders, resized on demand
-  SceneViewResult renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height);
-  SceneViewResult renderHolefill(const HolefillStages& stages, const Scene& viewScene, int width, int height);
+  // The rasterised modes' images (the mesh view).
+  ImageRgba8 renderPatch(const PatchView& patch, const Scene& viewScene, int width, int height);
+  ImageRgba8 renderHolefill(const HolefillStages& stages, const Scene& viewScene, int width, int height);
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
 };
