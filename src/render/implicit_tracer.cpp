@@ -316,6 +316,11 @@ ImplicitTracer::~ImplicitTracer() = default;
 
 bool ImplicitTracer::hasExactModel() const { return radialSum_ != nullptr; }
 
+bool ImplicitTracer::exactNeedsDouble() const {
+  if (!exactNeedsDouble_) exactNeedsDouble_ = radialSum_ != nullptr && floatEvaluationTooCoarse(*radialSum_, bounds_);
+  return *exactNeedsDouble_;
+}
+
 const VolumeBake& ImplicitTracer::bake() const {
   if (!bake_) throw InputError("implicit tracer: nothing uploaded");
   return *bake_;
@@ -359,7 +364,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   field_ = &field;
   radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
   bounds_ = bounds;
-  exactNeedsDouble_ = false;
+  exactNeedsDouble_.reset();
   if (radialSum_) {
     // Centres relative to the bounds centre, in float and in double (both programs may run).
     gpu_->origin = bounds.center();
@@ -380,7 +385,6 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
     gpu_->centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
     gpu_->betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
     gpu_->shiftedPoly = shiftPolynomial(radialSum_->polynomial(), radialSum_->poly(), gpu_->origin);
-    exactNeedsDouble_ = floatEvaluationTooCoarse(*radialSum_, bounds);
   }
   hasSamples_ = samples != nullptr && samples->size() > 0;
   if (hasSamples_) samples_ = *samples;
@@ -521,7 +525,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   }
   const bool exactDouble =
       settings.mode == TracerMode::Exact && (settings.exactPrecision == ExactPrecision::Double ||
-                                              (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble_));
+                                              (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
   const TraceProgramKind kind = settings.mode == TracerMode::Baked ? kBakedProgram
                                 : exactDouble                      ? kExactDoubleProgram
                                                                    : kExactFloatProgram;

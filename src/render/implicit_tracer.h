@@ -34,6 +34,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "core/camera.h"
@@ -124,7 +125,9 @@ class ImplicitTracer {
   // 1e-4 of the bounds diagonal: 2⁻²⁴·√N times the largest sum of term magnitudes
   // (RadialSum::termMagnitude) on a 6³ grid, read as a distance since fits have |∇f| ≈ 1 at the
   // data. RBF-offset dipoles and polyharmonic kernels typically need double.
-  bool exactNeedsDouble() const { return exactNeedsDouble_; }
+  // Decided on first use after each upload (216·N kernel evaluations), not in upload itself:
+  // baked-mode uploads (every 3D drag) never need it. False without a RadialSum.
+  bool exactNeedsDouble() const;
   const VolumeBake& bake() const;
   double bakeMs() const { return bakeMs_; }      // CPU bake of the last upload (samples + bricks)
   double uploadMs() const { return uploadMs_; }  // texture / SSBO upload of the last upload
@@ -136,7 +139,7 @@ class ImplicitTracer {
   std::unique_ptr<Gpu> gpu_;
   const ImplicitField<3>* field_ = nullptr;
   const RadialSum<3>* radialSum_ = nullptr;
-  bool exactNeedsDouble_ = false;
+  mutable std::optional<bool> exactNeedsDouble_;  // cache of exactNeedsDouble(), reset by upload
   Box<3> bounds_;
   std::unique_ptr<VolumeBake> bake_;
   HermiteSamples<3> samples_;
