@@ -558,8 +558,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     program->setUniform("uLoopBudget", exactLoopBudget);
     program->setUniform("uHasBeta", m.hasBeta() ? 1 : 0);
     program->setUniform("uKernel", kernelIndex(m.kernel().type));
-    const int polyCount = m.polynomial() == Polynomial::None ? 0 : m.polynomial() == Polynomial::Linear ? 4 : 10;
-    program->setUniform("uPolyCount", polyCount);
+    program->setUniform("uPolyCount", monomialCount<3>(m.polynomial()));
     // `real` uniforms: double or float to match the program.
     auto setReal = [&](const std::string& name, double v) {
       if (exactDouble)
