@@ -4,7 +4,8 @@
 // in the brick, else the Chebyshev distance in bricks to the nearest such brick.
 
 uniform sampler3D uVolume;
-uniform highp sampler3D uBakedBricks;  // RG32F per (fine) brick: (L of the interpolant, brick distance e)
+// RGB32F per (fine) brick: (L of the interpolant, brick distance e, L over the bricks b − 1 … b + 1)
+uniform highp sampler3D uBakedBricks;
 uniform vec3 uVolumeScale;        // (R − 1) / (hi − lo): world → sample index
 uniform float uVolumeResolution;  // R
 uniform vec3 uCell;               // sample spacing, world units
@@ -30,4 +31,6 @@ vec3 fieldGradient(vec3 p) {
 }
 
 vec2 brickInfo(ivec3 b) { return texelFetch(uBakedBricks, b, 0).xy; }
+
+float neighbourhoodLipschitz(ivec3 b) { return texelFetch(uBakedBricks, b, 0).z; }
 

@@ -11,6 +11,7 @@ uniform vec3 uEye;
 uniform vec3 uRight;
 uniform vec3 uUp;
 uniform vec3 uForward;
+uniform float uTileSize;    // pixels per fragment edge: 1, or TRACE_TILE in the tile pass (trace_tile_pass.glsl)
 uniform float uTanHalf;     // tan(fov_y / 2)
 uniform float uAspect;      // W / H
 uniform float uHalfHeight;  // orthographic half height, world units
@@ -50,9 +51,10 @@ uniform vec4 uStops[5];     // (t, r, g, b)
 uniform vec3 uZeroColor;
 uniform float uIsoDarken;
 
+// The ray through the centre of this fragment's pixel, or of its tile of uTileSize² pixels.
 void pixelRay(out vec3 origin, out vec3 dir) {
-  float px = gl_FragCoord.x;
-  float py = uViewport.y - gl_FragCoord.y;  // row 0 = top
+  float px = gl_FragCoord.x * uTileSize;
+  float py = uViewport.y - gl_FragCoord.y * uTileSize;  // row 0 = top
   float sx = (2.0 * px / uViewport.x - 1.0) * uAspect;
   float sy = 1.0 - 2.0 * py / uViewport.y;
   if (uOrtho == 1) {
@@ -90,39 +92,64 @@ float exitParameter(vec3 o, vec3 d, vec3 lo, vec3 hi) {
   return t;
 }
 
-// The first zero of f on [t0, t1]: brick by brick, jumping over empty space, steps
-// max(|f|/L, ε) in bricks that may hold a zero, then a secant on the first sign change (the
-// bracket is at most ε long: a Lipschitz step cannot cross a zero, and the interpolant is
-// nearly linear over ε; settled views are refined against the true field on the CPU anyway).
-// With TRACE_BRICK_DISTANCE, brickInfo(b) = (L, e): e = 0 when the brick may contain a zero,
-// else e ≥ 1 and every brick within Chebyshev distance e − 1 of b is free of zeros too (a "brick
-// distance map"), so the ray leaves that whole cube of bricks in one step; without it,
-// brickInfo(b) = (L, 1 where the brick may contain a zero, else 0).
-// One loop with one texture / field fetch per iteration and no return inside it: llvmpipe
-// runs both sides of divergent branches under masks, so every fetch sits on the common path,
-// control flow stays simple, and the loop ends as soon as all lanes are done.
+// Empty cube of bricks around brick b that the ray at o + t d leaves at the returned parameter
+// (clamped to [t + nudge, t1]); info = brickInfo(b) in (L, e) form: e = 0 when the brick may
+// contain a zero, else every brick within Chebyshev distance e − 1 of b is free of zeros.
+float leaveBricks(vec3 o, vec3 d, float t, float t1, float nudge, ivec3 b, vec2 info) {
+  float r = max(info.y - 1.0, 0.0);  // the cube [b − r, b + r], or the brick itself (e = 0)
+  vec3 blo = uBoundsLo + (vec3(b) - r) * uBrickSize;
+  vec3 bhi = uBoundsLo + (vec3(b) + r + 1.0) * uBrickSize;
+  return min(max(exitParameter(o, d, blo, bhi), t + nudge), t1);
+}
+
+// The brick of the point at t (a nudge past it, so a ray on a brick face looks ahead) and its
+// (L, e) as leaveBricks takes it.
+vec2 brickAt(vec3 o, vec3 d, float t, float t1, float nudge, out ivec3 b) {
+  vec3 p = o + min(t + nudge, t1) * d;
+  b = clamp(ivec3(floor((p - uBoundsLo) / uBrickSize)), ivec3(0), uBrickCount - 1);
+  vec2 info = brickInfo(b);
+#ifndef TRACE_BRICK_DISTANCE
+  info.y = info.y > 0.5 ? 0.0 : 1.0;  // (L, may contain a zero) → (L, e) with e ∈ {0, 1}
+#endif
+  return info;
+}
+
+// The first zero of f on [t0, t1], in two loops.
+// 1. Skip: leave the zero-free bricks in front of the first brick that may hold a zero, from the
+//    brick texture alone. f is not needed there, and it is the expensive fetch (a trilinear 3D
+//    read is 8 texel reads on llvmpipe, an exact evaluation N kernel terms), which a single
+//    loop would pay on every lane of a SIMD vector while any lane still skips.
+// 2. March: brick by brick, jumping over empty space, steps max(|f|/L, ε) in bricks that may
+//    hold a zero, then a secant on the first sign change (the bracket is at most ε long: a
+//    Lipschitz step cannot cross a zero, and the interpolant is nearly linear over ε; settled
+//    views are refined against the true field on the CPU anyway).
+// With TRACE_BRICK_DISTANCE, brickInfo(b) = (L, e) as leaveBricks takes it (a "brick distance
+// map": the ray leaves a whole empty cube of bricks in one step); without it, brickInfo(b) =
+// (L, 1 where the brick may contain a zero, else 0).
+// One fetch of each kind per iteration and no return inside the loops: llvmpipe runs both sides
+// of divergent branches under masks, so every fetch sits on the common path, control flow stays
+// simple, and a loop ends as soon as all lanes are done.
 bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecided) {
   float nudge = 1e-6 * length(uBoundsHi - uBoundsLo);
-  vec3 invBrick = 1.0 / uBrickSize;
   float t = t0;
+  int it = 0;
+  bool nearZero = false;
+  for (; it < uMaxSteps && gLoops < uLoopBudget && !nearZero && t < t1; ++it) {
+    gLoops += 4;  // this iteration and exitParameter's axis loop, if not unrolled
+    ivec3 b;
+    vec2 info = brickAt(o, d, t, t1, nudge, b);
+    nearZero = info.y < 0.5;
+    if (!nearZero) t = leaveBricks(o, d, t, t1, nudge, b, info);
+  }
   float fa = fieldValue(o + t * d);
   bool negA = fa < 0.0;
   float tb = t, fb = fa;
   bool found = fa == 0.0;
-  int it = 0;
   for (; it < uMaxSteps && gLoops < uLoopBudget && !found && t < t1; ++it) {
-    gLoops += 4;  // this iteration and exitParameter's axis loop, if not unrolled
-    vec3 p = o + min(t + nudge, t1) * d;
-    ivec3 b = clamp(ivec3(floor((p - uBoundsLo) * invBrick)), ivec3(0), uBrickCount - 1);
-    vec2 info = brickInfo(b);
-#ifndef TRACE_BRICK_DISTANCE
-    info.y = info.y > 0.5 ? 0.0 : 1.0;  // (L, may contain a zero) → (L, e) with e ∈ {0, 1}
-#endif
-    // Empty cube of bricks [b − r, b + r] (r = e − 1), or the brick itself (e = 0).
-    float r = max(info.y - 1.0, 0.0);
-    vec3 blo = uBoundsLo + (vec3(b) - r) * uBrickSize;
-    vec3 bhi = uBoundsLo + (vec3(b) + r + 1.0) * uBrickSize;
-    float tExit = min(max(exitParameter(o, d, blo, bhi), t + nudge), t1);
+    gLoops += 4;
+    ivec3 b;
+    vec2 info = brickAt(o, d, t, t1, nudge, b);
+    float tExit = leaveBricks(o, d, t, t1, nudge, b, info);
     float stepLength = (info.y > 0.5) ? 1e30 : (info.x > 0.0 ? abs(fa) / info.x : 1e30);
     float ts = (t + stepLength >= tExit) ? tExit : min(t + max(uMinStep, stepLength), t1);
     float fs = fieldValue(o + ts * d);
@@ -187,6 +214,15 @@ float windowDepth(vec3 p) {
   return clamp(0.5 * clip.z / clip.w + 0.5, 0.0, 1.0);
 }
 
+#ifdef TRACE_TILE_PASS
+#include "trace_tile_pass.glsl"
+#else
+#ifdef TRACE_TILE_START
+// Per tile of TRACE_TILE² pixels, a ray parameter before which none of its rays meets a zero
+// inside the bounds (trace_tile_pass.glsl): the march starts there.
+uniform sampler2D uTileStart;
+#endif
+
 void main() {
   vec3 o, d;
   pixelRay(o, d);
@@ -202,7 +238,11 @@ void main() {
   if (uShowSurface == 1) {
     float tHit;
     bool undecided;
-    if (march(o, d, t0, t1, tHit, undecided)) {
+    float tStart = t0;
+#ifdef TRACE_TILE_START
+    tStart = max(t0, texelFetch(uTileStart, ivec2(gl_FragCoord.xy) / TRACE_TILE, 0).r);
+#endif
+    if (march(o, d, tStart, t1, tHit, undecided)) {
       surface = true;
       tSurface = tHit;
       vec3 p = o + tHit * d;
@@ -234,3 +274,4 @@ void main() {
   }
 #endif
 }
+#endif

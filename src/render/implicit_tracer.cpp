@@ -106,10 +106,12 @@ std::vector<float> brickTexels(const VolumeBake& bake) {
 // the brick (see brickTexels) and e the brick distance: 0 where the interpolant may vanish in the
 // brick (its samples do not all have one sign), else the Chebyshev distance in bricks to the
 // nearest such brick, so that every brick within e − 1 of it is free of zeros too.
+// A third channel holds the largest L over the bricks b − 1 … b + 1 (those in the grid; +inf
+// where any of them has a NaN sample) for the tile pass's cone, whose sections straddle bricks.
 struct BakedBricks {
   Eigen::Array3i count = Eigen::Array3i::Zero();
   Vec<3> size = Vec<3>::Zero();
-  std::vector<float> texels;  // RG per brick, x fastest
+  std::vector<float> texels;  // RGB per brick, x fastest
 };
 
 // Cells per brick edge of the baked mode's brick grid.
@@ -123,9 +125,10 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
   out.count = Eigen::Array3i::Constant(perAxis);
   out.size = double(C) * h;
   const int n = perAxis * perAxis * perAxis;
-  out.texels.assign(2 * std::size_t(n), 0.0f);
+  out.texels.assign(3 * std::size_t(n), 0.0f);
   constexpr int kFar = 1 << 20;
   std::vector<int> dist(n);
+  std::vector<float> lipschitz(n);  // +inf for bricks with a NaN sample
   const std::size_t plane = std::size_t(R) * R;
   const float* v = bake.values.data();
 #pragma omp parallel for schedule(static)
@@ -151,8 +154,19 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
         }
       }
     const double interp = Vec<3>(maxDiff[0] / h.x(), maxDiff[1] / h.y(), maxDiff[2] / h.z()).norm();
-    out.texels[2 * std::size_t(b)] = float(1.01 * interp);  // 1 % slack as in brickTexels
+    out.texels[3 * std::size_t(b)] = float(1.01 * interp);  // 1 % slack as in brickTexels
+    lipschitz[b] = nan ? std::numeric_limits<float>::infinity() : float(1.01 * interp);
     dist[b] = (nan || (lo <= 0.0f && hi >= 0.0f)) ? 0 : kFar;
+  }
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < n; ++b) {
+    const int bx = b % perAxis, by = (b / perAxis) % perAxis, bz = b / (perAxis * perAxis);
+    float L = 0;
+    for (int z = std::max(bz - 1, 0); z <= std::min(bz + 1, perAxis - 1); ++z)
+      for (int y = std::max(by - 1, 0); y <= std::min(by + 1, perAxis - 1); ++y)
+        for (int x = std::max(bx - 1, 0); x <= std::min(bx + 1, perAxis - 1); ++x)
+          L = std::max(L, lipschitz[(z * perAxis + y) * perAxis + x]);
+    out.texels[3 * std::size_t(b) + 2] = L;
   }
   // Chebyshev distance transform, separable: pass k sets d(x) = min_y max(|x_k − y_k|, d(y))
   // along the lines of axis k.
@@ -172,7 +186,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
         for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
       }
   }
-  for (int b = 0; b < n; ++b) out.texels[2 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
+  for (int b = 0; b < n; ++b) out.texels[3 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
   return out;
 }
 
@@ -201,12 +215,27 @@ std::array<double, 10> shiftPolynomial(Polynomial p, const Eigen::VectorXd& c, c
 }
 
 // An FBO with colour (RGBA8), hit data (RGBA32F), plane colour (RGBA8) and depth.
+// Pixels per tile edge of the baked mode's tile pass (trace_tile_pass.glsl): the shaders get it
+// as TRACE_TILE.
+constexpr int kTraceTile = 4;
+
 struct TraceTarget {
   int width = 0, height = 0;
   GLuint fbo = 0;
   Texture color, hit, plane, depth;
+  // The tile pass's output: per tile of kTraceTile² pixels, where its rays may start (R32F).
+  int tileWidth = 0, tileHeight = 0;
+  GLuint tileFbo = 0;
+  Texture tileStart;
 
-  TraceTarget(int w, int h) : width(w), height(h) {
+  TraceTarget(int w, int h)
+      : width(w), height(h), tileWidth((w + kTraceTile - 1) / kTraceTile), tileHeight((h + kTraceTile - 1) / kTraceTile) {
+    tileStart = Texture::create2D(GL_R32F, tileWidth, tileHeight);
+    tileStart.setFilter(GL_NEAREST, GL_NEAREST);
+    glCreateFramebuffers(1, &tileFbo);
+    glNamedFramebufferTexture(tileFbo, GL_COLOR_ATTACHMENT0, tileStart.id(), 0);
+    if (glCheckNamedFramebufferStatus(tileFbo, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw EnvironmentError("implicit tracer: incomplete tile framebuffer");
     color = Texture::create2D(GL_RGBA8, w, h);
     hit = Texture::create2D(GL_RGBA32F, w, h);
     plane = Texture::create2D(GL_RGBA8, w, h);
@@ -224,6 +253,7 @@ struct TraceTarget {
   }
   ~TraceTarget() {
     if (fbo) glDeleteFramebuffers(1, &fbo);
+    if (tileFbo) glDeleteFramebuffers(1, &tileFbo);
   }
   TraceTarget(const TraceTarget&) = delete;
   TraceTarget& operator=(const TraceTarget&) = delete;
@@ -240,6 +270,10 @@ struct TraceTarget {
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
     glViewport(0, 0, width, height);
   }
+  void bindTiles() const {
+    glBindFramebuffer(GL_FRAMEBUFFER, tileFbo);
+    glViewport(0, 0, tileWidth, tileHeight);
+  }
 };
 
 // Reads a whole level-0 texture; rows come bottom-up (GL order).
@@ -252,15 +286,20 @@ std::vector<T> readTexture(const Texture& texture, GLenum format, GLenum type, s
   return data;
 }
 
-// Trace programs: baked, exact in float, exact in double.
-enum TraceProgramKind { kBakedProgram = 0, kExactFloatProgram = 1, kExactDoubleProgram = 2 };
+// Trace programs: baked, exact in float, exact in double, and the baked mode's tile pass.
+enum TraceProgramKind { kBakedProgram = 0, kExactFloatProgram = 1, kExactDoubleProgram = 2, kBakedTileProgram = 3 };
+constexpr int kTraceProgramKinds = 4;
 
 // The trace program of a kind, with or without the slice plane (a compile-time switch: llvmpipe
 // executes untaken branches under a mask, so an unused slice would still cost its fetches).
 Program buildTraceProgram(TraceProgramKind kind, bool slice) {
-  const char* file = kind == kBakedProgram ? "trace_baked.frag" : "trace_exact.frag";
+  const bool baked = kind == kBakedProgram || kind == kBakedTileProgram;
+  const char* file = baked ? "trace_baked.frag" : "trace_exact.frag";
   std::string fragment = slice ? "#define TRACE_SLICE 1\n" : "";
   if (kind == kExactDoubleProgram) fragment += "#define EXACT_DOUBLE 1\n";
+  if (baked) fragment += "#define TRACE_TILE " + std::to_string(kTraceTile) + "\n";
+  if (kind == kBakedProgram) fragment += "#define TRACE_TILE_START 1\n";
+  if (kind == kBakedTileProgram) fragment += "#define TRACE_TILE_PASS 1\n";
   fragment += shaderSource(file);
   return buildProgram({ShaderSource{GL_VERTEX_SHADER, std::string(shaderSource("fullscreen.vert")), "fullscreen.vert"},
                        ShaderSource{GL_FRAGMENT_SHADER, fragment, file}});
@@ -288,7 +327,7 @@ bool floatEvaluationTooCoarse(const RadialSum<3>& model, const Box<3>& bounds) {
 }  // namespace
 
 struct ImplicitTracer::Gpu {
-  std::unique_ptr<Program> programs[3][2];  // [TraceProgramKind][slice], built on first use
+  std::unique_ptr<Program> programs[kTraceProgramKinds][2];  // [TraceProgramKind][slice], built on first use
   VertexArray empty;
   Texture volume;
   Texture bricks;
@@ -309,6 +348,7 @@ struct ImplicitTracer::Gpu {
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
   gpu_->programs[kBakedProgram][0] = std::make_unique<Program>(buildTraceProgram(kBakedProgram, false));
+  gpu_->programs[kBakedTileProgram][0] = std::make_unique<Program>(buildTraceProgram(kBakedTileProgram, false));
   gpu_->overlay = std::make_unique<OverlayRenderer>();
 }
 
@@ -355,8 +395,8 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
   gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, texels.data());
   gpu_->bricks.setFilter(GL_NEAREST, GL_NEAREST);
-  gpu_->bakedBricks = Texture::create3D(GL_RG32F, baked.count.x(), baked.count.y(), baked.count.z());
-  gpu_->bakedBricks.upload3D(GL_RG, GL_FLOAT, baked.texels.data());
+  gpu_->bakedBricks = Texture::create3D(GL_RGB32F, baked.count.x(), baked.count.y(), baked.count.z());
+  gpu_->bakedBricks.upload3D(GL_RGB, GL_FLOAT, baked.texels.data());
   gpu_->bakedBricks.setFilter(GL_NEAREST, GL_NEAREST);
   gpu_->bakedBrickCount = baked.count;
   gpu_->bakedBrickSize = baked.size;
@@ -404,6 +444,7 @@ void setTraceUniforms(const Program& p, const Camera& camera, const Box<3>& boun
   p.setUniform("uRight", toGlm(camera.right()));
   p.setUniform("uUp", toGlm(camera.up()));
   p.setUniform("uForward", toGlm(camera.forward()));
+  p.setUniform("uTileSize", 1.0f);
   p.setUniform("uTanHalf", float(camera.tanHalfFov()));
   p.setUniform("uAspect", float(camera.aspect()));
   p.setUniform("uHalfHeight", float(camera.halfHeight()));
@@ -465,6 +506,37 @@ double sliceRangeFromBake(const VolumeBake& bake, const Vec<3>& n, double offset
       range = std::max(range, std::abs(sampleBake(bake, x)));
     }
   return range > 0 && std::isfinite(range) ? range : 1.0;
+}
+
+// The cone about a tile's centre ray that holds all of the tile's pixel rays: radius
+// radius0 + slope·a at axial distance a (trace_tile_pass.glsl), and reach ≥ that radius anywhere
+// inside the bounds. Pixel centres lie within (tile − 1)/2 pixels of the tile's centre per axis.
+struct TileCone {
+  double slope = 0, radius0 = 0, reach = 0;
+};
+
+TileCone tileCone(const Camera& camera, const Box<3>& bounds, int tile) {
+  const double offsetPixels = 0.5 * (tile - 1) * std::sqrt(2.0);
+  TileCone cone;
+  if (camera.projection() == Projection::Orthographic) {
+    cone.radius0 = offsetPixels * 2.0 * camera.halfHeight() / camera.height();
+  } else {
+    // Directions c + e with |c| ≥ 1 (the forward axis has length 1) and |e| ≤ δ at unit distance:
+    // the angle φ between them has tan φ ≤ δ / (1 − δ).
+    const double delta = offsetPixels * 2.0 * camera.tanHalfFov() / camera.height();
+    cone.slope = delta / (1.0 - delta);
+  }
+  double far = 0;
+  for (int c = 0; c < 8; ++c) {
+    const Vec<3> corner((c & 1) ? bounds.hi.x() : bounds.lo.x(), (c & 2) ? bounds.hi.y() : bounds.lo.y(),
+                        (c & 4) ? bounds.hi.z() : bounds.lo.z());
+    far = std::max(far, (corner - camera.eye()).norm());
+  }
+  // 1 % slack for the shader's float arithmetic.
+  cone.slope *= 1.01;
+  cone.radius0 *= 1.01;
+  cone.reach = 1.01 * (cone.radius0 + cone.slope * far) + 1e-6 * bounds.extent().norm();
+  return cone;
 }
 
 struct PixelRefine {
@@ -535,21 +607,44 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   const Program* program = slot.get();
   const double minStep = settings.mode == TracerMode::Baked ? settings.minStepCells * bake.spacing().minCoeff()
                                                             : settings.minStepCells * 1e-3 * diagonal;
+  auto setBakedUniforms = [&](const Program& p) {
+    gpu_->volume.bind(0);
+    p.setUniform("uVolume", 0);
+    const Vec<3> scale = Vec<3>::Constant(bake.resolution - 1).cwiseQuotient(bounds_.extent());
+    p.setUniform("uVolumeScale", toGlm(scale));
+    p.setUniform("uVolumeResolution", float(bake.resolution));
+    p.setUniform("uCell", toGlm(bake.spacing()));
+    // The baked mode marches over its own, finer brick grid.
+    p.setUniform("uBrickCount", glm::ivec3(gpu_->bakedBrickCount.x(), gpu_->bakedBrickCount.y(),
+                                           gpu_->bakedBrickCount.z()));
+    p.setUniform("uBrickSize", toGlm(gpu_->bakedBrickSize));
+    gpu_->bakedBricks.bind(2);
+    p.setUniform("uBakedBricks", 2);
+  };
+  if (settings.mode == TracerMode::Baked && settings.showSurface) {
+    // Tile pass: per tile of kTraceTile² pixels, how far its rays may skip (trace_tile_pass.glsl).
+    const Program& tiles = *gpu_->programs[kBakedTileProgram][0];
+    tiles.use();
+    setTraceUniforms(tiles, camera, bounds_, bake, settings, viewProj, minStep, sliceRange);
+    setBakedUniforms(tiles);
+    const TileCone cone = tileCone(camera, bounds_, kTraceTile);
+    tiles.setUniform("uTileSize", float(kTraceTile));
+    tiles.setUniform("uConeSlope", float(cone.slope));
+    tiles.setUniform("uConeRadius0", float(cone.radius0));
+    tiles.setUniform("uConeReach", float(cone.reach));
+    target.bindTiles();
+    gpu_->empty.bind();
+    glDisable(GL_DEPTH_TEST);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glEnable(GL_DEPTH_TEST);
+    target.bind();
+  }
   program->use();
   setTraceUniforms(*program, camera, bounds_, bake, settings, viewProj, minStep, sliceRange);
   if (settings.mode == TracerMode::Baked) {
-    gpu_->volume.bind(0);
-    program->setUniform("uVolume", 0);
-    const Vec<3> scale = Vec<3>::Constant(bake.resolution - 1).cwiseQuotient(bounds_.extent());
-    program->setUniform("uVolumeScale", toGlm(scale));
-    program->setUniform("uVolumeResolution", float(bake.resolution));
-    program->setUniform("uCell", toGlm(bake.spacing()));
-    // The baked mode marches over its own, finer brick grid.
-    program->setUniform("uBrickCount", glm::ivec3(gpu_->bakedBrickCount.x(), gpu_->bakedBrickCount.y(),
-                                                  gpu_->bakedBrickCount.z()));
-    program->setUniform("uBrickSize", toGlm(gpu_->bakedBrickSize));
-    gpu_->bakedBricks.bind(2);
-    program->setUniform("uBakedBricks", 2);
+    setBakedUniforms(*program);
+    target.tileStart.bind(3);
+    program->setUniform("uTileStart", 3);
   } else {
     const RadialSum<3>& m = *radialSum_;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, (exactDouble ? gpu_->centresDouble : gpu_->centres).id());
@@ -910,9 +1005,11 @@ TracerBenchResult benchTracer(int bakeCentres, int traceCentres, int bakeResolut
   const Camera camera(spec, Projection::Perspective, width, height, 1.5);
   TraceSettings settings;
   std::vector<double> trace, refine;
+  // Traces back to back, as while orbiting a settled model; then the refinements (whose CPU
+  // threads, run in between, slowed the following trace by 10–25 % on this 2-core machine).
+  settings.refineExact = false;
+  for (int r = 0; r < 2 * repeats + 1; ++r) trace.push_back(tracer.render(camera, settings).traceMs);
   for (int r = 0; r < repeats; ++r) {
-    settings.refineExact = false;
-    trace.push_back(tracer.render(camera, settings).traceMs);
     settings.refineExact = true;
     const TraceResult refined = tracer.render(camera, settings);
     refine.push_back(refined.refineMs);
