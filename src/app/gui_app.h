@@ -115,6 +115,7 @@ class GuiApp {
   // ("fit.radius", "fit.kernel", "diagnostics.cancel", ...): how scripted UI tests find them.
   std::optional<std::array<float, 4>> widgetRect(const std::string& name) const;
   Vec<2> viewOrigin() const { return Vec<2>(viewX_, viewY_); }
+  Vec<2> viewSize() const { return Vec<2>(viewW_, viewH_); }  // view pixels (the whole view, both halves when comparing)
   // The transform gizmo (tests switch it on and find its handles).
   void setGizmoVisible(bool on) { showGizmo_ = on; }
   // Saves a screenshot of the next frame to `path` (with or without the panels).
@@ -180,6 +181,11 @@ class GuiApp {
   void drawPatchHandles();
   bool pressPatchHandle(const Vec<2>& mouse);  // true when a handle was grabbed
   void dragPatchHandle(const Vec<2>& mouse, const FrameInput& in);
+  // gui_tools.cpp: the slice plane, dragged along its normal in the 3D view
+  bool pressSlicePlane(const Vec<2>& mouse);
+  void dragSlicePlane(const Vec<2>& mouse);
+  std::optional<double> sliceLineParameter(const Vec<2>& mouse) const;
+  double sliceOffsetExtent() const;  // offsets in [−extent, extent] cut the view bounds
   // Helpers
   void openScene(const std::string& path);
   void loadPreset(const std::string& name, SceneMode mode);
@@ -218,11 +224,19 @@ class GuiApp {
 
   // Tools
   int selected_ = -1;
-  enum class Drag { None, Orbit, Pan, Sample, NormalTip, PatchHandle, Gizmo } drag_ = Drag::None;
+  enum class Drag { None, Orbit, Pan, Sample, NormalTip, PatchHandle, Gizmo, SlicePlane } drag_ = Drag::None;
   PatchHandle patchHandle_;            // the grabbed patch handle
   Vec<3> patchGrabStart_ = Vec<3>::Zero();
   Vec<2> lastMouse_ = Vec<2>::Zero();
   Vec<3> dragPlanePoint_ = Vec<3>::Zero();  // 3D sample drags move on the plane through it facing the camera
+  // Slice-plane drags (Alt + left drag): the grabbed point slides on the line through it along
+  // the plane's normal; the offset follows the line parameter nearest to the mouse ray.
+  struct SliceGrab {
+    Vec<3> point = Vec<3>::Zero();  // on the plane, world units
+    double offset = 0;              // view.slice.offset at the press
+    std::optional<double> lineParameter;  // at the press; none when the normal points along the ray
+    double pressY = 0;              // view pixels, for the fallback (vertical mouse motion)
+  } sliceGrab_;
   bool prevMouseDown_[3] = {false, false, false};
   std::array<bool, 512> prevKeys_{};
   CameraSpec homeCamera_;

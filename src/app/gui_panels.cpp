@@ -423,13 +423,7 @@ void GuiApp::drawViewPanel() {
         changed = true;
       }
       double offset = v.slice.offset;
-      // The offsets that cut the bounds: ± the farthest corner along the plane's normal.
-      double extent = 2.0;
-      if (shown_ && shown_->fit3) {
-        const Box<3> b = viewBounds<3>(v, shown_->fit3->data.points);
-        const Vec<3> n = Vec<3>(v.slice.normal[0], v.slice.normal[1], v.slice.normal[2]).normalized();
-        extent = std::max(n.cwiseAbs().dot(b.lo.cwiseAbs().cwiseMax(b.hi.cwiseAbs())), 1e-6);
-      }
+      const double extent = sliceOffsetExtent();  // offsets that cut the bounds
       const double lo = -extent, hi = extent;
       if (ImGui::SliderScalar("slice offset", ImGuiDataType_Double, &offset, &lo, &hi, "%.3f")) {
         if (!document_.inGesture()) document_.begin("slice offset");
@@ -439,6 +433,8 @@ void GuiApp::drawViewPanel() {
         document_.update(n);
       }
       if (ImGui::IsItemDeactivated() && document_.inGesture()) document_.end();
+      ImGui::SameLine();
+      helpMarker("or Alt + drag in the view: the plane follows the mouse along its normal.");
     }
     changed |= ImGui::Checkbox("bounds box", &v.showBounds);
     ImGui::SameLine();
@@ -692,6 +688,7 @@ void GuiApp::drawHelpOverlay() {
         {"drag the normal's tip", "rotate the normal"},
         {"N / Del", "flip the normal / delete the sample"},
         {"Ctrl+click", "add a sample (3D: on the surface or the slice plane)"},
+        {"Alt+drag", "move the slice plane along its normal (3D, slice on)"},
         {"Ctrl+Z / Ctrl+Shift+Z", "undo / redo (every edit, fit settings too)"},
         {"Ctrl+S", "save the scene"},
         {"Tab", "hide / show the panels"},

@@ -399,6 +399,69 @@ void GuiApp::handleShortcuts(const FrameInput& in) {
   }
 }
 
+// ---- the slice plane ---------------------------------------------------------------------------
+
+double GuiApp::sliceOffsetExtent() const {
+  const ViewSpec& v = scene().view;
+  if (!shown_ || !shown_->fit3) return 2.0;
+  const Box<3> b = viewBounds<3>(v, shown_->fit3->data.points);
+  const Vec<3> n = toVec(v.slice.normal).normalized();
+  // ± the farthest corner along the normal.
+  return std::max(n.cwiseAbs().dot(b.lo.cwiseAbs().cwiseMax(b.hi.cwiseAbs())), 1e-6);
+}
+
+// Parameter s of the point of the line grab + s·n nearest to the mouse ray (closest points of
+// two lines); none when the normal is within ~1° of the ray, where s is ill-conditioned.
+std::optional<double> GuiApp::sliceLineParameter(const Vec<2>& mouse) const {
+  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
+  const Ray ray = sceneCamera(scene(), w, viewH_).ray(mouse.x(), mouse.y());
+  const Vec<3> n = toVec(scene().view.slice.normal).normalized();
+  const double b = n.dot(ray.direction);
+  const double denom = 1.0 - b * b;
+  if (denom < 3e-4) return std::nullopt;
+  const Vec<3> w0 = sliceGrab_.point - ray.origin;
+  return (b * ray.direction.dot(w0) - n.dot(w0)) / denom;
+}
+
+bool GuiApp::pressSlicePlane(const Vec<2>& mouse) {
+  const SliceSpec& slice = scene().view.slice;
+  if (scene().mode != SceneMode::Implicit3d || !slice.enabled || !shown_ || !shown_->fit3) return false;
+  const Vec<3> n = toVec(slice.normal).normalized();
+  if (!n.allFinite()) return false;
+  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
+  const Ray ray = sceneCamera(scene(), w, viewH_).ray(mouse.x(), mouse.y());
+  // The plane point under the cursor, or else the bounds centre's foot on the plane.
+  const double denom = n.dot(ray.direction);
+  const double t = std::abs(denom) > 1e-12 ? (slice.offset - n.dot(ray.origin)) / denom : -1.0;
+  const Vec<3> centre = viewBounds<3>(scene().view, shown_->fit3->data.points).center();
+  sliceGrab_.point = t > 0 ? ray.at(t) : Vec<3>(centre + (slice.offset - n.dot(centre)) * n);
+  sliceGrab_.offset = slice.offset;
+  sliceGrab_.lineParameter = sliceLineParameter(mouse);
+  sliceGrab_.pressY = mouse.y();
+  document_.begin("move slice plane");
+  setStatus("moving the slice plane along its normal");
+  return true;
+}
+
+void GuiApp::dragSlicePlane(const Vec<2>& mouse) {
+  const std::optional<double> s = sliceLineParameter(mouse);
+  double offset;
+  if (s && sliceGrab_.lineParameter) {
+    offset = sliceGrab_.offset + (*s - *sliceGrab_.lineParameter);
+  } else {
+    // Normal along the view ray: moving up the screen raises the offset, the view's height
+    // being one bounds diagonal.
+    const double diagonal = 2.0 * std::sqrt(3.0) * sliceOffsetExtent();
+    offset = sliceGrab_.offset + (sliceGrab_.pressY - mouse.y()) * diagonal / std::max(viewH_, 1);
+  }
+  const double extent = sliceOffsetExtent();
+  offset = std::clamp(offset, -extent, extent);
+  if (offset == scene().view.slice.offset) return;
+  Scene next = scene();
+  next.view.slice.offset = offset;
+  document_.update(next);
+}
+
 void GuiApp::handleViewInput(const FrameInput& in) {
   const ImGuiIO& io = ImGui::GetIO();
   const Vec<2> mouse(in.mouseX - viewX_, in.mouseY - viewY_);  // view pixels
@@ -410,7 +473,8 @@ void GuiApp::handleViewInput(const FrameInput& in) {
   // A drag in progress owns the mouse until release, even over a panel.
   if (drag_ != Drag::None) {
     if (!anyDown) {
-      if (drag_ == Drag::Sample || drag_ == Drag::NormalTip || drag_ == Drag::PatchHandle || drag_ == Drag::Gizmo)
+      if (drag_ == Drag::Sample || drag_ == Drag::NormalTip || drag_ == Drag::PatchHandle || drag_ == Drag::Gizmo ||
+          drag_ == Drag::SlicePlane)
         document_.end();
       drag_ = Drag::None;
       return;
@@ -422,6 +486,7 @@ void GuiApp::handleViewInput(const FrameInput& in) {
       case Drag::NormalTip: moveSelected(mouse, true); break;
       case Drag::PatchHandle: dragPatchHandle(mouse, in); break;
       case Drag::Gizmo: dragGizmo(mouse); break;
+      case Drag::SlicePlane: dragSlicePlane(mouse); break;
       case Drag::None: break;
     }
     return;
@@ -440,6 +505,10 @@ void GuiApp::handleViewInput(const FrameInput& in) {
   }
   if (leftPressed && !in.ctrl && !in.shift && showGizmo_ && pressGizmo(mouse)) {
     drag_ = Drag::Gizmo;
+    return;
+  }
+  if (leftPressed && in.alt && !in.ctrl && pressSlicePlane(mouse)) {
+    drag_ = Drag::SlicePlane;
     return;
   }
   if (leftPressed && in.ctrl) {

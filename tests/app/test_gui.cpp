@@ -13,6 +13,7 @@
 #include <filesystem>
 
 #include "app/gui_app.h"
+#include "app/scene_view.h"
 #include "core/scene_file.h"
 #include "core/scene_fit.h"
 #include "render/context.h"
@@ -201,6 +202,52 @@ TEST_CASE("UI: orbit, zoom and fit-to-view move the 3D camera and never touch th
   CHECK(!h.app->document().canUndo());
   h.key(GLFW_KEY_HOME);
   CHECK(h.app->document().scene().view.camera == c0);
+}
+
+TEST_CASE("UI: Alt + drag moves the slice plane along its normal, as one undo step, without orbiting") {
+  Scene s = scene3d();
+  s.view.slice.enabled = true;
+  s.view.slice.normal = {1, 0, 0};
+  s.view.slice.offset = 0;
+  Harness h(s, true, 640, 480);
+  h.frames(2);
+  const CameraSpec camera = h.app->document().scene().view.camera;
+  const Vec<2> o = h.app->viewOrigin();
+  const Vec<2> size = h.app->viewSize();
+  const Vec<2> c = o + 0.5 * size;
+  // The world x of the plane point under the cursor, 80 px right of the centre (the camera looks
+  // down −z with x to the right): the plane follows the mouse there.
+  const Camera cam = sceneCamera(h.app->document().scene(), int(size.x()), int(size.y()));
+  const Ray ray = cam.ray(0.5 * size.x() + 80, 0.5 * size.y());
+  const double expected = ray.at(-ray.origin.z() / ray.direction.z()).x();
+  h.input.alt = true;
+  h.drag(c.x(), c.y(), c.x() + 80, c.y());
+  h.input.alt = false;
+  h.frame();
+  const SliceSpec& moved = h.app->document().scene().view.slice;
+  CHECK(moved.offset == doctest::Approx(expected).epsilon(0.02));
+  CHECK(h.app->document().scene().view.camera == camera);  // no orbit
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene().view.slice.offset == 0.0);
+  CHECK(!h.app->document().canUndo());
+}
+
+TEST_CASE("UI: with the slice normal along the view direction, Alt + vertical drag moves the plane") {
+  Scene facing = scene3d();
+  facing.view.slice.enabled = true;
+  facing.view.slice.normal = {0, 0, 1};
+  Harness f(facing, true, 640, 480);
+  f.frames(2);
+  const Vec<2> o = f.app->viewOrigin();
+  const Vec<2> c = o + 0.5 * f.app->viewSize();
+  f.input.alt = true;
+  f.drag(c.x(), c.y(), c.x(), o.y() + 2, 10);  // up to the top of the view
+  f.input.alt = false;
+  f.frame();
+  const double offset = f.app->document().scene().view.slice.offset;
+  CHECK(offset > 0.3);
+  CHECK(offset <= 3.0);
+  CHECK(f.app->document().scene().view.camera == facing.view.camera);  // no orbit
 }
 
 TEST_CASE("UI: every panel renders, with the explorer, the compare view and the help overlay") {
