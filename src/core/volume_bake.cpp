@@ -167,6 +167,25 @@ BrickGrid computeBrickGrid(const ImplicitField<3>& field, const Box<3>& bounds, 
   return grid;
 }
 
+double VolumeBake::interpolate(const Vec<3>& x) const {
+  const int R = resolution;
+  const Vec<3> q = (x - bounds.lo).cwiseQuotient(spacing());
+  int i0[3];
+  double w[3];
+  for (int k = 0; k < 3; ++k) {
+    const double c = std::clamp(q(k), 0.0, double(R - 1));
+    i0[k] = std::min(int(c), R - 2);
+    w[k] = c - i0[k];
+  }
+  double f = 0;
+  for (int c = 0; c < 8; ++c) {
+    const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
+    const double weight = (dx ? w[0] : 1 - w[0]) * (dy ? w[1] : 1 - w[1]) * (dz ? w[2] : 1 - w[2]);
+    f += weight * value(i0[0] + dx, i0[1] + dy, i0[2] + dz);
+  }
+  return f;
+}
+
 VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const VolumeBakeOptions& options) {
   const int R = options.resolution;
   const int C = options.brickCells;

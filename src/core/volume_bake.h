@@ -56,6 +56,9 @@ struct VolumeBake {
     return bounds.lo + spacing().cwiseProduct(Vec<3>(i, j, k));
   }
   float value(int i, int j, int k) const { return values[i + resolution * (j + std::size_t(resolution) * k)]; }
+  // The trilinear interpolant of the samples at x (clamped to the bounds): what the GPU tracer's
+  // linearly filtered 3D texture returns, in double.
+  double interpolate(const Vec<3>& x) const;
   // The trilinear interpolant of the samples has no zero in a brick whose min > 0 or max < 0
   // (it is a convex combination of them there); its gradient norm is ≤ √3·L of the field.
   bool interpolantMayContainZero(int brick) const { return brickMin[brick] <= 0.0f && brickMax[brick] >= 0.0f; }

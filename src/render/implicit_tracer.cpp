@@ -33,27 +33,6 @@ double msSince(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-
-// Trilinear interpolant of the baked samples at x (clamped to the bounds).
-double sampleBake(const VolumeBake& bake, const Vec<3>& x) {
-  const int R = bake.resolution;
-  const Vec<3> q = (x - bake.bounds.lo).cwiseQuotient(bake.spacing());
-  int i0[3];
-  double w[3];
-  for (int k = 0; k < 3; ++k) {
-    const double c = std::clamp(q(k), 0.0, double(R - 1));
-    i0[k] = std::min(int(c), R - 2);
-    w[k] = c - i0[k];
-  }
-  double f = 0;
-  for (int c = 0; c < 8; ++c) {
-    const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
-    const double weight = (dx ? w[0] : 1 - w[0]) * (dy ? w[1] : 1 - w[1]) * (dz ? w[2] : 1 - w[2]);
-    f += weight * bake.value(i0[0] + dx, i0[1] + dy, i0[2] + dz);
-  }
-  return f;
-}
-
 // Two unit vectors spanning the plane with unit normal n.
 void planeBasis(const Vec<3>& n, Vec<3>& u, Vec<3>& v) {
   const Vec<3> a = std::abs(n.x()) < 0.9 ? Vec<3>::UnitX() : Vec<3>::UnitY();
@@ -503,7 +482,7 @@ double sliceRangeFromBake(const VolumeBake& bake, const Vec<3>& n, double offset
     for (int b = 0; b <= m; ++b) {
       const Vec<3> x = c0 + (-half + 2 * half * a / m) * u + (-half + 2 * half * b / m) * v;
       if (!bake.bounds.contains(x)) continue;
-      range = std::max(range, std::abs(sampleBake(bake, x)));
+      range = std::max(range, std::abs(bake.interpolate(x)));
     }
   return range > 0 && std::isfinite(range) ? range : 1.0;
 }

@@ -145,3 +145,38 @@ TEST_CASE("volume bake: the row-wise cubic path equals direct evaluation (HRBF a
       CHECK(maxErr < 1e-6);  // float storage
     }
 }
+
+namespace {
+
+// f = 0.3 + x − 2y + 0.5z + 1.5xyz: trilinear, so the bake's interpolant reproduces it exactly
+// (up to float storage) inside the bounds.
+class TrilinearField final : public ImplicitField<3> {
+ public:
+  double evaluate(const Vec<3>& p, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
+    const double x = p.x(), y = p.y(), z = p.z();
+    if (g) *g = Vec<3>(1 + 1.5 * y * z, -2 + 1.5 * x * z, 0.5 + 1.5 * x * y);
+    if (H) *H << 0, 1.5 * z, 1.5 * y, 1.5 * z, 0, 1.5 * x, 1.5 * y, 1.5 * x, 0;
+    return 0.3 + x - 2 * y + 0.5 * z + 1.5 * x * y * z;
+  }
+  double lipschitzBound(const Box<3>&) const override { return 10.0; }
+};
+
+}  // namespace
+
+TEST_CASE("volume bake: the interpolant reproduces a trilinear field and clamps outside the bounds") {
+  const TrilinearField field;
+  Box<3> bounds = cube(1.0);
+  bounds.hi.y() = 0.5;
+  const VolumeBake bake = bakeVolume(field, bounds, {9, 4});
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  double maxErr = 0;
+  for (int k = 0; k < 500; ++k) {
+    const Vec<3> x = bounds.lo + bounds.extent().cwiseProduct(Vec<3>(u(rng), u(rng), u(rng)));
+    maxErr = std::max(maxErr, std::abs(bake.interpolate(x) - field.value(x)));
+  }
+  CHECK(maxErr < 1e-5);
+  const Vec<3> outside(1.7, -3.0, 0.2), projected(1.0, -1.0, 0.2);
+  CHECK(bake.interpolate(outside) == bake.interpolate(projected));
+  CHECK(bake.interpolate(bounds.hi) == doctest::Approx(field.value(bounds.hi)).epsilon(1e-6));
+}

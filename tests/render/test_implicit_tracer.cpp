@@ -254,26 +254,6 @@ class SphereSet final : public ImplicitField<3> {
   std::vector<double> radii_;
 };
 
-// The bake's trilinear interpolant at x (inside the bounds), as the shader samples it.
-double trilinear(const VolumeBake& bake, const Vec<3>& x) {
-  const int R = bake.resolution;
-  const Vec<3> u = (x - bake.bounds.lo).cwiseQuotient(bake.spacing());
-  int i[3];
-  double w[3];
-  for (int k = 0; k < 3; ++k) {
-    const double c = std::clamp(u(k), 0.0, double(R - 1));
-    i[k] = std::min(int(c), R - 2);
-    w[k] = c - i[k];
-  }
-  double f = 0;
-  for (int c = 0; c < 8; ++c) {
-    const int dx = c & 1, dy = (c >> 1) & 1, dz = c >> 2;
-    const double weight = (dx ? w[0] : 1 - w[0]) * (dy ? w[1] : 1 - w[1]) * (dz ? w[2] : 1 - w[2]);
-    f += weight * bake.value(i[0] + dx, i[1] + dy, i[2] + dz);
-  }
-  return f;
-}
-
 // Pixels of `result` (a baked trace without refinement) whose first zero a brute-force walk of
 // the bake's interpolant (steps of 1/16 cell) finds, and how many of those the trace lost or
 // found more than a quarter cell later.
@@ -291,9 +271,9 @@ FirstZeroCheck checkFirstZeros(const TraceResult& result, const VolumeBake& bake
       double tWalk = -1;
       if (clipRayToBox(ray, bake.bounds, t0, t1)) {
         const double step = cell / 16;
-        const bool negative = trilinear(bake, ray.at(t0)) < 0;
+        const bool negative = bake.interpolate(ray.at(t0)) < 0;
         for (double t = t0 + step; t <= t1 && tWalk < 0; t += step)
-          if ((trilinear(bake, ray.at(t)) < 0) != negative) tWalk = t;
+          if ((bake.interpolate(ray.at(t)) < 0) != negative) tWalk = t;
       }
       if (tWalk < 0) continue;
       ++out.walkHits;
