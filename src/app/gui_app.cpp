@@ -197,7 +197,7 @@ void GuiApp::drawViewImage(const FrameInput& in) {
                     ImGui::GetColorU32(ImVec4(float(b[0]), float(b[1]), float(b[2]), 1.0f)));
   if (!drawn_ || (!view_.gpuImage && !viewTexture_.valid())) return;
   const float x0 = float(viewX_), y0 = float(viewY_), y1 = float(viewY_ + viewH_);
-  const float w = drawn_->compareOn ? float(viewW_ / 2) : float(viewW_);
+  const float w = float(primaryViewWidth());
   // A GPU-kept view has GL rows bottom-up: flip v.
   auto addView = [&](const SceneViewResult& r, const render::Texture& uploaded, float left) {
     if (r.gpuImage)
@@ -227,7 +227,7 @@ void GuiApp::drawViewImage(const FrameInput& in) {
     render::LegendOptions legend;
     legend.range = view_.colourRange;
     legend.isoSpacing = view_.isoSpacing;
-    legend.cornerX = float(viewX_ + (drawn_->compareOn ? viewW_ / 2 : viewW_));
+    legend.cornerX = float(viewX_ + primaryViewWidth());
     legend.cornerY = float(viewY_ + viewH_);
     render::drawColorLegend(bg, legend);
   }
@@ -244,7 +244,7 @@ void GuiApp::drawPartitionBoxes() {
   constexpr std::size_t kMaxBoxes = 4000;  // beyond this the lines only hide the view
   if (f->fit2 && f->fit2->pu) {
     const auto& pu = *f->fit2->pu;
-    const View2d view = sceneView2d(scene(), drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_, viewH_);
+    const View2d view = sceneView2d(scene(), primaryViewWidth(), viewH_);
     for (std::size_t k = 0; k < std::min(pu.leaves().size(), kMaxBoxes); ++k) {
       const auto& leaf = pu.leaves()[k];
       const Vec<2> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;
@@ -259,7 +259,7 @@ void GuiApp::drawPartitionBoxes() {
     }
   } else if (f->fit3 && f->fit3->pu) {
     const auto& pu = *f->fit3->pu;
-    const Camera cam = sceneCamera(scene(), drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_, viewH_);
+    const Camera cam = sceneCamera(scene(), primaryViewWidth(), viewH_);
     for (std::size_t k = 0; k < std::min(pu.leaves().size(), kMaxBoxes); ++k) {
       const auto& leaf = pu.leaves()[k];
       const Vec<3> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;

@@ -193,6 +193,9 @@ class GuiApp {
   void editFit(const FitSpec& fit, const std::string& label);
   void screenshotNow(const std::string& path, bool withUi, const FrameInput& in);
   int dimension() const { return document_.scene().dimension(); }
+  // Width in pixels of the view that the camera and the 2D view map mouse positions to: the left
+  // half while the compare view is split, else the whole view.
+  int primaryViewWidth() const { return drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_; }
   const Scene& scene() const { return document_.scene(); }
 
   Document document_;

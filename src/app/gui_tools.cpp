@@ -35,7 +35,7 @@ std::array<double, 3> toArray(const Vec<3>& v) { return {v.x(), v.y(), v.z()}; }
 std::optional<Vec<2>> GuiApp::sampleScreenPosition(int i) const {
   const FitOutcome* f = shown_.get();
   if (!f || i < 0) return std::nullopt;
-  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
+  const int w = primaryViewWidth();
   if (f->fit2) {
     if (i >= f->fit2->data.size()) return std::nullopt;
     return sceneView2d(scene(), w, viewH_).worldToPixel(f->fit2->data.points.col(i));
@@ -53,7 +53,7 @@ std::optional<Vec<2>> GuiApp::sampleScreenPosition(int i) const {
 std::optional<Vec<2>> GuiApp::normalTipScreenPosition(int i) const {
   const FitOutcome* f = shown_.get();
   if (!f || i < 0) return std::nullopt;
-  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
+  const int w = primaryViewWidth();
   if (f->fit2) {
     if (i >= f->fit2->data.size()) return std::nullopt;
     const Vec<2> p = sceneView2d(scene(), w, viewH_).worldToPixel(f->fit2->data.points.col(i));
@@ -106,7 +106,7 @@ int GuiApp::pickSample(const Vec<2>& mouse, bool* onTip) const {
 void GuiApp::moveSelected(const Vec<2>& mouse, bool tip) {
   if (selected_ < 0 || !shown_) return;
   std::vector<std::string> warnings;
-  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
+  const int w = primaryViewWidth();
   if (dimension() == 2) {
     Scene s = withInlineSamples<2>(scene(), warnings);
     HermiteSamples<2> d = inlineSamples<2>(s);
@@ -151,7 +151,7 @@ void GuiApp::addSampleAt(const Vec<2>& mouse) {
   const FitOutcome* fit = currentFit();
   if (!fit) return;
   std::vector<std::string> warnings;
-  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
+  const int w = primaryViewWidth();
   if (dimension() == 2) {
     Scene s = withInlineSamples<2>(scene(), warnings);
     HermiteSamples<2> d = inlineSamples<2>(s);
@@ -413,8 +413,7 @@ double GuiApp::sliceOffsetExtent() const {
 // Parameter s of the point of the line grab + s·n nearest to the mouse ray (closest points of
 // two lines); none when the normal is within ~1° of the ray, where s is ill-conditioned.
 std::optional<double> GuiApp::sliceLineParameter(const Vec<2>& mouse) const {
-  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
-  const Ray ray = sceneCamera(scene(), w, viewH_).ray(mouse.x(), mouse.y());
+  const Ray ray = sceneCamera(scene(), primaryViewWidth(), viewH_).ray(mouse.x(), mouse.y());
   const Vec<3> n = toVec(scene().view.slice.normal).normalized();
   const double b = n.dot(ray.direction);
   const double denom = 1.0 - b * b;
@@ -428,8 +427,7 @@ bool GuiApp::pressSlicePlane(const Vec<2>& mouse) {
   if (scene().mode != SceneMode::Implicit3d || !slice.enabled || !shown_ || !shown_->fit3) return false;
   const Vec<3> n = toVec(slice.normal).normalized();
   if (!n.allFinite()) return false;
-  const int w = drawn_ && drawn_->compareOn ? viewW_ / 2 : viewW_;
-  const Ray ray = sceneCamera(scene(), w, viewH_).ray(mouse.x(), mouse.y());
+  const Ray ray = sceneCamera(scene(), primaryViewWidth(), viewH_).ray(mouse.x(), mouse.y());
   // The plane point under the cursor, or else the bounds centre's foot on the plane.
   const double denom = n.dot(ray.direction);
   const double t = std::abs(denom) > 1e-12 ? (slice.offset - n.dot(ray.origin)) / denom : -1.0;
@@ -445,16 +443,16 @@ bool GuiApp::pressSlicePlane(const Vec<2>& mouse) {
 
 void GuiApp::dragSlicePlane(const Vec<2>& mouse) {
   const std::optional<double> s = sliceLineParameter(mouse);
+  const double extent = sliceOffsetExtent();
   double offset;
   if (s && sliceGrab_.lineParameter) {
     offset = sliceGrab_.offset + (*s - *sliceGrab_.lineParameter);
   } else {
     // Normal along the view ray: moving up the screen raises the offset, the view's height
     // being one bounds diagonal.
-    const double diagonal = 2.0 * std::sqrt(3.0) * sliceOffsetExtent();
+    const double diagonal = 2.0 * std::sqrt(3.0) * extent;
     offset = sliceGrab_.offset + (sliceGrab_.pressY - mouse.y()) * diagonal / std::max(viewH_, 1);
   }
-  const double extent = sliceOffsetExtent();
   offset = std::clamp(offset, -extent, extent);
   if (offset == scene().view.slice.offset) return;
   Scene next = scene();
