@@ -193,11 +193,12 @@ std::array<double, 10> shiftPolynomial(Polynomial p, const Eigen::VectorXd& c, c
   return s;
 }
 
-// An FBO with colour (RGBA8), hit data (RGBA32F), plane colour (RGBA8) and depth.
 // Pixels per tile edge of the baked mode's tile pass (trace_tile_pass.glsl): the shaders get it
 // as TRACE_TILE.
 constexpr int kTraceTile = 4;
 
+// An FBO with colour (RGBA8), hit data (RGBA32F), plane colour (RGBA8) and depth, and the tile
+// pass's own single-channel target.
 struct TraceTarget {
   int width = 0, height = 0;
   GLuint fbo = 0;
@@ -323,11 +324,16 @@ struct ImplicitTracer::Gpu {
   Vec<3> origin = Vec<3>::Zero();
   int paddedCentres = 0;  // centres in the SSBOs: N rounded up to a multiple of 4 (α = β = 0 pads)
   bool softwareLoopLimit = isMesaSoftwareRenderer();
+
+  const Program& program(TraceProgramKind kind, bool slice) {
+    std::unique_ptr<Program>& slot = programs[kind][slice ? 1 : 0];
+    if (!slot) slot = std::make_unique<Program>(buildTraceProgram(kind, slice));
+    return *slot;
+  }
 };
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
-  gpu_->programs[kBakedProgram][0] = std::make_unique<Program>(buildTraceProgram(kBakedProgram, false));
-  gpu_->programs[kBakedTileProgram][0] = std::make_unique<Program>(buildTraceProgram(kBakedTileProgram, false));
+  gpu_->program(kBakedProgram, false);
   gpu_->overlay = std::make_unique<OverlayRenderer>();
 }
 
@@ -505,16 +511,10 @@ TileCone tileCone(const Camera& camera, const Box<3>& bounds, int tile) {
     const double delta = offsetPixels * 2.0 * camera.tanHalfFov() / camera.height();
     cone.slope = delta / (1.0 - delta);
   }
-  double far = 0;
-  for (int c = 0; c < 8; ++c) {
-    const Vec<3> corner((c & 1) ? bounds.hi.x() : bounds.lo.x(), (c & 2) ? bounds.hi.y() : bounds.lo.y(),
-                        (c & 4) ? bounds.hi.z() : bounds.lo.z());
-    far = std::max(far, (corner - camera.eye()).norm());
-  }
   // 1 % slack for the shader's float arithmetic.
   cone.slope *= 1.01;
   cone.radius0 *= 1.01;
-  cone.reach = 1.01 * (cone.radius0 + cone.slope * far) + 1e-6 * bounds.extent().norm();
+  cone.reach = 1.01 * (cone.radius0 + cone.slope * bounds.farthestDistance(camera.eye())) + 1e-6 * bounds.extent().norm();
   return cone;
 }
 
@@ -581,9 +581,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
                                 : exactDouble                      ? kExactDoubleProgram
                                                                    : kExactFloatProgram;
   result.exactDouble = exactDouble;
-  std::unique_ptr<Program>& slot = gpu_->programs[kind][settings.slice.enabled ? 1 : 0];
-  if (!slot) slot = std::make_unique<Program>(buildTraceProgram(kind, settings.slice.enabled));
-  const Program* program = slot.get();
+  const Program* program = &gpu_->program(kind, settings.slice.enabled);
   const double minStep = settings.mode == TracerMode::Baked ? settings.minStepCells * bake.spacing().minCoeff()
                                                             : settings.minStepCells * 1e-3 * diagonal;
   auto setBakedUniforms = [&](const Program& p) {
@@ -602,7 +600,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   };
   if (settings.mode == TracerMode::Baked && settings.showSurface) {
     // Tile pass: per tile of kTraceTile² pixels, how far its rays may skip (trace_tile_pass.glsl).
-    const Program& tiles = *gpu_->programs[kBakedTileProgram][0];
+    const Program& tiles = gpu_->program(kBakedTileProgram, false);
     tiles.use();
     setTraceUniforms(tiles, camera, bounds_, bake, settings, viewProj, minStep, sliceRange);
     setBakedUniforms(tiles);
