@@ -5,7 +5,6 @@
 // with the same coverage ramp as the CPU reference (core/field2d_reference.cpp).
 
 uniform sampler2D u_field;      // RGB32F (f, ∂f/∂x, ∂f/∂y), world units; GL row order (row 0 = bottom)
-uniform bool u_pixel_grid;      // true: one texel per pixel centre (texelFetch); false: bilinear
 uniform vec2 u_viewport;        // W, H in pixels
 uniform float u_pixel_size;     // world units per pixel
 uniform float u_range;          // colour map covers [−range, range]
@@ -13,7 +12,6 @@ uniform float u_iso_spacing;    // ≤ 0: no iso-lines
 uniform float u_zero_width;     // full width of the zero curve, pixels
 uniform float u_iso_width;      // full width of an iso-line, pixels
 uniform float u_iso_darken;     // iso-line colour = map colour × this
-uniform vec4 u_stops[5];        // (t, r, g, b) of core/color_map.h kDivergingStops
 uniform vec3 u_zero_color;
 uniform vec4 u_bounds_px;       // (x0, y0, x1, y1) GL pixel rectangle of view.bounds
 uniform bool u_use_bounds;
@@ -22,25 +20,15 @@ uniform float u_outside_mix;
 
 out vec4 frag_color;
 
-// Piecewise linear between the stops, written as a sum of clamped ramps (no loop, no dynamic
-// indexing: several times faster on llvmpipe than the loop, same values).
-vec3 divergingColorAt(float t) {
-  if (isnan(t)) return vec3(0.5);
-  t = clamp(t, -1.0, 1.0);
-  vec3 c = u_stops[0].yzw;
-  c += (u_stops[1].yzw - u_stops[0].yzw) * clamp((t - u_stops[0].x) / (u_stops[1].x - u_stops[0].x), 0.0, 1.0);
-  c += (u_stops[2].yzw - u_stops[1].yzw) * clamp((t - u_stops[1].x) / (u_stops[2].x - u_stops[1].x), 0.0, 1.0);
-  c += (u_stops[3].yzw - u_stops[2].yzw) * clamp((t - u_stops[2].x) / (u_stops[3].x - u_stops[2].x), 0.0, 1.0);
-  c += (u_stops[4].yzw - u_stops[3].yzw) * clamp((t - u_stops[3].x) / (u_stops[4].x - u_stops[3].x), 0.0, 1.0);
-  return c;
-}
+#include "color_map.glsl"
 
 // Coverage of a line of full width w at distance d pixels: a one-pixel linear ramp at its edge.
 float coverage(float d, float w) { return clamp(0.5 * w + 0.5 - d, 0.0, 1.0); }
 
 void main() {
-  vec3 s = u_pixel_grid ? texelFetch(u_field, ivec2(gl_FragCoord.xy), 0).xyz
-                        : texture(u_field, gl_FragCoord.xy / u_viewport).xyz;
+  // One fetch for both grids (a ternary of texelFetch and texture would run both on llvmpipe):
+  // on the pixel grid the sampler filters NEAREST, and a pixel centre's coordinate selects its texel.
+  vec3 s = texture(u_field, gl_FragCoord.xy / u_viewport).xyz;
   float v = s.x;
   float grad_px = length(s.yz) * u_pixel_size;  // change of f per pixel
   vec3 c = divergingColorAt(v / u_range);

@@ -41,13 +41,12 @@ uniform float uAmbient;
 uniform vec3 uLightDir[2];  // world-space unit directions towards the lights
 uniform float uLightIntensity[2];
 
-// Slice plane and core/color_map.h
+// Slice plane and core/color_map.h (the stops: color_map.glsl)
 uniform int uSliceEnabled;
 uniform vec3 uSliceNormal;  // unit
 uniform float uSliceOffset;
 uniform float uSliceRange;
 uniform float uIsoSpacing;
-uniform vec4 uStops[5];     // (t, r, g, b)
 uniform vec3 uZeroColor;
 uniform float uIsoDarken;
 
@@ -178,17 +177,9 @@ vec3 shadeHit(vec3 n, vec3 d) {
   return clamp(base * light, 0.0, 1.0);
 }
 
-vec3 divergingColor(float f) {
-  float t = clamp(f / uSliceRange, -1.0, 1.0);
-  if (isnan(f)) return vec3(0.5);
-  for (int k = 0; k < 4; ++k) {
-    if (t <= uStops[k + 1].x) {
-      float w = (t - uStops[k].x) / (uStops[k + 1].x - uStops[k].x);
-      return mix(uStops[k].yzw, uStops[k + 1].yzw, w);
-    }
-  }
-  return uStops[4].yzw;
-}
+#include "color_map.glsl"
+
+vec3 divergingColor(float f) { return divergingColorAt(f / uSliceRange); }
 
 #ifdef TRACE_SLICE
 // Heat map, iso-lines and zero curve at a plane point p seen at ray parameter t along d.

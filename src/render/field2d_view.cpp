@@ -151,7 +151,6 @@ void Field2dView::draw() {
   const bool pixelGrid = gridW_ == W && gridH_ == H;
   field_.setFilter(pixelGrid ? GL_NEAREST : GL_LINEAR, pixelGrid ? GL_NEAREST : GL_LINEAR);
   heat_.setUniform("u_field", 0);
-  heat_.setUniform("u_pixel_grid", pixelGrid ? 1 : 0);
   heat_.setUniform("u_viewport", glm::vec2(float(W), float(H)));
   heat_.setUniform("u_pixel_size", float(view.pixelSize()));
   heat_.setUniform("u_range", float(range_));
@@ -159,10 +158,6 @@ void Field2dView::draw() {
   heat_.setUniform("u_zero_width", float(st.zeroWidthPx));
   heat_.setUniform("u_iso_width", float(st.isoWidthPx));
   heat_.setUniform("u_iso_darken", float(kIsoLineDarken));
-  for (std::size_t k = 0; k < kDivergingStops.size(); ++k) {
-    const ColorStop& s = kDivergingStops[k];
-    heat_.setUniform("u_stops[" + std::to_string(k) + "]", glm::vec4(float(s.t), float(s.r), float(s.g), float(s.b)));
-  }
   heat_.setUniform("u_zero_color", toGlm(kZeroCurveColor));
   if (options_.bounds) {
     const Vec<2> lo = view.worldToPixel(options_.bounds->lo);  // image rows grow downwards

@@ -466,10 +466,6 @@ void setTraceUniforms(const Program& p, const Camera& camera, const Box<3>& boun
     p.setUniform("uSliceOffset", float(s.offset));
     p.setUniform("uSliceRange", float(sliceRange));
     p.setUniform("uIsoSpacing", float(niceIsoSpacing(sliceRange)));
-    for (int k = 0; k < 5; ++k) {
-      const ColorStop& c = kDivergingStops[k];
-      p.setUniform("uStops[" + std::to_string(k) + "]", glm::vec4(float(c.t), float(c.r), float(c.g), float(c.b)));
-    }
     p.setUniform("uZeroColor", glm::vec3(float(kZeroCurveColor[0]), float(kZeroCurveColor[1]), float(kZeroCurveColor[2])));
     p.setUniform("uIsoDarken", float(kIsoLineDarken));
   }
