@@ -127,8 +127,9 @@ class GuiApp {
   void adoptFinishedFits();
   void submitIfStale();
   void redrawViewIfStale();
-  void drawViewImage(const FrameInput& in);
+  void drawViewImage();
   void takePendingScreenshot(const FrameInput& in);
+  void renderFrame();
   void setStatus(std::string message, bool error = false);
   std::optional<Scene> compareScene(const Scene& scene) const;
   // gui_tools.cpp: camera and sample manipulation
