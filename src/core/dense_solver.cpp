@@ -12,12 +12,17 @@
 
 #include "core/errors.h"
 
+// LAPACK's reverse-communication 1-norm estimator (no LAPACKE wrapper exists for it).
+extern "C" void dlacn2_(const int* n, double* v, double* x, int* isgn, double* est, int* kase, int* isave);
+
 namespace hermite {
+
+static_assert(sizeof(lapack_int) == sizeof(int), "DenseLu keeps LAPACK pivots as int");
 
 namespace {
 
 using Index = Eigen::Index;
-constexpr double kIllConditioned = 1e12;  // condition estimates above this get a warning
+constexpr double kIllConditioned = kIllConditionedEstimate;
 
 std::string fmt(double v) {
   char buf[32];
@@ -316,6 +321,63 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     out.warnings.push_back("ill-conditioned system: condition estimate " + fmt(out.conditionEstimate) +
                            " (" + out.solver + "); expect lost digits in the coefficients");
   return out;
+}
+
+Eigen::MatrixXd saddleMatrix(const SaddleSystem& system) {
+  Eigen::MatrixXd A = system.A;
+  mirrorLowerToUpper(A);
+  if (!allFinite(A) || !allFinite(system.P))
+    throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
+  return saddleMatrix(A, system.P);
+}
+
+DenseLu::DenseLu(Eigen::MatrixXd K) : lu_(std::move(K)) {
+  if (lu_.rows() != lu_.cols()) throw NumericalError("LU: the matrix is not square");
+  if (!allFinite(lu_)) throw NumericalError("LU: the matrix has non-finite entries");
+  const lapack_int n = toLapack(lu_.rows());
+  pivots_.resize(std::size_t(n));
+  if (n == 0) return;
+  const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, lu_.data(), n);
+  const lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, lu_.data(), n, pivots_.data());
+  if (info != 0)
+    throw NumericalError(info > 0 ? "singular system: LU pivot U(" + std::to_string(info) + "," +
+                                        std::to_string(info) + ") is exactly zero"
+                                  : "LU: invalid argument " + std::to_string(-info));
+  double rcond = 0;
+  LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, lu_.data(), n, anorm, &rcond);
+  condition_ = rcond > 0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
+}
+
+void DenseLu::solveInPlace(Eigen::MatrixXd& rhs) const {
+  const lapack_int n = toLapack(lu_.rows());
+  if (rhs.rows() != lu_.rows()) throw NumericalError("LU solve: right-hand side of the wrong size");
+  if (n == 0 || rhs.cols() == 0) return;
+  LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, toLapack(rhs.cols()), lu_.data(), n, pivots_.data(), rhs.data(), n);
+}
+
+void DenseLu::solveInPlace(Eigen::VectorXd& rhs) const {
+  const lapack_int n = toLapack(lu_.rows());
+  if (rhs.size() != lu_.rows()) throw NumericalError("LU solve: right-hand side of the wrong size");
+  if (n == 0) return;
+  LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, lu_.data(), n, pivots_.data(), rhs.data(), n);
+}
+
+double symmetricInverseNormEstimate(Eigen::Index n, const std::function<void(Eigen::VectorXd&)>& solve) {
+  if (n <= 0) return 0;
+  const int size = toLapack(n);
+  Eigen::VectorXd v(n), x(n);
+  std::vector<int> sign(static_cast<std::size_t>(n));
+  int isave[3] = {0, 0, 0};
+  int kase = 0;
+  double estimate = 0;
+  // kase 1 asks for M⁻¹x, kase 2 for M⁻ᵀx: the same solve for a symmetric M. The estimator
+  // stops by itself after at most 5 iterations.
+  for (;;) {
+    dlacn2_(&size, v.data(), x.data(), sign.data(), &estimate, &kase, isave);
+    if (kase == 0) break;
+    solve(x);
+  }
+  return estimate;
 }
 
 }  // namespace hermite

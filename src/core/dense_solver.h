@@ -13,6 +13,7 @@
 // Auto picks the cheapest path the kernel's definiteness allows; a failed factorisation falls
 // back to LU with a warning. Only a failed LU or a non-finite result throws NumericalError.
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -48,5 +49,35 @@ struct SaddleSolution {
 
 // Solves the system; A may be overwritten (it is taken by value where the caller moves it).
 SaddleSolution solveSaddle(SaddleSystem system, SolverChoice choice = SolverChoice::Auto);
+
+// Condition estimates above this get an "ill-conditioned" warning (about 4 of 16 digits left).
+inline constexpr double kIllConditionedEstimate = 1e12;
+
+// The whole saddle matrix K = [[A, P], [Pᵀ, 0]], both triangles, from a system whose A holds
+// (at least) its lower triangle. Throws NumericalError on non-finite entries.
+Eigen::MatrixXd saddleMatrix(const SaddleSystem& system);
+
+// LU with partial pivoting of a square matrix (dgetrf), kept for repeated solves: the bordered
+// refits of a drag (hrbf_sample_drag.h) factorise once and solve many times.
+class DenseLu {
+ public:
+  // Throws NumericalError when a pivot is exactly zero (singular) or K is not finite.
+  explicit DenseLu(Eigen::MatrixXd K);
+  // rhs ← K⁻¹ rhs, for any number of columns (dgetrs).
+  void solveInPlace(Eigen::MatrixXd& rhs) const;
+  void solveInPlace(Eigen::VectorXd& rhs) const;
+  Eigen::Index size() const { return lu_.rows(); }
+  // 1-norm condition estimate of K (dgecon), computed at construction.
+  double conditionEstimate() const { return condition_; }
+
+ private:
+  Eigen::MatrixXd lu_;
+  std::vector<int> pivots_;
+  double condition_ = 0;
+};
+
+// Estimate of ‖M⁻¹‖₁ for an n × n symmetric matrix M known only through solves (`solve`
+// overwrites v with M⁻¹v): the Hager–Higham estimator of LAPACK's dlacn2, 4–5 solves typically.
+double symmetricInverseNormEstimate(Eigen::Index n, const std::function<void(Eigen::VectorXd&)>& solve);
 
 }  // namespace hermite

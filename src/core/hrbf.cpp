@@ -72,34 +72,44 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   const double lambda = kernel.smoothingSign() * options.smoothing;
   const Points<Dim>& p = samples.points;
 
-  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ);
-  // solveSaddle mirrors it (writing the transposed blocks here strides across columns: slower):
-  //   [ φ      −a dᵀ        ]
-  //   [ a d    −(aI + e ddᵀ) ]    d = pᵢ − pⱼ  (symmetric overall: the functionals are δ, ∇)
+  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ:
+  // hrbfBlock); solveSaddle mirrors it (writing the transposed blocks here strides across
+  // columns: slower).
 #pragma omp parallel for schedule(dynamic, 8)
   for (int j = 0; j < N; ++j) {
-    for (int i = j; i < N; ++i) {
-      const Vec<Dim> d = p.col(i) - p.col(j);
-      const RadialTerms t = kernel.terms(d.norm());
-      auto blk = sys.A.template block<B, B>(Eigen::Index(i) * B, Eigen::Index(j) * B);
-      blk(0, 0) = t.phi;
-      blk.template block<1, Dim>(0, 1) = -t.a * d.transpose();
-      blk.template block<Dim, 1>(1, 0) = t.a * d;
-      blk.template block<Dim, Dim>(1, 1) = -(t.a * Mat<Dim>::Identity() + t.e * d * d.transpose());
-    }
+    for (int i = j; i < N; ++i)
+      sys.A.template block<B, B>(Eigen::Index(i) * B, Eigen::Index(j) * B) = hrbfBlock<Dim>(kernel, p.col(i) - p.col(j));
   }
   if (lambda != 0) sys.A.diagonal().array() += lambda;
   for (int i = 0; i < N; ++i) {
     sys.b.template segment<Dim>(Eigen::Index(i) * B + 1) = samples.normals.col(i);
-    if (m > 0) {
-      Eigen::VectorXd q(m);
-      Eigen::Matrix<double, Dim, Eigen::Dynamic> gq(Dim, m);
-      monomials<Dim>(options.polynomial, p.col(i), q, gq);
-      sys.P.row(Eigen::Index(i) * B) = q.transpose();
-      sys.P.middleRows(Eigen::Index(i) * B + 1, Dim) = gq;
-    }
+    if (m > 0) sys.P.middleRows(Eigen::Index(i) * B, B) = hrbfPolynomialRows<Dim>(options.polynomial, p.col(i));
   }
   return sys;
+}
+
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Dim + 1> hrbfBlock(const Kernel& kernel, const Vec<Dim>& d) {
+  const RadialTerms t = kernel.terms(d.norm());
+  Eigen::Matrix<double, Dim + 1, Dim + 1> blk;
+  blk(0, 0) = t.phi;
+  blk.template block<1, Dim>(0, 1) = -t.a * d.transpose();
+  blk.template block<Dim, 1>(1, 0) = t.a * d;
+  blk.template block<Dim, Dim>(1, 1) = -(t.a * Mat<Dim>::Identity() + t.e * d * d.transpose());
+  return blk;
+}
+
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p) {
+  const int m = monomialCount<Dim>(polynomial);
+  Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> rows(Dim + 1, m);
+  if (m == 0) return rows;
+  Eigen::VectorXd q(m);
+  Eigen::Matrix<double, Dim, Eigen::Dynamic> gq(Dim, m);
+  monomials<Dim>(polynomial, p, q, gq);
+  rows.row(0) = q.transpose();
+  rows.bottomRows(Dim) = gq;
+  return rows;
 }
 
 template <int Dim>
@@ -123,6 +133,10 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
   return model;
 }
 
+template Eigen::Matrix<double, 3, 3> hrbfBlock<2>(const Kernel&, const Vec<2>&);
+template Eigen::Matrix<double, 4, 4> hrbfBlock<3>(const Kernel&, const Vec<3>&);
+template Eigen::Matrix<double, 3, Eigen::Dynamic> hrbfPolynomialRows<2>(Polynomial, const Vec<2>&);
+template Eigen::Matrix<double, 4, Eigen::Dynamic> hrbfPolynomialRows<3>(Polynomial, const Vec<3>&);
 template SaddleSystem assembleHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&);
 template SaddleSystem assembleHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&);
 template HrbfModel<2> fitHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&, FitReport*);

@@ -49,6 +49,18 @@ class HrbfModel : public RadialSum<Dim> {
 template <int Dim>
 SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options);
 
+// The (Dim+1)² block of the HRBF system coupling the conditions at pᵢ (f, then ∇f) with the
+// unknowns of centre pⱼ (α, then β), d = pᵢ − pⱼ (kernels.h: a = φ′/x, e = a′/x):
+//   [ φ      −a dᵀ        ]
+//   [ a d    −(aI + e ddᵀ) ]        symmetric overall: block (j, i) is the transpose
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Dim + 1> hrbfBlock(const Kernel& kernel, const Vec<Dim>& d);
+
+// The Dim + 1 rows of the polynomial block P for the conditions at p: monomial values, then
+// their gradients (Dim + 1 × monomialCount).
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p);
+
 // Fits the HRBF to validated samples. Throws NumericalError when no solver path succeeds or the
 // coefficients are not finite; warnings (order, conditioning, fallback) go to the report.
 template <int Dim>
