@@ -36,12 +36,18 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   // As the window does: draw, present (offscreen: glFinish, so frames do not queue up in the GL
   // pipeline) and keep to 60 frames per second (the window's vsync), leaving the cores to the fit.
   auto lastFrame = std::chrono::steady_clock::now() - std::chrono::milliseconds(17);
-  const auto frame = [&] {
+  const auto waitForFrameSlot = [&] {
     std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
     lastFrame = std::chrono::steady_clock::now();
+  };
+  const auto drawFrame = [&] {
     target.bind();
     app.frame(in);
     context->present();
+  };
+  const auto frame = [&] {
+    waitForFrameSlot();
+    drawFrame();
   };
   const auto settled = [&] { return app.viewIsCurrent() && !app.worker().busy(); };
   for (int k = 0; k < 2000 && !settled(); ++k) {
@@ -60,14 +66,24 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   frame();
   in.mouseDown[0] = true;
   frame();
-  std::vector<double> latency, fit, view;
+  std::vector<double> latency, withWait, frames, fit, view;
+  const auto msSince = [](std::chrono::steady_clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
+  };
   for (int m = 1; m <= moves; ++m) {
+    // The mouse moves just after a frame began (the worst phase): the move waits for the next
+    // frame slot, and that frame is the first to read it.
+    const auto moved = std::chrono::steady_clock::now();
     in.mouseX = start.x() + 2.0 * m;
     in.mouseY = start.y() - 1.0 * m;
+    waitForFrameSlot();
     const auto t0 = std::chrono::steady_clock::now();
-    frame();
-    for (int k = 0; k < 100000 && !app.viewIsCurrent(); ++k) frame();
-    latency.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    drawFrame();
+    int count = 1;
+    for (; count < 100000 && !app.viewIsCurrent(); ++count) frame();
+    latency.push_back(msSince(t0));
+    withWait.push_back(msSince(moved));
+    frames.push_back(count);
     fit.push_back(app.shownFit()->fit2 ? app.shownFit()->fit2->report.fitMs : app.shownFit()->fit3->report.fitMs);
     view.push_back(app.viewResult().ms);
   }
@@ -77,6 +93,8 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   DragLatencyResult r;
   r.medianMs = median(latency);
   r.maxMs = *std::max_element(latency.begin(), latency.end());
+  r.withFrameWaitMs = median(withWait);
+  r.frames = median(frames);
   r.fitMs = median(fit);
   r.viewMs = median(view);
   r.samples = samples;

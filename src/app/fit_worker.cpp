@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "app/drag_refit.h"
 #include "core/errors.h"
 
 namespace hermite::app {
@@ -60,7 +61,7 @@ const std::vector<std::string>& FitOutcome::warnings() const {
   return fit2 ? fit2->warnings : fit3 ? fit3->warnings : none;
 }
 
-FitWorker::FitWorker() : thread_([this] { loop(); }) {}
+FitWorker::FitWorker() : dragRefit_(std::make_unique<DragRefit>()), thread_([this] { loop(); }) {}
 
 FitWorker::~FitWorker() {
   {
@@ -138,7 +139,7 @@ void FitWorker::loop() {
 
     FitJobResult result;
     result.version = job.version;
-    result.main = fitOutcome(job.scene);
+    result.main = dragRefit_->fit(job.scene);
     if (job.compare) result.compare = fitOutcome(*job.compare);
 
     lock.lock();

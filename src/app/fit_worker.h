@@ -7,6 +7,8 @@
 //   - progress is the elapsed time against an estimate from the previous fit's size and time
 //     (dense fits scale as N³), shown as a bar with a Cancel button.
 // A compare scene (the right half of the split view) is fitted in the same job.
+// Main scenes that differ from the previous one in one sample only (a drag) are refitted
+// through a kept factorisation (drag_refit.h).
 
 #include <atomic>
 #include <condition_variable>
@@ -22,6 +24,8 @@
 #include "core/scene_fit.h"
 
 namespace hermite::app {
+
+class DragRefit;
 
 // A finished fit of one scene: either a model (2D or 3D by the scene's mode) or the error that
 // stopped it (with its exit-code class, for the status bar).
@@ -94,6 +98,7 @@ class FitWorker {
   double estimateMs_ = 50;         // expected duration of the running job
   double lastMsPerCube_ = 0;       // last job: ms / (unknowns³), for the estimate
   bool stop_ = false;
+  std::unique_ptr<DragRefit> dragRefit_;  // used by the worker thread only
   std::thread thread_;
 };
 

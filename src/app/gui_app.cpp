@@ -19,6 +19,9 @@ namespace {
 
 // Frames after the last interaction before the view is redrawn at full quality.
 constexpr int kSettleFrames = 3;
+// A fit expected to take less than this (the last one did) is waited for within the frame that
+// submitted it (ms).
+constexpr double kSameFrameFitMs = 12.0;
 
 ImTextureID textureId(const render::Texture& t) {
   return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(t.id()));
@@ -131,12 +134,18 @@ void GuiApp::submitIfStale() {
   submittedVersion_ = document_.version();
   submittedCompare_ = compare;
   worker_.submit(scene(), submittedVersion_, compareScene(scene()));
-  if (options_.synchronousFits) worker_.waitIdle(600);
+  if (options_.synchronousFits)
+    worker_.waitIdle(600);
+  else if (lastFitWallMs_ < kSameFrameFitMs)
+    // Fits as quick as the last one (a drag's bordered refits) show in this very frame: one
+    // short wait instead of a frame of latency. Slower ones stay on the worker.
+    worker_.waitIdle(kSameFrameFitMs / 1000.0);
 }
 
 void GuiApp::adoptFinishedFits() {
   std::optional<FitJobResult> r = worker_.poll();
   if (!r) return;
+  lastFitWallMs_ = r->main->wallMs + (r->compare ? r->compare->wallMs : 0.0);
   if (r->main->ok()) {
     shown_ = r->main;
     shownVersion_ = r->version;

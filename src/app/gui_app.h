@@ -209,6 +209,7 @@ class GuiApp {
   std::shared_ptr<const FitOutcome> shown_, shownCompare_;
   std::uint64_t shownVersion_ = 0;
   std::string lastFitError_;
+  double lastFitWallMs_ = 1e9;  // wall time of the last finished job (main + compare fits)
 
   // The view image (left / whole) and the compare image (right half).
   SceneViewRenderer renderer_, compareRenderer_;

@@ -53,7 +53,7 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
     o.bounds = viewBounds<2>(v, f.data.points);
     o.outsideColor = v.background;
     // While dragging: f and ∇f every 4 px, bilinear between (the 2D refit bench's setting).
-    o.gridScale = quality == ViewQuality::Interactive ? 0.25 : 1.0;
+    o.gridScale = quality == ViewQuality::Interactive ? 1.0 / 6 : 1.0;
     o.style.range = colourRange;
     const View2d view = sceneView2d(viewScene, width, height);
     view2d_->setField(f.field(), view, o, f.data.points, f.data.normals);

@@ -124,7 +124,7 @@ TEST_CASE("2D field view: coarser evaluation grids keep the zero curve within a 
   ho.kernel = Kernel{KernelType::Cubic, 1.0};
   const HrbfModel<2> model = fitHrbf(samples, ho);
   const View2d view(Vec<2>(0, 0), 1.25, 256, 256);
-  for (double scale : {0.5, 0.25}) {
+  for (double scale : {0.5, 0.25, 1.0 / 6, 0.125}) {
     CAPTURE(scale);
     Field2dViewOptions options;
     options.gridScale = scale;
