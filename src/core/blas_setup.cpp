@@ -44,6 +44,15 @@ void reexecWithTunedBlas(char** argv) {
     setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
     reexec = true;
   }
+  // OpenBLAS's worker threads spin in sched_yield for 2^28 cycles (~0.1 s) after each threaded
+  // call before they sleep, taking a core from the renderer's threads on a 2-core machine: with
+  // the GUI dragging a 2D sample, 22 % of all CPU samples were that spinning (perf), 8 % with
+  // 2^16 cycles (~25 µs, still enough to bridge the calls inside one factorisation; the N = 1000
+  // fit takes as long).
+  if (std::getenv("OPENBLAS_THREAD_TIMEOUT") == nullptr) {
+    setenv("OPENBLAS_THREAD_TIMEOUT", "16", 1);
+    reexec = true;
+  }
   const char* current = openblas_get_corename();
   if (std::getenv("OPENBLAS_CORETYPE") == nullptr && current != nullptr && isGenericCore(current)) {
     if (const char* better = coreTypeFromFlags()) {

@@ -7,7 +7,9 @@
 // The choice cannot be changed after loading, so a program that wants the fast kernels calls
 // this first thing in main(): when OpenBLAS picked a generic core but the CPU has AVX2/AVX-512,
 // it sets OPENBLAS_CORETYPE from the CPU's feature flags; it also sets OMP_WAIT_POLICY=PASSIVE
-// (spinning OpenMP workers starve OpenBLAS's threads on small machines), and re-executes itself
+// (spinning OpenMP workers starve OpenBLAS's threads on small machines) and
+// OPENBLAS_THREAD_TIMEOUT=16 (OpenBLAS's own workers spin ~0.1 s after each call by default,
+// starving the renderer), and re-executes itself
 // once when it changed anything. Values set by the user are always respected.
 
 namespace hermite {
