@@ -25,7 +25,34 @@ int singleChangedSample(const HermiteSamples<Dim>& a, const HermiteSamples<Dim>&
   return changed;
 }
 
+HrbfOptions hrbfOptions(const FitSpec& f) { return {Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, f.solver}; }
+
 }  // namespace
+
+void DragRefit::prepare(const Scene& scene, int sample) {
+  if (!eligible(scene)) return;
+  if (scene.mode == SceneMode::Implicit2d)
+    prepareDim<2>(scene, sample);
+  else
+    prepareDim<3>(scene, sample);
+}
+
+template <int Dim>
+void DragRefit::prepareDim(const Scene& scene, int sample) {
+  try {
+    std::vector<std::string> warnings;
+    HermiteSamples<Dim> samples = sceneSamples<Dim>(scene, warnings);
+    const State<Dim>* last = std::get_if<State<Dim>>(&last_);
+    if (last && last->fit == scene.fit && last->drag && last->drag->moved() == sample &&
+        last->samples.points == samples.points && last->samples.normals == samples.normals)
+      return;  // already factorised for this drag
+    auto drag = std::make_unique<HrbfSampleDrag<Dim>>(samples, hrbfOptions(scene.fit), sample);
+    ++factorisations_;
+    last_ = State<Dim>{scene.fit, std::move(samples), std::move(drag)};
+  } catch (const std::exception&) {
+    // Bad data or a singular rest system: the fits report it.
+  }
+}
 
 std::shared_ptr<const FitOutcome> DragRefit::fit(const Scene& scene) {
   if (!eligible(scene)) {
@@ -56,11 +83,9 @@ std::shared_ptr<const FitOutcome> DragRefit::fitDim(const Scene& scene) {
   if (moved < 0) return fromScratch();
 
   try {
-    const FitSpec& f = scene.fit;
     if (!last->drag || last->drag->moved() != moved) {
       // The other samples are those of the last fit (only `moved` differs from it).
-      last->drag = std::make_unique<HrbfSampleDrag<Dim>>(
-          last->samples, HrbfOptions{Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, f.solver}, moved);
+      last->drag = std::make_unique<HrbfSampleDrag<Dim>>(last->samples, hrbfOptions(scene.fit), moved);
       ++factorisations_;
     }
     auto fitted = std::make_unique<SceneFit<Dim>>();

@@ -24,6 +24,11 @@ class DragRefit {
   // fitted here in one sample only, else from scratch (fitOutcome). Never throws.
   std::shared_ptr<const FitOutcome> fit(const Scene& scene);
 
+  // Factorises for a drag of `sample` about to begin (the GUI calls it when a sample is grabbed),
+  // so that the first move is as quick as the next ones. `scene` must be the inline scene the
+  // moves will edit. Never throws (a failure leaves the fits to decide).
+  void prepare(const Scene& scene, int sample);
+
   // Fits that went through the bordered solve, and the factorisations it made (for tests).
   int borderedFits() const { return borderedFits_; }
   int factorisations() const { return factorisations_; }
@@ -31,6 +36,8 @@ class DragRefit {
  private:
   template <int Dim>
   std::shared_ptr<const FitOutcome> fitDim(const Scene& scene);
+  template <int Dim>
+  void prepareDim(const Scene& scene, int sample);
 
   // The last scene fitted here, as samples and settings, and the drag's kept factorisation.
   template <int Dim>

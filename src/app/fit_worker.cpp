@@ -81,6 +81,14 @@ void FitWorker::submit(const Scene& scene, std::uint64_t version, std::optional<
   wake_.notify_all();
 }
 
+void FitWorker::prepareDrag(const Scene& scene, int sample) {
+  {
+    std::lock_guard lock(mutex_);
+    pendingDrag_ = DragAnnouncement{scene, sample};
+  }
+  wake_.notify_all();
+}
+
 std::optional<FitJobResult> FitWorker::poll() {
   std::lock_guard lock(mutex_);
   std::optional<FitJobResult> r = std::move(done_);
@@ -126,8 +134,16 @@ std::uint64_t FitWorker::runningVersion() const {
 void FitWorker::loop() {
   std::unique_lock lock(mutex_);
   for (;;) {
-    wake_.wait(lock, [&] { return stop_ || pending_.has_value(); });
+    wake_.wait(lock, [&] { return stop_ || pending_.has_value() || pendingDrag_.has_value(); });
     if (stop_) return;
+    if (!pending_) {
+      DragAnnouncement drag = std::move(*pendingDrag_);
+      pendingDrag_.reset();
+      lock.unlock();
+      dragRefit_->prepare(drag.scene, drag.sample);
+      lock.lock();
+      continue;
+    }
     Job job = std::move(*pending_);
     pending_.reset();
     running_ = true;

@@ -67,6 +67,9 @@ class FitWorker {
 
   // Queues a fit of `scene` (and `compare`, if given) for document version `version`.
   void submit(const Scene& scene, std::uint64_t version, std::optional<Scene> compare = std::nullopt);
+  // Announces a drag of `sample` of the inline `scene` (drag_refit.h): when no fit is waiting,
+  // the worker factorises for it, so the drag's first move refits as fast as the others.
+  void prepareDrag(const Scene& scene, int sample);
   // The newest finished job not cancelled or superseded, once; nullopt otherwise.
   std::optional<FitJobResult> poll();
   // Discards the running and the pending job (their results never come back).
@@ -90,6 +93,11 @@ class FitWorker {
     std::uint64_t version = 0;
   };
   std::optional<Job> pending_;
+  struct DragAnnouncement {
+    Scene scene;
+    int sample = 0;
+  };
+  std::optional<DragAnnouncement> pendingDrag_;  // done after any pending fit
   std::optional<FitJobResult> done_;
   bool running_ = false;
   std::uint64_t runningVersion_ = 0;

@@ -525,6 +525,12 @@ void GuiApp::handleViewInput(const FrameInput& in) {
         dragPlanePoint_ = tip ? Vec<3>(p + kNormalLength3d * b.extent().norm() * shown_->fit3->data.normals.col(hit).normalized()) : p;
       }
       document_.begin(tip ? "rotate normal" : "move sample");
+      {
+        std::vector<std::string> warnings;  // those of the data: the fits report them
+        worker_.prepareDrag(dimension() == 2 ? withInlineSamples<2>(scene(), warnings)
+                                             : withInlineSamples<3>(scene(), warnings),
+                            hit);
+      }
       setStatus((tip ? "rotating the normal of sample " : "moving sample ") + std::to_string(hit));
       return;
     }

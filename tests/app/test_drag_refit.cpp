@@ -106,3 +106,18 @@ TEST_CASE("drag refit: 3D, and bad data still gets the error of the fit from scr
   CHECK_FALSE(bad->ok());
   CHECK(bad->error == fitOutcome(scene)->error);
 }
+
+TEST_CASE("drag refit: a prepared drag refits its very first move through the bordered solve") {
+  DragRefit refit;
+  Scene scene = inlineScene<2>("curve2d", 50);
+  refit.prepare(scene, 12);  // as the GUI does when the sample is grabbed, before any fit here
+  CHECK(refit.factorisations() == 1);
+  refit.prepare(scene, 12);  // the same drag again: nothing to do
+  CHECK(refit.factorisations() == 1);
+  scene = moved<2>(scene, 12, Vec<2>(0.01, 0.02));
+  auto first = refit.fit(scene);
+  REQUIRE(first->ok());
+  CHECK(first->fit2->report.solver == "bordered-lu");
+  CHECK(fieldDifference<2>(*first, *fitOutcome(scene)) < 1e-9);
+  CHECK(refit.factorisations() == 1);
+}
