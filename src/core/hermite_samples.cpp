@@ -253,4 +253,21 @@ template void validateSamples<3>(HermiteSamples<3>&, std::vector<std::string>&, 
 template double meanSampleSpacing<2>(const Points<2>&);
 template double meanSampleSpacing<3>(const Points<3>&);
 
+template <int Dim>
+HermiteSamples<Dim> withoutSample(const HermiteSamples<Dim>& samples, int i) {
+  const int N = samples.size();
+  HermiteSamples<Dim> rest;
+  rest.points.resize(Dim, N - 1);
+  rest.normals.resize(Dim, N - 1);
+  for (int j = 0, k = 0; j < N; ++j) {
+    if (j == i) continue;
+    rest.points.col(k) = samples.points.col(j);
+    rest.normals.col(k++) = samples.normals.col(j);
+  }
+  return rest;
+}
+
+template HermiteSamples<2> withoutSample<2>(const HermiteSamples<2>&, int);
+template HermiteSamples<3> withoutSample<3>(const HermiteSamples<3>&, int);
+
 }  // namespace hermite

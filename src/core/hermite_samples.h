@@ -15,6 +15,10 @@ struct HermiteSamples {
   int size() const { return static_cast<int>(points.cols()); }
 };
 
+// The samples without sample i, in their order (leave-one-out, a drag's other samples).
+template <int Dim>
+HermiteSamples<Dim> withoutSample(const HermiteSamples<Dim>& samples, int i);
+
 // Validates and cleans samples in place:
 //  - a non-finite coordinate or normal → InputError naming the sample index (0-based);
 //  - a zero normal → InputError naming the index;

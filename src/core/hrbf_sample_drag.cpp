@@ -37,16 +37,7 @@ HrbfSampleDrag<Dim>::HrbfSampleDrag(const HermiteSamples<Dim>& samples, const Hr
   if (moved < 0 || moved >= N)
     throw InputError("HRBF drag refit: sample " + std::to_string(moved) + " is not one of the " +
                      std::to_string(N) + " samples");
-  HermiteSamples<Dim> rest;
-  rest.points.resize(Dim, N - 1);
-  rest.normals.resize(Dim, N - 1);
-  for (int i = 0, r = 0; i < N; ++i) {
-    if (i == moved) continue;
-    rest.points.col(r) = samples.points.col(i);
-    rest.normals.col(r) = samples.normals.col(i);
-    ++r;
-  }
-  const SaddleSystem system = assembleHrbf(rest, options);
+  const SaddleSystem system = assembleHrbf(withoutSample(samples, moved), options);
   Krr_ = saddleMatrix(system);
   bR_ = Eigen::VectorXd::Zero(Krr_.rows());
   bR_.head(system.b.size()) = system.b;

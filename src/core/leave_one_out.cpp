@@ -81,14 +81,7 @@ LeaveOneOutResult hrbfLeaveOneOutBruteForce(const HermiteSamples<Dim>& samples, 
   r.valueError.resize(N);
   r.gradientError.resize(N);
   for (int i = 0; i < N; ++i) {
-    HermiteSamples<Dim> rest;
-    rest.points.resize(Dim, N - 1);
-    rest.normals.resize(Dim, N - 1);
-    for (int j = 0, k = 0; j < N; ++j) {
-      if (j == i) continue;
-      rest.points.col(k) = samples.points.col(j);
-      rest.normals.col(k++) = samples.normals.col(j);
-    }
+    const HermiteSamples<Dim> rest = withoutSample(samples, i);
     const HrbfModel<Dim> model = fitHrbf(rest, options);
     Vec<Dim> g;
     r.valueError[i] = std::abs(model.evaluate(samples.points.col(i), &g));
