@@ -22,7 +22,6 @@ static_assert(sizeof(lapack_int) == sizeof(int), "DenseLu keeps LAPACK pivots as
 namespace {
 
 using Index = Eigen::Index;
-constexpr double kIllConditioned = kIllConditionedEstimate;
 
 std::string fmt(double v) {
   char buf[32];
@@ -317,7 +316,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   if (!out.x.allFinite() || !out.c.allFinite())
     throw NumericalError("the solution is not finite (solver " + out.solver + ", condition estimate " +
                          fmt(out.conditionEstimate) + ")");
-  if (out.conditionEstimate > kIllConditioned)
+  if (out.conditionEstimate > kIllConditionedEstimate)
     out.warnings.push_back("ill-conditioned system: condition estimate " + fmt(out.conditionEstimate) +
                            " (" + out.solver + "); expect lost digits in the coefficients");
   return out;
@@ -337,15 +336,11 @@ DenseLu::DenseLu(Eigen::MatrixXd K) : lu_(std::move(K)) {
   const lapack_int n = toLapack(lu_.rows());
   pivots_.resize(std::size_t(n));
   if (n == 0) return;
-  const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, lu_.data(), n);
   const lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, lu_.data(), n, pivots_.data());
   if (info != 0)
     throw NumericalError(info > 0 ? "singular system: LU pivot U(" + std::to_string(info) + "," +
                                         std::to_string(info) + ") is exactly zero"
                                   : "LU: invalid argument " + std::to_string(-info));
-  double rcond = 0;
-  LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, lu_.data(), n, anorm, &rcond);
-  condition_ = rcond > 0 ? 1.0 / rcond : std::numeric_limits<double>::infinity();
 }
 
 // The solves run in Eigen, not dgetrs: a drag calls them every frame with a few columns, where

@@ -63,17 +63,13 @@ class DenseLu {
  public:
   // Throws NumericalError when a pivot is exactly zero (singular) or K is not finite.
   explicit DenseLu(Eigen::MatrixXd K);
-  // rhs ← K⁻¹ rhs, for any number of columns (dgetrs).
+  // rhs ← K⁻¹ rhs, for any number of columns (triangular solves in Eigen on the factors).
   void solveInPlace(Eigen::MatrixXd& rhs) const;
   void solveInPlace(Eigen::VectorXd& rhs) const;
-  Eigen::Index size() const { return lu_.rows(); }
-  // 1-norm condition estimate of K (dgecon), computed at construction.
-  double conditionEstimate() const { return condition_; }
 
  private:
   Eigen::MatrixXd lu_;
   std::vector<int> pivots_;
-  double condition_ = 0;
 };
 
 // Estimate of ‖M⁻¹‖₁ for an n × n symmetric matrix M known only through solves (`solve`

@@ -31,7 +31,6 @@ constexpr double kResidualTolerance = 1e-9;
 template <int Dim>
 HrbfSampleDrag<Dim>::HrbfSampleDrag(const HermiteSamples<Dim>& samples, const HrbfOptions& options, int moved)
     : samples_(samples), options_(options), moved_(moved) {
-  const auto t0 = std::chrono::steady_clock::now();
   const int N = samples.size();
   if (N < 2) throw InputError("HRBF drag refit: needs at least 2 samples (got " + std::to_string(N) + ")");
   if (moved < 0 || moved >= N)
@@ -45,7 +44,6 @@ HrbfSampleDrag<Dim>::HrbfSampleDrag(const HermiteSamples<Dim>& samples, const Hr
   zR_ = bR_;
   lu_->solveInPlace(zR_);
   krrColumnSums_ = Krr_.cwiseAbs().colwise().sum().transpose();
-  factorMs_ = msSince(t0);
 }
 
 template <int Dim>
@@ -123,7 +121,6 @@ HrbfModel<Dim> HrbfSampleDrag<Dim>::fit(const Vec<Dim>& point, const Vec<Dim>& n
                          shortNumber(rNorm / (normInfK * xNorm + bNorm)) + ")");
 
   // 1-norm condition estimate of the whole K (symmetric: its 1- and ∞-norms agree).
-  const double normK = normInfK;
   const double inverseNorm = symmetricInverseNormEstimate(nR + B, [&](Eigen::VectorXd& v) {
     Eigen::VectorXd vR = v.head(nR);
     Eigen::Matrix<double, B, 1> vI = v.tail<B>();
@@ -131,7 +128,7 @@ HrbfModel<Dim> HrbfSampleDrag<Dim>::fit(const Vec<Dim>& point, const Vec<Dim>& n
     v.head(nR) = vR;
     v.tail<B>() = vI;
   });
-  const double condition = normK * inverseNorm;
+  const double condition = normInfK * inverseNorm;
 
   // Back to fitHrbf's layout: centres in the samples' order, the moved one in its place.
   Points<Dim> centres = samples_.points;

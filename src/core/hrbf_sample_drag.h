@@ -45,9 +45,6 @@ class HrbfSampleDrag {
   HrbfModel<Dim> fit(const Vec<Dim>& point, const Vec<Dim>& normal, FitReport* report = nullptr) const;
 
   int moved() const { return moved_; }
-  const HermiteSamples<Dim>& samples() const { return samples_; }
-  const HrbfOptions& options() const { return options_; }
-  double factorMs() const { return factorMs_; }
 
  private:
   static constexpr int B = Dim + 1;  // unknowns per centre, conditions per sample
@@ -66,7 +63,6 @@ class HrbfSampleDrag {
   Eigen::VectorXd bR_;  // right-hand side of the rest: normals of the other samples, zeros
   Eigen::VectorXd zR_;  // K_RR⁻¹ b_R
   Eigen::VectorXd krrColumnSums_;  // Σᵢ |K_RR(i, j)| for the 1-norm of K
-  double factorMs_ = 0;
 };
 
 }  // namespace hermite
