@@ -1,7 +1,7 @@
 // Tile pass of the baked mode (included by trace_common.glsl with TRACE_TILE_PASS): one fragment
 // per tile of TRACE_TILE × TRACE_TILE pixels marches a cone that holds every ray of the tile and
 // writes how far along the tile's centre ray that cone is proven free of zeros of the baked
-// interpolant inside the bounds. The full-resolution pass starts each ray there (uTileStart), so
+// interpolant inside the bounds (1e30: all the way through them). The full-resolution pass starts each ray there (uTileStart), so
 // the long approach to a surface is marched once per tile instead of once per pixel.
 //
 // Why a pixel's ray may start at its own parameter tc: every ray of the tile leaves the eye
@@ -68,5 +68,7 @@ void main() {
     stalled = tNext < t + uMinStep;
     if (!stalled) t = tNext;
   }
-  outColor = vec4(t, 0.0, 0.0, 1.0);
+  // Through the bounds without a stall: no ray of the tile meets a zero inside them, and the
+  // trace pass skips the tile (tile_spans.h, kEmptyTile).
+  outColor = vec4((!stalled && t >= t1) ? 1e30 : t, 0.0, 0.0, 1.0);
 }

@@ -331,7 +331,8 @@ int runBench(const BenchArgs& args) {
         quick ? render::benchTracer(50, 100, 32, 128, 96, 1) : render::benchTracer(250, 1000, 128, 1024, 768, 3);
     return {"render/trace-baked", {{"bake_ms", r.bakeMs}, {"bake_resolution", r.bakeResolution},
             {"bake_centres", r.bakeCentres}, {"refine_ms", r.refineMs}, {"trace_centres", r.traceCentres},
-            {"width", r.width}, {"height", r.height}, {"hit_pixels", r.hitPixels}},
+            {"width", r.width}, {"height", r.height}, {"hit_pixels", r.hitPixels},
+            {"traced_pixels", r.tracedPixels}, {"trace_all_pixels_ms", r.traceAllPixelsMs}},
             r.traceMs, "ms/frame"};
   });
   jobs.emplace_back("render/field2d-refit-redraw", [quick = args.quick]() -> Result {

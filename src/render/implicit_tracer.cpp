@@ -22,6 +22,7 @@
 #include "render/gl_objects.h"
 #include "render/overlay.h"
 #include "render/shader_library.h"
+#include "render/tile_spans.h"
 
 namespace hermite::render {
 
@@ -242,6 +243,19 @@ struct TraceTarget {
     const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
     glNamedFramebufferDrawBuffers(fbo, 3, buffers);
   }
+  // What the trace pass writes where a ray misses everything: the background (exact bytes, as
+  // uBackground), no hit (t = −1), no plane, far depth.
+  void clearToMiss(const std::array<double, 3>& background) const {
+    const float missColor[4] = {shading::toByte(background[0]) / 255.0f, shading::toByte(background[1]) / 255.0f,
+                            shading::toByte(background[2]) / 255.0f, 1.0f};
+    const float noHit[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
+    const float noPlane[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+    const float far = 1.0f;
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 0, missColor);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 1, noHit);
+    glClearNamedFramebufferfv(fbo, GL_COLOR, 2, noPlane);
+    glClearNamedFramebufferfv(fbo, GL_DEPTH, 0, &far);
+  }
   void setColorOnly() const {
     const GLenum buffers[1] = {GL_COLOR_ATTACHMENT0};
     glNamedFramebufferDrawBuffers(fbo, 1, buffers);
@@ -281,7 +295,9 @@ Program buildTraceProgram(TraceProgramKind kind, bool slice) {
   if (kind == kBakedProgram) fragment += "#define TRACE_TILE_START 1\n";
   if (kind == kBakedTileProgram) fragment += "#define TRACE_TILE_PASS 1\n";
   fragment += shaderSource(file);
-  return buildProgram({ShaderSource{GL_VERTEX_SHADER, std::string(shaderSource("fullscreen.vert")), "fullscreen.vert"},
+  // The baked trace pass draws rectangles of pixels (tile_spans.h); the others one triangle.
+  const char* vertex = kind == kBakedProgram ? "pixel_rects.vert" : "fullscreen.vert";
+  return buildProgram({ShaderSource{GL_VERTEX_SHADER, std::string(shaderSource(vertex)), vertex},
                        ShaderSource{GL_FRAGMENT_SHADER, fragment, file}});
 }
 
@@ -309,6 +325,8 @@ bool floatEvaluationTooCoarse(const RadialSum<3>& model, const Box<3>& bounds) {
 struct ImplicitTracer::Gpu {
   std::unique_ptr<Program> programs[kTraceProgramKinds][2];  // [TraceProgramKind][slice], built on first use
   VertexArray empty;
+  Buffer rectVertices;  // the baked trace pass's rectangles: (x, y) pixel corners, 2 triangles each
+  VertexArray rects;
   Texture volume;
   Texture bricks;
   Texture bakedBricks;  // baked mode: per fine brick (L of the interpolant, brick distance)
@@ -334,6 +352,8 @@ struct ImplicitTracer::Gpu {
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
   gpu_->program(kBakedProgram, false);
+  gpu_->rects.setVertexBuffer(0, gpu_->rectVertices, 0, 2 * sizeof(float));
+  gpu_->rects.setAttribute(0, 0, 2, GL_FLOAT, false, 0);
   gpu_->overlay = std::make_unique<OverlayRenderer>();
 }
 
@@ -640,8 +660,26 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   }
   gpu_->bricks.bind(1);
   program->setUniform("uBricks", 1);
-  gpu_->empty.bind();
-  glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (settings.mode == TracerMode::Baked) {
+    // Only the pixels of tiles the tile pass did not prove empty (tile_spans.h); the others are
+    // cleared to what a miss writes. The slice plane can cover any pixel: then all of them.
+    std::vector<PixelRect> rects{PixelRect{0, 0, W, H}};
+    if (settings.showSurface && !settings.slice.enabled && settings.skipEmptyTiles) {
+      const std::vector<float> tiles = readTexture<float>(target.tileStart, GL_RED, GL_FLOAT, 1);
+      rects = occupiedTileRects(tiles, target.tileWidth, target.tileHeight, kTraceTile, W, H);
+    }
+    result.tracedPixels = rectPixels(rects);
+    if (result.tracedPixels < (long long)npx) target.clearToMiss(settings.background);
+    const std::vector<float> corners = rectTriangles(rects);
+    gpu_->rectVertices.setData(std::span<const float>(corners));
+    gpu_->rects.setVertexBuffer(0, gpu_->rectVertices, 0, 2 * sizeof(float));
+    gpu_->rects.bind();
+    if (!corners.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(corners.size() / 2));
+  } else {
+    result.tracedPixels = (long long)npx;
+    gpu_->empty.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
   glFinish();
   checkGl("implicit tracer trace pass");
   result.traceMs = msSince(t0);
@@ -981,7 +1019,16 @@ TracerBenchResult benchTracer(int bakeCentres, int traceCentres, int bakeResolut
   // Traces back to back, as while orbiting a settled model; then the refinements (whose CPU
   // threads, run in between, slowed the following trace by 10–25 % on this 2-core machine).
   settings.refineExact = false;
-  for (int r = 0; r < 2 * repeats + 1; ++r) trace.push_back(tracer.render(camera, settings).traceMs);
+  for (int r = 0; r < 2 * repeats + 1; ++r) {
+    const TraceResult frame = tracer.render(camera, settings);
+    trace.push_back(frame.traceMs);
+    out.tracedPixels = frame.tracedPixels;
+  }
+  // The same frames tracing every pixel: what skipping the empty tiles saves.
+  std::vector<double> traceAll;
+  settings.skipEmptyTiles = false;
+  for (int r = 0; r < 2 * repeats + 1; ++r) traceAll.push_back(tracer.render(camera, settings).traceMs);
+  settings.skipEmptyTiles = true;
   for (int r = 0; r < repeats; ++r) {
     settings.refineExact = true;
     const TraceResult refined = tracer.render(camera, settings);
@@ -989,6 +1036,7 @@ TracerBenchResult benchTracer(int bakeCentres, int traceCentres, int bakeResolut
     out.hitPixels = refined.refinedPixels;
   }
   out.traceMs = median(trace);
+  out.traceAllPixelsMs = median(traceAll);
   out.refineMs = median(refine);
   return out;
 }

@@ -71,6 +71,9 @@ struct TraceSettings {
   bool showBounds = false;    // the bounds box as lines
   SliceSettings slice;
   std::array<double, 3> background{1, 1, 1};  // each in [0, 1]; misses get round(255·c) exactly
+  // Baked mode without a slice plane: run the trace pass only on the tiles the tile pass did not
+  // prove empty (tile_spans.h). The pixels are the same either way; false traces every pixel.
+  bool skipEmptyTiles = true;
   double minStepCells = 0.1;  // ε of the shader's march, in bake cells (baked) or 1e-3·diagonal units (exact)
   ExactPrecision exactPrecision = ExactPrecision::Auto;
 };
@@ -88,7 +91,8 @@ struct TraceResult {
   int ringHits = 0;               // silhouette-ring pixels the refinement added
   int droppedHits = 0;            // baked hits the true field does not confirm (turned to misses)
   bool exactDouble = false;       // exact mode summed in double precision
-  int cpuTracedPixels = 0;        // pixels the GPU march left undecided (steps or loop budget), traced on the CPU
+  int cpuTracedPixels = 0;
+  long long tracedPixels = 0;     // pixels the GPU trace pass ran on (baked mode skips empty tiles)        // pixels the GPU march left undecided (steps or loop budget), traced on the CPU
   Vec<3> normalAt(int i, int j) const {
     const std::size_t p = std::size_t(j) * image.width + i;
     return Vec<3>(normal[3 * p], normal[3 * p + 1], normal[3 * p + 2]);
@@ -152,6 +156,8 @@ struct TracerBenchResult {
   double bakeMs = 0;         // bake at bakeResolution³ of an HRBF with bakeCentres centres
   double traceMs = 0;        // median baked trace (no refinement) at width×height, N = traceCentres
   double refineMs = 0;       // median CPU exact refinement of that settled view, N = traceCentres
+  double traceAllPixelsMs = 0;  // the same trace with skipEmptyTiles off (every pixel traced)
+  long long tracedPixels = 0;   // pixels the trace pass ran on (the others are in empty tiles)
   int bakeCentres = 250;
   int traceCentres = 1000;
   int bakeResolution = 128;

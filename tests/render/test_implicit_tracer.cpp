@@ -353,6 +353,45 @@ TEST_CASE("implicit tracer: objects that only a tile's corner pixels see are dra
   }
 }
 
+// The trace pass skips the tiles the tile pass proved empty (tile_spans.h) and clears them to
+// what a miss writes: the same bytes, hits, depths and normals as tracing every pixel.
+TEST_CASE("implicit tracer: skipping empty tiles changes no pixel") {
+  auto context = testing::makeTestContext();
+  const SphereSet field = SphereSet::scattered();
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 96;
+  tracer.upload(field, cube(1.5), nullptr, upload);
+  const Camera cameras[] = {
+      makeCamera(130, 98, Projection::Perspective, {2.6, 3.1, 3.7}),  // not multiples of the tile
+      makeCamera(128, 96, Projection::Perspective, {1.2, -1.1, 0.9}),  // eye inside the bounds
+      makeCamera(121, 90, Projection::Orthographic, {1.8, 2.2, 2.6}, 1.6),
+      makeCamera(96, 96, Projection::Perspective, {9.0, 7.0, 8.0}),  // far: most tiles empty
+  };
+  for (const Camera& camera : cameras) {
+    CAPTURE(camera.width());
+    for (bool refine : {false, true}) {
+      CAPTURE(refine);
+      TraceSettings settings;
+      settings.refineExact = refine;
+      settings.background = {0.2, 0.3, 0.4};
+      settings.showPoints = true;
+      settings.skipEmptyTiles = false;
+      const TraceResult all = tracer.render(camera, settings);
+      settings.skipEmptyTiles = true;
+      const TraceResult skipped = tracer.render(camera, settings);
+      const long long pixels = (long long)camera.width() * camera.height();
+      CHECK(all.tracedPixels == pixels);
+      CHECK(skipped.tracedPixels < pixels);
+      CHECK(skipped.tracedPixels > 0);
+      CHECK(skipped.image == all.image);
+      CHECK(skipped.hit == all.hit);
+      CHECK(skipped.depth == all.depth);
+      CHECK(skipped.normal == all.normal);
+    }
+  }
+}
+
 TEST_CASE("implicit tracer: orthographic projection matches the CPU reference") {
   auto context = testing::makeTestContext();
   const TorusField torus;
