@@ -118,10 +118,14 @@ vec2 brickAt(vec3 o, vec3 d, float t, float t1, float nudge, out ivec3 b) {
 //    brick texture alone. f is not needed there, and it is the expensive fetch (a trilinear 3D
 //    read is 8 texel reads on llvmpipe, an exact evaluation N kernel terms), which a single
 //    loop would pay on every lane of a SIMD vector while any lane still skips.
-// 2. March: brick by brick, jumping over empty space, steps max(|f|/L, ε) in bricks that may
-//    hold a zero, then a secant on the first sign change (the bracket is at most ε long: a
-//    Lipschitz step cannot cross a zero, and the interpolant is nearly linear over ε; settled
-//    views are refined against the true field on the CPU anyway).
+// 2. March: brick by brick, jumping over empty space; in bricks that may hold a zero, steps of
+//    |f|/L + ε: the Lipschitz bound proves [t, t + |f|/L) free of zeros, and the sign test alone
+//    covers the ε beyond it, so a zero pair closer together than ε may pass unseen there (as
+//    between any two samples ε apart) but a single zero never does. Plain |f|/L steps would
+//    creep towards a surface the ray meets at a shallow angle in steps of ε (two to three of
+//    the seven steps of an average pixel, measured). Then a secant on the first sign change,
+//    kept inside the unproven ε (the interpolant is nearly linear over ε; settled views are
+//    refined against the true field on the CPU anyway).
 // With TRACE_BRICK_DISTANCE, brickInfo(b) = (L, e) as leaveBricks takes it (a "brick distance
 // map": the ray leaves a whole empty cube of bricks in one step); without it, brickInfo(b) =
 // (L, 1 where the brick may contain a zero, else 0).
@@ -143,6 +147,7 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
   float fa = fieldValue(o + t * d);
   bool negA = fa < 0.0;
   float tb = t, fb = fa;
+  float tFree = t;  // the first zero lies in [tFree, tb]
   bool found = fa == 0.0;
   for (; it < uMaxSteps && gLoops < uLoopBudget && !found && t < t1; ++it) {
     gLoops += 4;
@@ -150,10 +155,11 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
     vec2 info = brickAt(o, d, t, t1, nudge, b);
     float tExit = leaveBricks(o, d, t, t1, nudge, b, info);
     float stepLength = (info.y > 0.5) ? 1e30 : (info.x > 0.0 ? abs(fa) / info.x : 1e30);
-    float ts = (t + stepLength >= tExit) ? tExit : min(t + max(uMinStep, stepLength), t1);
+    float ts = min(t + stepLength + uMinStep, tExit);  // tExit ≤ t1
     float fs = fieldValue(o + ts * d);
     if (fs == 0.0 || (fs < 0.0) != negA) {
       found = true;
+      tFree = min(t + stepLength, ts);
       tb = ts;
       fb = fs;
     } else {
@@ -162,9 +168,9 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
     }
   }
   undecided = !found && t < t1;  // out of steps or budget before the end of the ray
-  // Secant on the bracket [t, tb] (fa, fb of opposite signs, or fb = 0); stays inside.
+  // Secant on the bracket [t, tb] (fa, fb of opposite signs, or fb = 0), kept in [tFree, tb].
   float w = fa == 0.0 ? 0.0 : fa / (fa - fb);
-  tHit = mix(t, tb, clamp(w, 0.0, 1.0));
+  tHit = clamp(mix(t, tb, clamp(w, 0.0, 1.0)), tFree, tb);
   return found;
 }
 
