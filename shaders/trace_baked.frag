@@ -9,10 +9,13 @@ uniform highp sampler3D uBakedBricks;
 uniform vec3 uVolumeScale;        // (R − 1) / (hi − lo): world → sample index
 uniform float uVolumeResolution;  // R
 uniform vec3 uCell;               // sample spacing, world units
+// RGBA8 per sample: (n + 1) / 2, n the unit central difference one cell apart (baked_normals.h)
+uniform sampler3D uNormals;
 
 #define TRACE_BRICK_DISTANCE 1
 float fieldValue(vec3 p);
 vec3 fieldGradient(vec3 p);
+vec3 shadingDirection(vec3 p);
 vec2 brickInfo(ivec3 b);
 
 #include "trace_common.glsl"
@@ -28,6 +31,14 @@ vec3 fieldGradient(vec3 p) {
   return vec3(fieldValue(p + vec3(h.x, 0, 0)) - fieldValue(p - vec3(h.x, 0, 0)),
               fieldValue(p + vec3(0, h.y, 0)) - fieldValue(p - vec3(0, h.y, 0)),
               fieldValue(p + vec3(0, 0, h.z)) - fieldValue(p - vec3(0, 0, h.z))) / (2.0 * h);
+}
+
+// The direction fieldGradient(p) gives, from one fetch: its vertex values filtered trilinearly
+// are the same central difference (baked_normals.h); not unit length between samples.
+vec3 shadingDirection(vec3 p) {
+  vec3 u = ((p - uBoundsLo) * uVolumeScale + 0.5) / uVolumeResolution;
+  vec3 n = texture(uNormals, u).xyz * 2.0 - 1.0;
+  return length(n) < 0.01 ? vec3(0.0) : n;  // a texel of no direction decodes to (1/255, …)
 }
 
 vec2 brickInfo(ivec3 b) { return texelFetch(uBakedBricks, b, 0).xy; }

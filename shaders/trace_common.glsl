@@ -1,5 +1,6 @@
 // Shared ray marcher of trace_baked.frag and trace_exact.frag (included after the including file
-// defined fieldValue(p), fieldGradient(p) and brickInfo(b) = (L, may contain a zero)).
+// defined fieldValue(p), fieldGradient(p), shadingDirection(p) — ∇f or a vector along it, 0 where
+// there is none — and brickInfo(b) = (L, may contain a zero)).
 // Rays follow DESIGN.md §4 exactly (Camera::ray); world units throughout.
 
 layout(location = 0) out vec4 outColor;  // final colour (surface, slice plane or background)
@@ -243,7 +244,7 @@ void main() {
       surface = true;
       tSurface = tHit;
       vec3 p = o + tHit * d;
-      vec3 g = fieldGradient(p);
+      vec3 g = shadingDirection(p);
       float gn = length(g);
       vec3 n = gn > 0.0 ? g / gn : -d;
       outHit = vec4(tHit, n);

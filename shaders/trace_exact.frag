@@ -32,6 +32,7 @@ uniform vec3 uOrigin;
 float fieldValue(vec3 p);
 vec3 fieldGradient(vec3 p);
 vec2 brickInfo(ivec3 b);
+vec3 shadingDirection(vec3 p) { return fieldGradient(p); }
 
 #include "trace_common.glsl"
 

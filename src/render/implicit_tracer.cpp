@@ -19,6 +19,7 @@
 #include "core/transform.h"
 #include "core/view_bounds.h"
 #include "render/context.h"
+#include "render/baked_normals.h"
 #include "render/gl_objects.h"
 #include "render/overlay.h"
 #include "render/shader_library.h"
@@ -328,6 +329,7 @@ struct ImplicitTracer::Gpu {
   Buffer rectVertices;  // the baked trace pass's rectangles: (x, y) pixel corners, 2 triangles each
   VertexArray rects;
   Texture volume;
+  Texture normals;      // baked mode: RGBA8 unit directions per sample (baked_normals.h)
   Texture bricks;
   Texture bakedBricks;  // baked mode: per fine brick (L of the interpolant, brick distance)
   Eigen::Array3i bakedBrickCount = Eigen::Array3i::Zero();
@@ -388,6 +390,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   auto bake = std::make_unique<VolumeBake>(bakeVolume(field, bounds, bakeOptions));
   const std::vector<float> texels = brickTexels(*bake);
   const BakedBricks baked = bakedBrickTexels(*bake, kBakedBrickCells);
+  const std::vector<std::uint8_t> normals = bakedNormalTexels(*bake);
   bakeMs_ = msSince(t0);
 
   const auto t1 = Clock::now();
@@ -396,6 +399,10 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   gpu_->volume.upload3D(GL_RED, GL_FLOAT, bake->values.data());
   gpu_->volume.setFilter(GL_LINEAR, GL_LINEAR);
   gpu_->volume.setWrap(GL_CLAMP_TO_EDGE);
+  gpu_->normals = Texture::create3D(GL_RGBA8, R, R, R);
+  gpu_->normals.upload3D(GL_RGBA, GL_UNSIGNED_BYTE, normals.data());
+  gpu_->normals.setFilter(GL_LINEAR, GL_LINEAR);
+  gpu_->normals.setWrap(GL_CLAMP_TO_EDGE);
   const Eigen::Array3i count = bake->bricks.count;
   gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
   gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, texels.data());
@@ -613,6 +620,8 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     p.setUniform("uBrickSize", toGlm(gpu_->bakedBrickSize));
     gpu_->bakedBricks.bind(2);
     p.setUniform("uBakedBricks", 2);
+    gpu_->normals.bind(4);
+    p.setUniform("uNormals", 4);
   };
   if (settings.mode == TracerMode::Baked && settings.showSurface) {
     // Tile pass: per tile of kTraceTile² pixels, how far its rays may skip (trace_tile_pass.glsl).
