@@ -4,7 +4,7 @@
 // in the brick, else the Chebyshev distance in bricks to the nearest such brick.
 
 uniform sampler3D uVolume;
-// RGB32F per (fine) brick: (L of the interpolant, brick distance e, L over the bricks b − 1 … b + 1)
+// RGBA32F per (fine) brick: (L of the interpolant, brick distance e, L over the bricks b − 1 … b + 1, unused)
 uniform highp sampler3D uBakedBricks;
 uniform vec3 uVolumeScale;        // (R − 1) / (hi − lo): world → sample index
 uniform float uVolumeResolution;  // R

@@ -83,13 +83,12 @@ bool clipBox(vec3 o, vec3 d, vec3 lo, vec3 hi, out float t0, out float t1) {
   return t0 <= t1;
 }
 
+// Where the ray leaves the box (1e30 when it runs parallel to every face it could leave by).
+// Vector selects, no branches: llvmpipe would execute both sides of each anyway.
 float exitParameter(vec3 o, vec3 d, vec3 lo, vec3 hi) {
-  float t = 1e30;
-  for (int k = 0; k < 3; ++k) {
-    if (d[k] > 0.0) t = min(t, (hi[k] - o[k]) / d[k]);
-    if (d[k] < 0.0) t = min(t, (lo[k] - o[k]) / d[k]);
-  }
-  return t;
+  vec3 te = (mix(lo, hi, greaterThan(d, vec3(0.0))) - o) / d;
+  te = mix(te, vec3(1e30), equal(d, vec3(0.0)));
+  return min(te.x, min(te.y, te.z));
 }
 
 // Empty cube of bricks around brick b that the ray at o + t d leaves at the returned parameter

@@ -92,7 +92,9 @@ std::vector<float> brickTexels(const VolumeBake& bake) {
 struct BakedBricks {
   Eigen::Array3i count = Eigen::Array3i::Zero();
   Vec<3> size = Vec<3>::Zero();
-  std::vector<float> texels;  // RGB per brick, x fastest
+  // RGBA per brick, x fastest; A unused: llvmpipe fetches 3-channel float textures through a
+  // slow generic path (as field2d_view.cpp found), ≈ 1–2 ms of a 1024×768 trace here
+  std::vector<float> texels;
 };
 
 // Cells per brick edge of the baked mode's brick grid.
@@ -106,7 +108,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
   out.count = Eigen::Array3i::Constant(perAxis);
   out.size = double(C) * h;
   const int n = perAxis * perAxis * perAxis;
-  out.texels.assign(3 * std::size_t(n), 0.0f);
+  out.texels.assign(4 * std::size_t(n), 0.0f);
   constexpr int kFar = 1 << 20;
   std::vector<int> dist(n);
   std::vector<float> lipschitz(n);  // +inf for bricks with a NaN sample
@@ -135,7 +137,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
         }
       }
     const double interp = Vec<3>(maxDiff[0] / h.x(), maxDiff[1] / h.y(), maxDiff[2] / h.z()).norm();
-    out.texels[3 * std::size_t(b)] = float(1.01 * interp);  // 1 % slack as in brickTexels
+    out.texels[4 * std::size_t(b)] = float(1.01 * interp);  // 1 % slack as in brickTexels
     lipschitz[b] = nan ? std::numeric_limits<float>::infinity() : float(1.01 * interp);
     dist[b] = (nan || (lo <= 0.0f && hi >= 0.0f)) ? 0 : kFar;
   }
@@ -147,7 +149,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
       for (int y = std::max(by - 1, 0); y <= std::min(by + 1, perAxis - 1); ++y)
         for (int x = std::max(bx - 1, 0); x <= std::min(bx + 1, perAxis - 1); ++x)
           L = std::max(L, lipschitz[(z * perAxis + y) * perAxis + x]);
-    out.texels[3 * std::size_t(b) + 2] = L;
+    out.texels[4 * std::size_t(b) + 2] = L;
   }
   // Chebyshev distance transform, separable: pass k sets d(x) = min_y max(|x_k − y_k|, d(y))
   // along the lines of axis k.
@@ -167,7 +169,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
         for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
       }
   }
-  for (int b = 0; b < n; ++b) out.texels[3 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
+  for (int b = 0; b < n; ++b) out.texels[4 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
   return out;
 }
 
@@ -331,7 +333,7 @@ struct ImplicitTracer::Gpu {
   Texture volume;
   Texture normals;      // baked mode: RGBA8 unit directions per sample (baked_normals.h)
   Texture bricks;
-  Texture bakedBricks;  // baked mode: per fine brick (L of the interpolant, brick distance)
+  Texture bakedBricks;  // baked mode: per fine brick (L of the interpolant, brick distance, L around, unused)
   Eigen::Array3i bakedBrickCount = Eigen::Array3i::Zero();
   Vec<3> bakedBrickSize = Vec<3>::Zero();
   Buffer centres;        // exact mode: vec4 (c − origin, α) per centre
@@ -407,8 +409,8 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
   gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, texels.data());
   gpu_->bricks.setFilter(GL_NEAREST, GL_NEAREST);
-  gpu_->bakedBricks = Texture::create3D(GL_RGB32F, baked.count.x(), baked.count.y(), baked.count.z());
-  gpu_->bakedBricks.upload3D(GL_RGB, GL_FLOAT, baked.texels.data());
+  gpu_->bakedBricks = Texture::create3D(GL_RGBA32F, baked.count.x(), baked.count.y(), baked.count.z());
+  gpu_->bakedBricks.upload3D(GL_RGBA, GL_FLOAT, baked.texels.data());
   gpu_->bakedBricks.setFilter(GL_NEAREST, GL_NEAREST);
   gpu_->bakedBrickCount = baked.count;
   gpu_->bakedBrickSize = baked.size;
