@@ -3,7 +3,8 @@
 //                            factorisation + solve, as FitReport::fitMs)
 //   eval3d/<kernel>          value + gradient, ns per (point, centre) pair per core
 //   render/trace-baked       GPU trace of a 128³ bake at 1024×768, N = 1000 (params: bake and
-//                            exact-refinement times)
+//                            exact-refinement times, traced_pixels: those not in tiles proven
+//                            empty, trace_all_pixels_ms: the same frame tracing every pixel)
 //   render/field2d-refit-redraw   refit + redraw of a 200-point curve at 512×512
 //   io/ply-load/N=1000000    read + parse a binary PLY of N oriented points (loadMeshFile, ms;
 //                            params: the whole point loader with validateSamples, file size)
