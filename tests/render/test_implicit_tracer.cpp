@@ -254,6 +254,17 @@ class SphereSet final : public ImplicitField<3> {
   std::vector<double> radii_;
 };
 
+// The scattered spheres baked at 96³ over [-1.5, 1.5]³ (needs a current context).
+struct ScatteredSpheresScene {
+  SphereSet field = SphereSet::scattered();
+  ImplicitTracer tracer;
+  ScatteredSpheresScene() {
+    TracerUploadOptions upload;
+    upload.bakeResolution = 96;
+    tracer.upload(field, cube(1.5), nullptr, upload);
+  }
+};
+
 // Pixels of `result` (a baked trace without refinement) whose first zero a brute-force walk of
 // the bake's interpolant (steps of 1/16 cell) finds, and how many of those the trace lost or
 // found more than a quarter cell later.
@@ -294,11 +305,8 @@ FirstZeroCheck checkFirstZeros(const TraceResult& result, const VolumeBake& bake
 // from inside the bounds, in both projections.
 TEST_CASE("implicit tracer: the baked march finds the interpolant's first zero on every pixel") {
   auto context = testing::makeTestContext();
-  const SphereSet field = SphereSet::scattered();
-  ImplicitTracer tracer;
-  TracerUploadOptions upload;
-  upload.bakeResolution = 96;
-  tracer.upload(field, cube(1.5), nullptr, upload);
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
   struct View {
     std::string name;
     Camera camera;
@@ -357,11 +365,8 @@ TEST_CASE("implicit tracer: objects that only a tile's corner pixels see are dra
 // what a miss writes: the same bytes, hits, depths and normals as tracing every pixel.
 TEST_CASE("implicit tracer: skipping empty tiles changes no pixel") {
   auto context = testing::makeTestContext();
-  const SphereSet field = SphereSet::scattered();
-  ImplicitTracer tracer;
-  TracerUploadOptions upload;
-  upload.bakeResolution = 96;
-  tracer.upload(field, cube(1.5), nullptr, upload);
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
   const Camera cameras[] = {
       makeCamera(130, 98, Projection::Perspective, {2.6, 3.1, 3.7}),  // not multiples of the tile
       makeCamera(128, 96, Projection::Perspective, {1.2, -1.1, 0.9}),  // eye inside the bounds
