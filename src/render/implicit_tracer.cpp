@@ -250,7 +250,7 @@ struct TraceTarget {
   // uBackground), no hit (t = −1), no plane, far depth.
   void clearToMiss(const std::array<double, 3>& background) const {
     const float missColor[4] = {shading::toByte(background[0]) / 255.0f, shading::toByte(background[1]) / 255.0f,
-                            shading::toByte(background[2]) / 255.0f, 1.0f};
+                                shading::toByte(background[2]) / 255.0f, 1.0f};
     const float noHit[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
     const float noPlane[4] = {0.0f, 0.0f, 0.0f, 0.0f};
     const float far = 1.0f;
@@ -682,8 +682,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     result.tracedPixels = rectPixels(rects);
     if (result.tracedPixels < (long long)npx) target.clearToMiss(settings.background);
     const std::vector<float> corners = rectTriangles(rects);
-    gpu_->rectVertices.setData(std::span<const float>(corners));
-    gpu_->rects.setVertexBuffer(0, gpu_->rectVertices, 0, 2 * sizeof(float));
+    gpu_->rectVertices.setData(std::span<const float>(corners));  // same buffer id: the binding stands
     gpu_->rects.bind();
     if (!corners.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(corners.size() / 2));
   } else {
