@@ -3,13 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/shading.h"
+
 namespace hermite::render {
 
 std::vector<std::uint8_t> bakedNormalTexels(const VolumeBake& bake) {
   const int R = bake.resolution;
   const Vec<3> h = bake.spacing();
   std::vector<std::uint8_t> texels(4 * std::size_t(R) * R * R);
-  auto toByte = [](double c) { return std::uint8_t(std::lround(std::clamp((c + 1.0) * 0.5, 0.0, 1.0) * 255.0)); };
 #pragma omp parallel for schedule(static)
   for (int k = 0; k < R; ++k)
     for (int j = 0; j < R; ++j)
@@ -21,7 +22,7 @@ std::vector<std::uint8_t> bakedNormalTexels(const VolumeBake& bake) {
         const double norm = g.norm();
         const Vec<3> n = (norm > 0 && std::isfinite(norm)) ? Vec<3>(g / norm) : Vec<3>::Zero();
         std::uint8_t* t = &texels[4 * (i + std::size_t(R) * (j + std::size_t(R) * k))];
-        for (int c = 0; c < 3; ++c) t[c] = toByte(n(c));
+        for (int c = 0; c < 3; ++c) t[c] = shading::toByte((n(c) + 1.0) * 0.5);
         t[3] = 255;
       }
   return texels;
