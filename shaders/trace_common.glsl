@@ -138,7 +138,9 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
   int it = 0;
   bool nearZero = false;
   for (; it < uMaxSteps && gLoops < uLoopBudget && !nearZero && t < t1; ++it) {
-    gLoops += 4;  // this iteration and exitParameter's axis loop, if not unrolled
+    // An upper bound on the loop iterations this one runs: 1 since exitParameter has no axis
+    // loop any more; the 4 it counted then stays (a budget may only overcount).
+    gLoops += 4;
     ivec3 b;
     vec2 info = brickAt(o, d, t, t1, nudge, b);
     nearZero = info.y < 0.5;
@@ -150,7 +152,7 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
   float tFree = t;  // the first zero lies in [tFree, tb]
   bool found = fa == 0.0;
   for (; it < uMaxSteps && gLoops < uLoopBudget && !found && t < t1; ++it) {
-    gLoops += 4;
+    gLoops += 4;  // as above
     ivec3 b;
     vec2 info = brickAt(o, d, t, t1, nudge, b);
     float tExit = leaveBricks(o, d, t, t1, nudge, b, info);
