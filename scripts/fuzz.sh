@@ -28,15 +28,15 @@ flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer,address,undef
 status=0
 for t in "${targets[@]}"; do
   case $t in
-    off)  sources=(src/core/io_off.cpp);  libs=() ;;
-    obj)  sources=(src/core/io_obj.cpp);  libs=(-ltinyobjloader_double) ;;
-    ply)  sources=(src/core/io_ply.cpp);  libs=() ;;
-    gltf) sources=(src/core/io_gltf.cpp); libs=(-ltinygltf) ;;
+    off)  sources=(src/io/off_file.cpp);  libs=() ;;
+    obj)  sources=(src/io/obj_file.cpp);  libs=(-ltinyobjloader_double) ;;
+    ply)  sources=(src/io/ply_file.cpp);  libs=() ;;
+    gltf) sources=(src/io/gltf_file.cpp); libs=(-ltinygltf) ;;
     *) echo "fuzz: unknown target '$t' (off obj ply gltf)" >&2; exit 2 ;;
   esac
   exe=$out/fuzz_$t
   echo "fuzz: building $exe"
-  "$CXX" "${flags[@]}" -o "$exe" "tests/fuzz/fuzz_$t.cpp" "${sources[@]}" src/core/mesh_format_common.cpp "${libs[@]}"
+  "$CXX" "${flags[@]}" -o "$exe" "tests/fuzz/fuzz_$t.cpp" "${sources[@]}" src/io/mesh_format_common.cpp "${libs[@]}"
 
   # Seeds: the fixtures of this format (glTF: both .gltf and .glb), copied into a working corpus
   # that libFuzzer grows between runs.

@@ -1,7 +1,7 @@
 #define DOCTEST_CONFIG_IMPLEMENT
 #include <doctest/doctest.h>
 
-#include "core/blas_setup.h"
+#include "core/base/blas_setup.h"
 
 int main(int argc, char** argv) {
   hermite::reexecWithTunedBlas(argv);

@@ -1,7 +1,7 @@
 #include <malloc.h>
 
-#include "app/cli.h"
-#include "core/blas_setup.h"
+#include "app/commands/cli.h"
+#include "core/base/blas_setup.h"
 
 int main(int argc, char** argv) {
   hermite::reexecWithTunedBlas(argv);

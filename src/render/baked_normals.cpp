@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/shading.h"
+#include "core/trace/shading.h"
 
 namespace hermite::render {
 

@@ -12,7 +12,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/volume_bake.h"
+#include "core/trace/volume_bake.h"
 
 namespace hermite::render {
 

@@ -1,18 +1,18 @@
 #include "render/field2d_view.h"
-#include "render/glm_convert.h"
+#include "render/gl/glm_convert.h"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <vector>
 
-#include "core/color_map.h"
-#include "core/errors.h"
-#include "core/hrbf.h"
-#include "core/presets.h"
-#include "render/context.h"
-#include "render/offscreen.h"
-#include "render/shader_library.h"
+#include "core/base/errors.h"
+#include "core/rbf/hrbf.h"
+#include "core/shapes/presets.h"
+#include "core/trace/color_map.h"
+#include "render/gl/context.h"
+#include "render/gl/offscreen.h"
+#include "render/gl/shader_library.h"
 
 namespace hermite::render {
 

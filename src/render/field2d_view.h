@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "core/camera.h"
-#include "core/field2d_reference.h"
-#include "core/image.h"
-#include "core/implicit_field.h"
-#include "core/kernels.h"
-#include "core/polynomial.h"
-#include "render/gl_objects.h"
+#include "core/base/implicit_field.h"
+#include "core/rbf/kernels.h"
+#include "core/rbf/polynomial.h"
+#include "core/trace/camera.h"
+#include "core/trace/field2d_reference.h"
+#include "core/trace/image.h"
+#include "render/gl/gl_objects.h"
 
 namespace hermite::render {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "render/shader_library.h"
+#include "render/gl/shader_library.h"
 
 namespace hermite::render {
 

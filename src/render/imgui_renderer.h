@@ -3,7 +3,7 @@
 // window and offscreen (Debian's prebuilt imgui_impl_opengl3 cannot load GL under OSMesa).
 // Needs a current ImGui context and a current GL 4.5 context while constructed and used.
 
-#include "render/gl_objects.h"
+#include "render/gl/gl_objects.h"
 
 struct ImDrawData;
 

@@ -1,6 +1,6 @@
 #include "render/implicit_tracer.h"
-#include "render/gl_loader.h"
-#include "render/glm_convert.h"
+#include "render/gl/gl_loader.h"
+#include "render/gl/glm_convert.h"
 
 #include <algorithm>
 #include <chrono>
@@ -10,19 +10,19 @@
 
 #include <Eigen/Geometry>
 
-#include "core/color_map.h"
-#include "core/cpu_tracer.h"
-#include "core/errors.h"
-#include "core/hrbf.h"
-#include "core/presets.h"
-#include "core/shading.h"
-#include "core/transform.h"
-#include "core/view_bounds.h"
-#include "render/context.h"
+#include "core/base/errors.h"
+#include "core/rbf/hrbf.h"
+#include "core/rbf/similarity_transform.h"
+#include "core/shapes/presets.h"
+#include "core/trace/color_map.h"
+#include "core/trace/cpu_tracer.h"
+#include "core/trace/default_view_bounds.h"
+#include "core/trace/shading.h"
 #include "render/baked_normals.h"
-#include "render/gl_objects.h"
+#include "render/gl/context.h"
+#include "render/gl/gl_objects.h"
+#include "render/gl/shader_library.h"
 #include "render/overlay.h"
-#include "render/shader_library.h"
 #include "render/tile_spans.h"
 
 namespace hermite::render {

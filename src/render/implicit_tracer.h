@@ -37,12 +37,12 @@
 #include <optional>
 #include <vector>
 
-#include "core/camera.h"
-#include "core/hermite_samples.h"
-#include "core/image.h"
-#include "core/implicit_field.h"
-#include "core/radial_sum.h"
-#include "core/volume_bake.h"
+#include "core/base/implicit_field.h"
+#include "core/points/hermite_samples.h"
+#include "core/rbf/radial_sum.h"
+#include "core/trace/camera.h"
+#include "core/trace/image.h"
+#include "core/trace/volume_bake.h"
 
 namespace hermite::render {
 

@@ -6,7 +6,7 @@
 
 #include <imgui.h>
 
-#include "core/color_map.h"
+#include "core/trace/color_map.h"
 
 namespace hermite::render {
 

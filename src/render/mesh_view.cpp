@@ -1,13 +1,13 @@
 #include "render/mesh_view.h"
-#include "render/glm_convert.h"
+#include "render/gl/glm_convert.h"
 
 #include <glm/glm.hpp>
 
 #include <cstddef>
 
-#include "core/shading.h"
-#include "render/offscreen.h"
-#include "render/shader_library.h"
+#include "core/trace/shading.h"
+#include "render/gl/offscreen.h"
+#include "render/gl/shader_library.h"
 
 namespace hermite::render {
 

@@ -6,9 +6,9 @@
 
 #include <vector>
 
-#include "core/camera.h"
-#include "core/image.h"
-#include "render/gl_objects.h"
+#include "core/trace/camera.h"
+#include "core/trace/image.h"
+#include "render/gl/gl_objects.h"
 
 namespace hermite::render {
 

@@ -3,8 +3,8 @@
 #include <cstddef>
 #include <vector>
 
-#include "render/glm_convert.h"
-#include "render/shader_library.h"
+#include "render/gl/glm_convert.h"
+#include "render/gl/shader_library.h"
 
 namespace hermite::render {
 

@@ -5,9 +5,9 @@
 
 #include <glm/glm.hpp>
 
-#include "core/camera.h"
-#include "core/hermite_samples.h"
-#include "render/gl_objects.h"
+#include "core/points/hermite_samples.h"
+#include "core/trace/camera.h"
+#include "render/gl/gl_objects.h"
 
 namespace hermite::render {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 
-#include "core/tri_mesh.h"
+#include "core/mesh/tri_mesh.h"
 
 namespace hermite::fuzz {
 

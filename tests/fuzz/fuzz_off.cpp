@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/errors.h"
-#include "core/io_off.h"
+#include "core/base/errors.h"
 #include "fuzz_check.h"
+#include "io/off_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);

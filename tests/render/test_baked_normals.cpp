@@ -7,8 +7,8 @@
 #include <vector>
 #include <random>
 
-#include "core/analytic_shapes.h"
-#include "core/volume_bake.h"
+#include "core/shapes/analytic_shapes.h"
+#include "core/trace/volume_bake.h"
 #include "render/baked_normals.h"
 
 using namespace hermite;

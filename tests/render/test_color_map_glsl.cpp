@@ -7,10 +7,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/color_map.h"
-#include "render/offscreen.h"
-#include "render/shader_library.h"
-#include "render_test_support.h"
+#include "core/trace/color_map.h"
+#include "render/gl/offscreen.h"
+#include "render/gl/shader_library.h"
+#include "support/render_test_support.h"
 
 using namespace hermite;
 using namespace hermite::render;

@@ -4,13 +4,13 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/analytic_shapes.h"
-#include "core/color_map.h"
-#include "core/field2d_reference.h"
-#include "core/hrbf.h"
-#include "core/presets.h"
+#include "core/rbf/hrbf.h"
+#include "core/shapes/analytic_shapes.h"
+#include "core/shapes/presets.h"
+#include "core/trace/color_map.h"
+#include "core/trace/field2d_reference.h"
 #include "render/field2d_view.h"
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 using namespace hermite;
 using namespace hermite::render;

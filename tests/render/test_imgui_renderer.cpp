@@ -2,9 +2,9 @@
 
 #include <imgui.h>
 
+#include "render/gl/offscreen.h"
 #include "render/imgui_renderer.h"
-#include "render/offscreen.h"
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 using namespace hermite;
 using namespace hermite::render;

@@ -8,16 +8,17 @@
 #include <string>
 #include <vector>
 
-#include "core/analytic_shapes.h"
-#include "core/color_map.h"
-#include "core/cpu_tracer.h"
-#include "core/hrbf.h"
-#include "core/presets.h"
-#include "core/shading.h"
-#include "core/view_bounds.h"
-#include "core/volume_bake.h"
+#include "core/rbf/hrbf.h"
+#include "core/shapes/analytic_shapes.h"
+#include "core/shapes/presets.h"
+#include "core/trace/color_map.h"
+#include "core/trace/cpu_tracer.h"
+#include "core/trace/default_view_bounds.h"
+#include "core/trace/shading.h"
+#include "core/trace/volume_bake.h"
+#include "io/png_file.h"
 #include "render/implicit_tracer.h"
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 using namespace hermite;
 using namespace hermite::render;

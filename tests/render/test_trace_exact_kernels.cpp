@@ -4,13 +4,13 @@
 #include <cmath>
 #include <vector>
 
-#include "core/cpu_tracer.h"
-#include "core/hrbf.h"
-#include "core/presets.h"
-#include "core/rbf_offset.h"
-#include "core/view_bounds.h"
+#include "core/rbf/hrbf.h"
+#include "core/rbf/rbf_offset.h"
+#include "core/shapes/presets.h"
+#include "core/trace/cpu_tracer.h"
+#include "core/trace/default_view_bounds.h"
 #include "render/implicit_tracer.h"
-#include "render_test_support.h"
+#include "support/render_test_support.h"
 
 using namespace hermite;
 using namespace hermite::render;

@@ -1,0 +1,209 @@
+#include "app/commands/cli.h"
+
+#include <cstdio>
+#include <cstring>
+#include <exception>
+#include <iostream>
+#include <new>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "app/commands/commands.h"
+#include "app/commands/output.h"
+#include "core/base/errors.h"
+#include "core/base/threading.h"
+
+namespace hermite::app {
+
+namespace {
+
+constexpr const char* kUsage =
+    "hermite-lab: Hermite data (points + normals) fitted by Hermite RBF implicits.\n"
+    "\n"
+    "usage:\n"
+    "  hermite-lab [SCENE] [--set KEY=VALUE ...]       the GUI on SCENE (default: the demo scene);\n"
+    "                                                  without a display: its fit report\n"
+    "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
+    "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
+    "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
+    "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--size WxH] [--set KEY=VALUE ...]\n"
+    "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
+    "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf]\n"
+    "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
+    "  hermite-lab bench [--json] [--only NAME]\n"
+    "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
+
+void addSceneOptions(CLI::App& cmd, SceneArgs& scene, bool required) {
+  auto* opt = cmd.add_option("scene", scene.scenePath, "scene file (JSON, DESIGN.md §4)");
+  if (required) opt->required();
+  cmd.add_option("--set", scene.overrides, "override a scene key: KEY=VALUE (VALUE is JSON or a string)")
+      ->take_all()
+      ->allow_extra_args(false);
+}
+
+void addThreads(CLI::App& cmd, int& threads) {
+  cmd.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+}
+
+// Parses with CLI11; returns -1 to go on, or the exit code (0 for --help, 2 for usage errors).
+int parse(CLI::App& cmd, int argc, char** argv) {
+  try {
+    cmd.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return cmd.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return cmd.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::fprintf(stderr, "hermite-lab: %s\n", e.what());
+    std::fprintf(stderr, "run 'hermite-lab %s --help' for usage\n", cmd.get_name().c_str());
+    return 2;
+  }
+  return -1;
+}
+
+int dispatch(int argc, char** argv) {
+  const std::string first = argc > 1 ? argv[1] : "";
+  int threads = 0;
+  if (first == "fit") {
+    FitArgs a;
+    CLI::App cmd("fit a scene and report residuals, solver and timing", "fit");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_flag("--coefficients", a.coefficients, "also print the fitted model (centres, alpha, beta, poly)");
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runFit(a);
+  }
+  if (first == "eval") {
+    EvalArgs a;
+    CLI::App cmd("evaluate the fitted field and its gradient at points read from a file", "eval");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("--at", a.probeFile, "file with one point per line (2 or 3 numbers)")->required();
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runEval(a);
+  }
+  if (first == "render") {
+    RenderArgs a;
+    CLI::App cmd("render a scene to a PNG without a display (OSMesa or EGL)", "render");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("-o,--output", a.output, "output PNG (written atomically)");
+    cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+    cmd.add_flag("--ui", a.ui, "draw the application's panels on top");
+    cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runRender(a);
+  }
+  if (first == "sweep") {
+    SweepArgs a;
+    CLI::App cmd("refit a scene at log-spaced radii: one PNG per radius and diagnostics.csv", "sweep");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("--radii", a.radii, "A:B:K — K radii spaced logarithmically from A to B")->required();
+    cmd.add_option("-o,--output", a.outputDirectory, "output directory (created when missing)")->required();
+    cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+    cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
+        ->check(CLI::IsMember({"osmesa", "egl"}));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runSweep(a);
+  }
+  if (first == "mesh") {
+    MeshArgs a;
+    CLI::App cmd("mesh the fitted zero set over view.bounds: marching cubes (3D), marching squares (2D)", "mesh");
+    addSceneOptions(cmd, a.scene, true);
+    cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (2D: .obj polylines or .svg)")->required();
+    cmd.add_option("--resolution", a.resolution, "cells along the longest side of view.bounds (default 64)")
+        ->check(CLI::Range(1, 4096));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runMesh(a);
+  }
+  if (first == "holefill") {
+    HoleFillArgs a;
+    CLI::App cmd("fill the holes of a triangle mesh (advancing front, fairing, RBF projection)", "holefill");
+    cmd.add_option("input", a.input, "triangle mesh (.off, .obj, .ply, .glb, .gltf)")->required();
+    cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (written atomically)")->required();
+    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_option("--rings", a.rings, "vertex rings around each hole fitted by the implicit (default 2)")
+        ->check(CLI::Range(1, 10));
+    cmd.add_option("--implicit", a.implicit, "rbf-offset (default: cubic, linear, ±d offsets) or hrbf")
+        ->check(CLI::IsMember({"rbf-offset", "hrbf"}));
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runHoleFill(a);
+  }
+  if (first == "patch-table") {
+    PatchTableArgs a;
+    CLI::App cmd("torus error study: bicubic Hermite patches from exact data vs the torus", "patch-table");
+    cmd.add_option("--samples", a.samples, "N x N local parameters per patch (default 15)")->check(CLI::Range(2, 100000));
+    cmd.add_option("--splits", a.splits, "comma-separated NxM splits, N along u (default 1x1,2x1,2x2,3x3)");
+    cmd.add_option("--domain", a.domain, "U0,U1,V0,V1 (default 0,1,0,1)");
+    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runPatchTable(a);
+  }
+  if (first == "bench") {
+    BenchArgs a;
+    CLI::App cmd("measure fit and evaluation speed on this machine", "bench");
+    cmd.add_flag("--json", a.json, "machine-readable output");
+    cmd.add_option("--only", a.only, "run the benchmarks whose name contains NAME");
+    cmd.add_flag("--quick", a.quick, "one repetition, small sizes (smoke test)");
+    addThreads(cmd, threads);
+    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
+    if (threads > 0) setThreadCount(threads);
+    return runBench(a);
+  }
+  if (first == "--help" || first == "-h" || first == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  // No subcommand: the program's main job on SCENE (or the demo scene).
+  SceneArgs a;
+  CLI::App cmd("Hermite Lab", "hermite-lab");
+  addSceneOptions(cmd, a, false);
+  addThreads(cmd, threads);
+  if (int rc = parse(cmd, argc, argv); rc >= 0) return rc;
+  if (threads > 0) setThreadCount(threads);
+  return runDefault(a);
+}
+
+}  // namespace
+
+int runCli(int argc, char** argv) {
+  try {
+    const int rc = dispatch(argc, argv);
+    finishStdout();
+    return rc;
+  } catch (const InputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "usage error: %s\n", e.what());
+    return 2;
+  } catch (const NumericalError& e) {
+    std::fprintf(stderr, "numerical failure: %s\n", e.what());
+    return 3;
+  } catch (const EnvironmentError& e) {
+    std::fprintf(stderr, "environment error: %s\n", e.what());
+    return 4;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "environment error: out of memory\n");
+    return 4;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "internal error: %s\n", e.what());
+    return 4;
+  }
+}
+
+}  // namespace hermite::app

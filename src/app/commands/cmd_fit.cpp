@@ -1,0 +1,210 @@
+// `hermite-lab fit SCENE [--json] [--coefficients]` and the default fit report.
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+
+#include "app/commands/commands.h"
+#include "app/commands/output.h"
+#include "app/gui/fit_worker.h"
+#include "app/gui/scene_loading.h"
+#include "core/base/errors.h"
+#include "core/points/hermite_samples.h"
+#include "scene/scene_fit.h"
+
+namespace hermite::app {
+
+namespace {
+
+using json = nlohmann::json;
+
+template <int Dim>
+json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
+  json out;
+  out["method"] = std::string(fitMethodName(scene.fit.method));
+  out["kernel"] = std::string(kernelName(m.kernel().type));
+  out["radius"] = m.kernel().radius;
+  out["polynomial"] = std::string(polynomialName(m.polynomial()));
+  out["dimension"] = Dim;
+  json centres = json::array(), alpha = json::array(), beta = json::array();
+  for (Eigen::Index j = 0; j < m.centres().cols(); ++j) {
+    json c = json::array();
+    for (int k = 0; k < Dim; ++k) c.push_back(m.centres()(k, j));
+    centres.push_back(std::move(c));
+    alpha.push_back(m.alpha()(j));
+    if (m.hasBeta()) {
+      json b = json::array();
+      for (int k = 0; k < Dim; ++k) b.push_back(m.beta()(k, j));
+      beta.push_back(std::move(b));
+    }
+  }
+  out["centres"] = std::move(centres);
+  out["alpha"] = std::move(alpha);
+  out["beta"] = std::move(beta);
+  json poly = json::array();
+  for (Eigen::Index k = 0; k < m.poly().size(); ++k) poly.push_back(m.poly()(k));
+  out["poly"] = std::move(poly);
+  if (scene.fit.method == FitMethod::RbfOffset) out["shift"] = static_cast<const RbfOffsetModel<Dim>&>(m).shift();
+  return out;
+}
+
+template <int Dim>
+json boxJson(const Box<Dim>& b) {
+  json lo = json::array(), hi = json::array();
+  for (int k = 0; k < Dim; ++k) {
+    lo.push_back(b.lo(k));
+    hi.push_back(b.hi(k));
+  }
+  return {{"lo", std::move(lo)}, {"hi", std::move(hi)}};
+}
+
+// A PU model: its frame (world x = scale·R·y + translate for box coordinates y), options and
+// boxes, each with its box, support and local model in the shape of the global `model`.
+template <int Dim>
+json puModelJson(const Scene& scene, const PuModel<Dim>& pu) {
+  json out;
+  out["method"] = "partition-of-unity";
+  out["kernel"] = std::string(kernelName(scene.fit.kernel));
+  out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
+  out["dimension"] = Dim;
+  out["blend"] = std::string(puBlendName(pu.options().blend));
+  out["overlap"] = pu.options().overlap;
+  json R = json::array();
+  for (int r = 0; r < Dim; ++r) {
+    json row = json::array();
+    for (int c = 0; c < Dim; ++c) row.push_back(pu.frame().R(r, c));
+    R.push_back(std::move(row));
+  }
+  json t = json::array();
+  for (int k = 0; k < Dim; ++k) t.push_back(pu.frame().t(k));
+  out["frame"] = {{"rotation", std::move(R)}, {"translate", std::move(t)}, {"scale", pu.frame().q}};
+  out["root"] = boxJson<Dim>(pu.tree().root());
+  json boxes = json::array();
+  for (int i = 0; i < static_cast<int>(pu.leaves().size()); ++i) {
+    const auto& leaf = pu.leaves()[i];
+    json b = boxJson<Dim>(pu.tree().leafBox(i));
+    b["support"] = boxJson<Dim>(leaf.support);
+    b["samples"] = leaf.samples;
+    b["model"] = modelJson<Dim>(scene, leaf.model);
+    boxes.push_back(std::move(b));
+  }
+  out["boxes"] = std::move(boxes);
+  return out;
+}
+
+template <int Dim>
+json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficients) {
+  const FitResiduals r = fitResiduals(fit);
+  json out;
+  out["n_samples"] = fit.report.nSamples;
+  out["n_unknowns"] = fit.report.nUnknowns;
+  out["solver"] = fit.report.solver;
+  out["condition_estimate"] = fit.report.conditionEstimate;
+  out["max_abs_f"] = r.maxAbsF;
+  out["max_grad_error"] = r.maxGradError;
+  out["fit_ms"] = fit.report.fitMs;
+  out["assembly_ms"] = fit.report.assemblyMs;
+  out["solve_ms"] = fit.report.solveMs;
+  out["warnings"] = fit.warnings;
+  if (fit.pu) {
+    out["partition"] = {{"boxes", fit.puReport.boxes},
+                        {"max_box_samples", fit.puReport.maxBoxSamples},
+                        {"max_support_samples", fit.puReport.maxSupportSamples},
+                        {"grown_supports", fit.puReport.grownSupports},
+                        {"blend", std::string(puBlendName(fit.pu->options().blend))}};
+  } else {
+    out["partition"] = nullptr;
+  }
+  if (fit.transformed) {
+    const TransformReport& t = fit.transform;
+    out["transform"] = {{"update_ms", t.updateMs},       {"resolve_ms", t.resolveMs},
+                        {"max_abs_df", t.maxAbsDf},      {"max_grad_diff", t.maxGradDiff},
+                        {"method", t.method},            {"exact", t.exact},
+                        {"probes", t.probes}};
+  } else {
+    out["transform"] = nullptr;
+  }
+  // Added keys (never renamed): what was fitted.
+  out["dimension"] = Dim;
+  out["method"] = std::string(fitMethodName(scene.fit.method));
+  out["kernel"] = std::string(kernelName(scene.fit.kernel));
+  out["radius"] = scene.fit.radius;
+  out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
+  out["smoothing"] = scene.fit.smoothing;
+  out["mean_spacing"] = meanSampleSpacing<Dim>(fit.samples.points);
+  if (coefficients) out["model"] = fit.pu ? puModelJson<Dim>(scene, *fit.pu) : modelJson<Dim>(scene, *fit.model);
+  return out;
+}
+
+std::string sci(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+void printReadable(const Scene& scene, const json& j) {
+  std::string s;
+  const Kernel k{scene.fit.kernel, scene.fit.radius};
+  s += "scene        " + scene.sourceName + " (" + std::string(sceneModeName(scene.mode)) + ", " +
+       std::to_string(j["n_samples"].get<int>()) + " samples, mean spacing " + sci(j["mean_spacing"]) + ")\n";
+  s += "fit          " + std::string(fitMethodName(scene.fit.method)) + ", kernel " +
+       std::string(kernelName(scene.fit.kernel)) +
+       (k.usesRadius() ? " r = " + sci(scene.fit.radius) + " (" +
+                             sci(scene.fit.radius / std::max(j["mean_spacing"].get<double>(), 1e-300)) +
+                             " × spacing)"
+                       : " (no radius)") +
+       ", polynomial " + std::string(polynomialName(scene.fit.polynomial)) +
+       ", smoothing " + sci(scene.fit.smoothing) + "\n";
+  s += "unknowns     " + std::to_string(j["n_unknowns"].get<int>()) + "\n";
+  s += "solver       " + j["solver"].get<std::string>() + ", condition estimate " +
+       sci(j["condition_estimate"]) + "\n";
+  s += "residuals    max |f(p)| = " + sci(j["max_abs_f"]) + ", max |grad f(p) - n| = " +
+       sci(j["max_grad_error"]) + "\n";
+  s += "fit time     " + sci(j["fit_ms"]) + " ms (assembly " + sci(j["assembly_ms"]) + " ms, solve " +
+       sci(j["solve_ms"]) + " ms)\n";
+  if (!j["partition"].is_null())
+    s += "partition    " + std::to_string(j["partition"]["boxes"].get<int>()) + " boxes, at most " +
+         std::to_string(j["partition"]["max_box_samples"].get<int>()) + " samples per box, " +
+         std::to_string(j["partition"]["max_support_samples"].get<int>()) + " per local fit (" +
+         j["partition"]["blend"].get<std::string>() + " blend)\n";
+  if (!j["transform"].is_null())
+    s += "transform    " + j["transform"]["method"].get<std::string>() + "; update " +
+         sci(j["transform"]["update_ms"]) + " ms, re-solve " + sci(j["transform"]["resolve_ms"]) +
+         " ms, max |df| " + sci(j["transform"]["max_abs_df"]) + ", max |d grad f| " +
+         sci(j["transform"]["max_grad_diff"]) + "\n";
+  if (j["warnings"].empty()) {
+    s += "warnings     none\n";
+  } else {
+    for (const auto& w : j["warnings"]) s += "warning      " + w.get<std::string>() + "\n";
+  }
+  writeStdout(s);
+}
+
+template <int Dim>
+json fitAndReport(const Scene& scene, bool coefficients) {
+  const SceneFit<Dim> fit = fitScene<Dim>(scene);
+  return fitReportJson<Dim>(scene, fit, coefficients);
+}
+
+}  // namespace
+
+int runFit(const FitArgs& args) {
+  const Scene scene = loadCommandScene(args.scene);
+  const json j = scene.dimension() == 2 ? fitAndReport<2>(scene, args.coefficients)
+                                        : fitAndReport<3>(scene, args.coefficients);
+  if (args.json) {
+    writeStdout(j.dump(2) + "\n");
+  } else {
+    printReadable(scene, j);
+    if (args.coefficients) writeStdout(j["model"].dump(2) + "\n");
+  }
+  return 0;
+}
+
+std::string fittedModelJson(const FitOutcome& fit) {
+  if (fit.fit2) return fitReportJson<2>(fit.scene, *fit.fit2, true)["model"].dump(2);
+  if (fit.fit3) return fitReportJson<3>(fit.scene, *fit.fit3, true)["model"].dump(2);
+  throw InputError("no fitted model to export: " + fit.error);
+}
+
+}  // namespace hermite::app

@@ -1,0 +1,132 @@
+// `hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set ...]` (DESIGN.md §5):
+// the fitted field's zero set over `view.bounds` by marching cubes (3D) or marching squares (2D:
+// closed polylines as OBJ `l` elements or SVG paths). One summary line on stdout.
+
+#include <cstdio>
+#include <string>
+
+#include "app/commands/commands.h"
+#include "app/commands/output.h"
+#include "app/commands/output_path.h"
+#include "app/gui/fit_worker.h"
+#include "app/gui/scene_loading.h"
+#include "core/base/errors.h"
+#include "core/mesh/marching_cubes.h"
+#include "core/mesh/marching_squares.h"
+#include "io/atomic_file.h"
+#include "io/mesh_file.h"
+#include "scene/scene_fit.h"
+#include "scene/view_bounds.h"
+
+namespace hermite::app {
+
+namespace {
+
+// OBJ: `v x y 0` per point, one `l` element per polyline (closed ones repeat their first vertex).
+std::string polylinesObj(const std::vector<Polyline2d>& lines) {
+  std::string out = "# hermite-lab mesh: zero set of a 2D field, marching squares\n";
+  char buf[96];
+  for (const Polyline2d& l : lines)
+    for (Eigen::Index i = 0; i < l.points.cols(); ++i) {
+      std::snprintf(buf, sizeof buf, "v %.17g %.17g 0\n", l.points(0, i), l.points(1, i));
+      out += buf;
+    }
+  long base = 1;
+  for (const Polyline2d& l : lines) {
+    out += 'l';
+    for (Eigen::Index i = 0; i < l.points.cols(); ++i) {
+      out += ' ';
+      out += std::to_string(base + i);
+    }
+    if (l.closed) {
+      out += ' ';
+      out += std::to_string(base);
+    }
+    out += '\n';
+    base += static_cast<long>(l.points.cols());
+  }
+  return out;
+}
+
+// SVG of the polylines over the box (y up in the data, down in SVG), stroke in data units.
+std::string polylinesSvg(const std::vector<Polyline2d>& lines, const Box<2>& box) {
+  const Vec<2> ext = box.extent();
+  char buf[640];
+  std::snprintf(buf, sizeof buf,
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"%.17g %.17g %.17g %.17g\" width=\"800\" "
+                "height=\"%.0f\">\n",
+                box.lo.x(), -box.hi.y(), ext.x(), ext.y(), 800 * ext.y() / ext.x());
+  std::string out = buf;
+  std::snprintf(buf, sizeof buf, "<g fill=\"none\" stroke=\"black\" stroke-width=\"%.6g\">\n", 0.003 * ext.maxCoeff());
+  out += buf;
+  for (const Polyline2d& l : lines) {
+    out += "<path d=\"";
+    for (Eigen::Index i = 0; i < l.points.cols(); ++i) {
+      std::snprintf(buf, sizeof buf, "%s%.9g %.9g ", i == 0 ? "M" : "L", l.points(0, i), -l.points(1, i));
+      out += buf;
+    }
+    out += l.closed ? "Z\"/>\n" : "\"/>\n";
+  }
+  out += "</g>\n</svg>\n";
+  return out;
+}
+
+std::string cellsText(const MarchingReport& r, int dim) {
+  std::string s = std::to_string(r.cells[0]) + "x" + std::to_string(r.cells[1]);
+  if (dim == 3) s += "x" + std::to_string(r.cells[2]);
+  return s;
+}
+
+}  // namespace
+
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution) {
+  const Scene& scene = fit.scene;
+  const int dim = scene.dimension();
+  const std::string ext = dim == 3 ? requireExtension("mesh", output, {"glb", "gltf", "ply", "obj"})
+                                   : requireExtension("mesh", output, {"obj", "svg"});
+  requireWritableLocation("mesh", output);
+  MarchingOptions options;
+  options.resolution = resolution;
+  MarchingReport report;
+  char line[512];
+  if (fit.fit3) {
+    const Box<3> bounds = viewBounds<3>(scene.view, fit.fit3->data.points);
+    const TriMesh mesh = marchingCubes(fit.fit3->field(), bounds, options, &report);
+    saveMesh(output, mesh);
+    const MeshCheck c = checkMesh(mesh);
+    std::snprintf(line, sizeof line,
+                  "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
+                  "%.1f ms (field %.1f ms) -> ",
+                  mesh.vertexCount(), mesh.triangleCount(),
+                  c.closedManifold() ? "closed manifold" : "open (the surface leaves view.bounds)", c.eulerCharacteristic,
+                  cellsText(report, 3).c_str(), report.maxAbsF, report.totalMs, report.evaluateMs);
+  } else if (fit.fit2) {
+    const Box<2> bounds = viewBounds<2>(scene.view, fit.fit2->data.points);
+    const std::vector<Polyline2d> lines = marchingSquares(fit.fit2->field(), bounds, options, &report);
+    writeFileAtomically(output, ext == "svg" ? polylinesSvg(lines, bounds) : polylinesObj(lines));
+    int closed = 0;
+    Eigen::Index points = 0;
+    for (const Polyline2d& l : lines) {
+      closed += l.closed;
+      points += l.points.cols();
+    }
+    std::snprintf(line, sizeof line,
+                  "mesh: %zu polylines (%d closed), %ld points; %s cells, max |f| %.3g; %.1f ms -> ", lines.size(),
+                  closed, static_cast<long>(points), cellsText(report, 2).c_str(), report.maxAbsF, report.totalMs);
+  } else {
+    throw InputError("mesh: mode '" + std::string(sceneModeName(scene.mode)) + "' has no implicit to mesh");
+  }
+  return std::string(line) + output;
+}
+
+int runMesh(const MeshArgs& args) {
+  const Scene scene = loadCommandScene(args.scene);
+  // Check the output before the (possibly long) fit.
+  if (scene.dimension() == 3) requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"});
+  else requireExtension("mesh", args.output, {"obj", "svg"});
+  requireWritableLocation("mesh", args.output);
+  writeStdout(exportZeroSet(*fitOutcomeOrThrow(scene), args.output, args.resolution) + "\n");
+  return 0;
+}
+
+}  // namespace hermite::app

@@ -1,0 +1,106 @@
+// `hermite-lab sweep SCENE --radii A:B:K -o DIR` (DESIGN.md §5, issue 4 "Explore r"): the scene
+// refitted at K radii spaced logarithmically in [A, B], one PNG per radius (the view `render`
+// draws) and diagnostics.csv with the condition estimate, residuals and leave-one-out error per
+// radius, the suggested r (least leave-one-out error) marked — a teacher's figure in one command.
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include "app/commands/commands.h"
+#include "app/commands/output.h"
+#include "app/gui/fit_worker.h"
+#include "app/gui/scene_loading.h"
+#include "app/gui/scene_view.h"
+#include "core/base/errors.h"
+#include "core/trace/image.h"
+#include "io/atomic_file.h"
+#include "io/png_file.h"
+#include "scene/radius_sweep.h"
+
+namespace hermite::app {
+
+namespace {
+
+// DIR exists (created when missing) and is a directory; EnvironmentError otherwise.
+void prepareDirectory(const std::string& dir) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (dir.empty()) throw UsageError("sweep: -o DIR is required");
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw EnvironmentError("sweep: '" + dir + "' exists and is not a directory");
+  fs::create_directories(dir, ec);
+  if (ec) throw EnvironmentError("sweep: cannot create '" + dir + "': " + ec.message());
+}
+
+std::string imageName(int k, double r) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "r_%02d_%.4g.png", k, r);
+  return buf;
+}
+
+}  // namespace
+
+int runSweep(const SweepArgs& args) {
+  Scene scene = loadCommandScene(args.scene);
+  if (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d)
+    throw InputError("sweep: mode '" + std::string(sceneModeName(scene.mode)) + "' has no radius to sweep");
+  if (!Kernel{scene.fit.kernel, 1.0}.usesRadius())
+    throw InputError("sweep: kernel '" + std::string(kernelName(scene.fit.kernel)) +
+                     "' has no radius (it is scale-free): nothing to sweep");
+  const std::vector<double> radii = parseRadiiArgument(args.radii);
+  if (!args.size.empty()) scene.view.size = parseImageSize(args.size);
+  prepareDirectory(args.outputDirectory);
+  const std::filesystem::path dir(args.outputDirectory);
+
+  const int w = scene.view.size[0], h = scene.view.size[1];
+  const auto context = offscreenContext(args.backend, w, h);
+  SceneViewRenderer renderer;
+  std::vector<RadiusSweepRow> rows;
+  std::vector<std::string> images;
+  double spacing = -1;
+  std::string firstError;
+  for (std::size_t k = 0; k < radii.size(); ++k) {
+    Scene s = scene;
+    s.fit.radius = radii[k];
+    const std::shared_ptr<const FitOutcome> fit = fitOutcome(s);
+    RadiusSweepRow row;
+    std::string image;
+    if (fit->ok()) {
+      if (spacing < 0)
+        spacing = fit->fit2 ? meanSampleSpacing<2>(fit->fit2->samples.points) : meanSampleSpacing<3>(fit->fit3->samples.points);
+      row = fit->fit2 ? radiusSweepRow<2>(s, *fit->fit2, spacing) : radiusSweepRow<3>(s, *fit->fit3, spacing);
+      image = imageName(int(k), radii[k]);
+      const SceneViewResult view = renderer.render(fit, s, w, h, ViewQuality::Settled);
+      writePng((dir / image).string(), view.image);
+    } else {
+      row.radius = radii[k];
+      row.error = fit->error;
+      if (firstError.empty()) firstError = fit->error;
+    }
+    rows.push_back(std::move(row));
+    images.push_back(std::move(image));
+  }
+  writeFileAtomically((dir / "diagnostics.csv").string(), radiusSweepCsv(rows, &images));
+
+  const int best = suggestedRadiusIndex(rows);
+  std::string out;
+  char buf[256];
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const RadiusSweepRow& r = rows[k];
+    if (r.ok())
+      std::snprintf(buf, sizeof buf, "%s r = %-10.4g cond %-10.3g loo %-10.3g %s\n", int(k) == best ? "*" : " ", r.radius,
+                    r.conditionEstimate, r.looCombined, images[k].c_str());
+    else
+      std::snprintf(buf, sizeof buf, "  r = %-10.4g failed: %.160s\n", r.radius, r.error.c_str());
+    out += buf;
+  }
+  out += "wrote " + std::to_string(radii.size()) + " rows to " + (dir / "diagnostics.csv").string() + "\n";
+  writeStdout(out);
+  bool anyOk = false;
+  for (const auto& r : rows) anyOk |= r.ok();
+  if (!anyOk) throw NumericalError("sweep: no radius could be fitted: " + firstError);
+  return 0;
+}
+
+}  // namespace hermite::app

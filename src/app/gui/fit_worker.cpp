@@ -1,0 +1,170 @@
+#include "app/gui/fit_worker.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "app/gui/drag_refit.h"
+#include "core/base/errors.h"
+
+namespace hermite::app {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// Samples of the scene without fitting (for the duration estimate): inline data only, else 0.
+double sampleCount(const Scene& s) { return s.data.isInline() ? double(s.data.points.size()) : 0.0; }
+
+std::shared_ptr<const FitOutcome> failedOutcome(const Scene& scene, std::string error) {
+  auto out = std::make_shared<FitOutcome>();
+  out->scene = scene;
+  out->error = std::move(error);
+  return out;
+}
+
+}  // namespace
+
+std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene) {
+  auto out = std::make_shared<FitOutcome>();
+  out->scene = scene;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (scene.mode == SceneMode::Implicit2d)
+    out->fit2 = std::make_unique<SceneFit<2>>(fitScene<2>(scene));
+  else if (scene.mode == SceneMode::Implicit3d)
+    out->fit3 = std::make_unique<SceneFit<3>>(fitScene<3>(scene));
+  else if (scene.mode == SceneMode::Patch)
+    out->patch = std::make_unique<PatchDisplay>(buildPatchDisplay(scene.patch));
+  else
+    out->holefill = std::make_unique<HoleFillStages>(runHoleFillStages(scene.holefill));
+  out->wallMs = msSince(t0);
+  return out;
+}
+
+std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene) {
+  try {
+    return fitOutcomeOrThrow(scene);
+  } catch (const InputError& e) {
+    return failedOutcome(scene, std::string("input: ") + e.what());
+  } catch (const NumericalError& e) {
+    return failedOutcome(scene, std::string("numerical failure: ") + e.what());
+  } catch (const std::bad_alloc&) {
+    return failedOutcome(scene, "out of memory");
+  } catch (const std::exception& e) {
+    return failedOutcome(scene, e.what());
+  }
+}
+
+const std::vector<std::string>& FitOutcome::warnings() const {
+  static const std::vector<std::string> none;
+  return fit2 ? fit2->warnings : fit3 ? fit3->warnings : none;
+}
+
+FitWorker::FitWorker() : dragRefit_(std::make_unique<DragRefit>()), thread_([this] { loop(); }) {}
+
+FitWorker::~FitWorker() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+    pending_.reset();
+  }
+  wake_.notify_all();
+  thread_.join();  // a running fit finishes first (LAPACK cannot be interrupted)
+}
+
+void FitWorker::submit(const Scene& scene, std::uint64_t version, std::optional<Scene> compare) {
+  {
+    std::lock_guard lock(mutex_);
+    pending_ = Job{scene, std::move(compare), version};
+  }
+  wake_.notify_all();
+}
+
+void FitWorker::prepareDrag(const Scene& scene, int sample) {
+  {
+    std::lock_guard lock(mutex_);
+    pendingDrag_ = DragAnnouncement{scene, sample};
+  }
+  wake_.notify_all();
+}
+
+std::optional<FitJobResult> FitWorker::poll() {
+  std::lock_guard lock(mutex_);
+  std::optional<FitJobResult> r = std::move(done_);
+  done_.reset();
+  return r;
+}
+
+void FitWorker::cancel() {
+  std::lock_guard lock(mutex_);
+  pending_.reset();
+  done_.reset();
+  if (running_) discardUpTo_ = std::max(discardUpTo_, runningVersion_);
+}
+
+bool FitWorker::waitIdle(double timeoutSeconds) {
+  std::unique_lock lock(mutex_);
+  return idle_.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), [&] { return !running_ && !pending_; });
+}
+
+bool FitWorker::busy() const {
+  std::lock_guard lock(mutex_);
+  return running_ || pending_.has_value();
+}
+
+double FitWorker::runningMs() const {
+  std::lock_guard lock(mutex_);
+  return running_ ? msSince(runningSince_) : 0.0;
+}
+
+double FitWorker::progress() const {
+  std::lock_guard lock(mutex_);
+  if (!running_) return 0.0;
+  // Approaches 1 without reaching it, linear while within the estimate.
+  const double x = msSince(runningSince_) / std::max(estimateMs_, 1.0);
+  return x < 0.9 ? x : 1.0 - 0.1 * std::exp(-(x - 0.9) * 4);
+}
+
+std::uint64_t FitWorker::runningVersion() const {
+  std::lock_guard lock(mutex_);
+  return running_ ? runningVersion_ : 0;
+}
+
+void FitWorker::loop() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [&] { return stop_ || pending_.has_value() || pendingDrag_.has_value(); });
+    if (stop_) return;
+    if (!pending_) {
+      DragAnnouncement drag = std::move(*pendingDrag_);
+      pendingDrag_.reset();
+      lock.unlock();
+      dragRefit_->prepare(drag.scene, drag.sample);
+      lock.lock();
+      continue;
+    }
+    Job job = std::move(*pending_);
+    pending_.reset();
+    running_ = true;
+    runningVersion_ = job.version;
+    runningSince_ = std::chrono::steady_clock::now();
+    const double n = sampleCount(job.scene) * (job.scene.dimension() + 1);
+    estimateMs_ = lastMsPerCube_ > 0 && n > 0 ? lastMsPerCube_ * n * n * n : 200.0;
+    lock.unlock();
+
+    FitJobResult result;
+    result.version = job.version;
+    result.main = dragRefit_->fit(job.scene);
+    if (job.compare) result.compare = fitOutcome(*job.compare);
+
+    lock.lock();
+    running_ = false;
+    if (n > 0 && result.main->ok()) lastMsPerCube_ = std::max(result.main->wallMs, 1.0) / (n * n * n);
+    const bool superseded = pending_.has_value() && pending_->version > job.version;
+    if (job.version > discardUpTo_ && !superseded) done_ = std::move(result);
+    if (!pending_) idle_.notify_all();
+  }
+}
+
+}  // namespace hermite::app

@@ -1,0 +1,113 @@
+#pragma once
+// Fits the document's scene on a worker thread (DESIGN.md §2: long work off the main thread,
+// GL calls on it). The main thread submits (scene, version) and polls each frame:
+//   - a newer submission supersedes the pending one (only the latest waits);
+//   - a fit already running cannot be interrupted inside LAPACK, so cancel() and superseding
+//     discard its result when it completes instead: the UI keeps the last good result;
+//   - progress is the elapsed time against an estimate from the previous fit's size and time
+//     (dense fits scale as N³), shown as a bar with a Cancel button.
+// A compare scene (the right half of the split view) is fitted in the same job.
+// Main scenes that differ from the previous one in one sample only (a drag) are refitted
+// through a kept factorisation (drag_refit.h).
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "scene/hole_fill_stages.h"
+#include "scene/patch_display.h"
+#include "scene/scene_fit.h"
+
+namespace hermite::app {
+
+class DragRefit;
+
+// A finished fit of one scene: either a model (2D or 3D by the scene's mode) or the error that
+// stopped it (with its exit-code class, for the status bar).
+struct FitOutcome {
+  Scene scene;  // as fitted
+  std::unique_ptr<SceneFit<2>> fit2;
+  std::unique_ptr<SceneFit<3>> fit3;
+  std::unique_ptr<PatchDisplay> patch;  // mode "patch": the grid, its tessellation and error
+  std::unique_ptr<HoleFillStages> holefill;  // mode "holefill": the pipeline up to the stage shown
+  std::string error;  // non-empty: no model
+  double wallMs = 0;  // whole fitScene call, incl. the transform re-solve check
+
+  bool ok() const { return error.empty(); }
+  const ImplicitField<2>* field2() const { return fit2 ? &fit2->field() : nullptr; }
+  const ImplicitField<3>* field3() const { return fit3 ? &fit3->field() : nullptr; }
+  const std::vector<std::string>& warnings() const;  // the fit's warnings (empty on error)
+};
+
+// The fitted model as `fit --coefficients` prints it (DESIGN.md §5 model export).
+std::string fittedModelJson(const FitOutcome& fit);
+
+// Fits `scene` (any mode with a fit); exceptions become FitOutcome::error.
+std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene);
+// The same, throwing the fit's errors (InputError, NumericalError) for the command line.
+std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene);
+
+struct FitJobResult {
+  std::uint64_t version = 0;
+  std::shared_ptr<const FitOutcome> main;
+  std::shared_ptr<const FitOutcome> compare;  // null when no compare scene was submitted
+};
+
+class FitWorker {
+ public:
+  FitWorker();
+  ~FitWorker();
+  FitWorker(const FitWorker&) = delete;
+  FitWorker& operator=(const FitWorker&) = delete;
+
+  // Queues a fit of `scene` (and `compare`, if given) for document version `version`.
+  void submit(const Scene& scene, std::uint64_t version, std::optional<Scene> compare = std::nullopt);
+  // Announces a drag of `sample` of the inline `scene` (drag_refit.h): when no fit is waiting,
+  // the worker factorises for it, so the drag's first move refits as fast as the others.
+  void prepareDrag(const Scene& scene, int sample);
+  // The newest finished job not cancelled or superseded, once; nullopt otherwise.
+  std::optional<FitJobResult> poll();
+  // Discards the running and the pending job (their results never come back).
+  void cancel();
+  // Blocks until nothing is pending or running (tests, `render --ui`); true unless it timed out.
+  bool waitIdle(double timeoutSeconds = 60);
+
+  bool busy() const;             // a job is running or pending
+  double runningMs() const;      // how long the current job has run (0 when idle)
+  double progress() const;       // [0, 1) estimate of the running job
+  std::uint64_t runningVersion() const;
+
+ private:
+  void loop();
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_, idle_;
+  struct Job {
+    Scene scene;
+    std::optional<Scene> compare;
+    std::uint64_t version = 0;
+  };
+  std::optional<Job> pending_;
+  struct DragAnnouncement {
+    Scene scene;
+    int sample = 0;
+  };
+  std::optional<DragAnnouncement> pendingDrag_;  // done after any pending fit
+  std::optional<FitJobResult> done_;
+  bool running_ = false;
+  std::uint64_t runningVersion_ = 0;
+  std::uint64_t discardUpTo_ = 0;  // results of versions ≤ this are dropped
+  std::chrono::steady_clock::time_point runningSince_;
+  double estimateMs_ = 50;         // expected duration of the running job
+  double lastMsPerCube_ = 0;       // last job: ms / (unknowns³), for the estimate
+  bool stop_ = false;
+  std::unique_ptr<DragRefit> dragRefit_;  // used by the worker thread only
+  std::thread thread_;
+};
+
+}  // namespace hermite::app

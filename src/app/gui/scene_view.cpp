@@ -1,0 +1,257 @@
+#include "app/gui/scene_view.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "core/base/errors.h"
+#include "core/trace/shading.h"
+#include "render/gl/offscreen.h"
+#include "scene/view_bounds.h"
+
+namespace hermite::app {
+
+// A hidden context of the render's size on the named backend (osmesa, egl).
+std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height) {
+  render::ContextOptions co;
+  co.width = width;
+  co.height = height;
+  co.visible = false;
+  co.vsync = false;
+  return render::createContext(backend, co);
+}
+
+SceneViewRenderer::~SceneViewRenderer() = default;
+
+Camera sceneCamera(const Scene& scene, int width, int height) {
+  return Camera(scene.view.camera, scene.view.projection, width, height, scene.view.halfHeight2d);
+}
+
+View2d sceneView2d(const Scene& scene, int width, int height) {
+  return View2d(Vec<2>(scene.view.center2d[0], scene.view.center2d[1]), scene.view.halfHeight2d, width, height);
+}
+
+ImageRgba8 SceneViewRenderer::readGpuImage() const {
+  if (!target2d_) throw InputError("no view drawn on the GPU yet");
+  return target2d_->read();
+}
+
+SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome>& fit, const Scene& viewScene,
+                                          int width, int height, ViewQuality quality, bool keepOnGpu) {
+  if (!fit || !fit->ok()) throw InputError("nothing to draw: " + (fit ? fit->error : std::string("no fit")));
+  const auto t0 = std::chrono::steady_clock::now();
+  SceneViewResult out;
+  out.width = width;
+  out.height = height;
+  const ViewSpec& v = viewScene.view;
+
+  if (fit->fit2) {
+    const SceneFit<2>& f = *fit->fit2;
+    if (!view2d_) view2d_ = std::make_unique<render::Field2dView>();
+    render::Field2dViewOptions o;
+    o.showPoints = v.showPoints;
+    o.showNormals = v.showNormals;
+    o.bounds = viewBounds<2>(v, f.data.points);
+    o.outsideColor = v.background;
+    // While dragging: f and ∇f every 6 px, bilinear between (a drag frame at N = 200 fits in
+    // 16.7 ms; tests/render/test_field2d_view.cpp keeps the zero curve within a pixel at 1/8).
+    o.gridScale = quality == ViewQuality::Interactive ? 1.0 / 6 : 1.0;
+    o.style.range = colourRange;
+    const View2d view = sceneView2d(viewScene, width, height);
+    view2d_->setField(f.field(), view, o, f.data.points, f.data.normals);
+    if (keepOnGpu) {
+      if (!target2d_ || target2d_->width() != width || target2d_->height() != height)
+        target2d_ = std::make_unique<render::OffscreenTarget>(width, height, false);
+      target2d_->bind();
+      view2d_->draw();
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      out.gpuImage = &target2d_->framebuffer().color();
+    } else {
+      render::OffscreenTarget target(width, height, false);
+      target.bind();
+      view2d_->draw();
+      out.image = target.read();
+    }
+    out.colourRange = view2d_->range();
+    out.isoSpacing = view2d_->isoSpacing();
+    field_ = fit;
+  } else if (fit->fit3) {
+    const SceneFit<3>& f = *fit->fit3;
+    if (!tracer_) tracer_ = std::make_unique<render::ImplicitTracer>();
+    const Box<3> bounds = viewBounds<3>(v, f.data.points);
+    const int resolution = quality == ViewQuality::Interactive ? 64 : 128;
+    const std::vector<double> boundsKey{bounds.lo.x(), bounds.lo.y(), bounds.lo.z(),
+                                        bounds.hi.x(), bounds.hi.y(), bounds.hi.z()};
+    if (field_ != fit || bakeResolution_ != resolution || bakedBounds_ != boundsKey) {
+      render::TracerUploadOptions uo;
+      uo.bakeResolution = resolution;
+      tracer_->upload(f.field(), bounds, &f.data, uo);
+      field_ = fit;
+      bakeResolution_ = resolution;
+      bakedBounds_ = boundsKey;
+    }
+    render::TraceSettings s;
+    const bool exact = v.trace == TraceMode::Exact && tracer_->hasExactModel();
+    s.mode = exact ? render::TracerMode::Exact : render::TracerMode::Baked;
+    s.refineExact = quality == ViewQuality::Settled;
+    s.showPoints = v.showPoints;
+    s.showNormals = v.showNormals;
+    s.showBounds = v.showBounds;
+    s.slice.enabled = v.slice.enabled;
+    s.slice.normal = v.slice.normal;
+    s.slice.offset = v.slice.offset;
+    s.background = v.background;
+    render::TraceResult r = tracer_->render(sceneCamera(viewScene, width, height), s);
+    out.image = std::move(r.image);
+    out.depth = std::move(r.depth);
+    out.refinedPixels = r.refinedPixels;
+    out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
+  } else if (fit->patch || fit->holefill) {
+    out.image = fit->patch ? renderPatch(*fit->patch, viewScene, width, height)
+                           : renderHoleFill(*fit->holefill, viewScene, width, height);
+    out.traceMode = "rasterised";
+    field_ = fit;
+  } else {
+    throw InputError("nothing to draw: the fit has no model");
+  }
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+void patchLines(const PatchDisplay& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors) {
+  const PatchGrid& g = patch.grid;
+  if (spec.showIsoLines) {
+    const Vec<3> iso(0.25, 0.22, 0.18);
+    constexpr int kSegments = 24;
+    for (int i = 0; i < g.patchesU(); ++i)
+      for (int j = 0; j < g.patchesV(); ++j) {
+        const HermitePatch& p = g.patch(i, j);
+        for (int k = 0; k <= 4; ++k) {
+          const double c = k / 4.0;
+          for (int e = 0; e < kSegments; ++e) {
+            const double a = double(e) / kSegments, b = double(e + 1) / kSegments;
+            ends.push_back(p.evaluate(c, a).X);
+            ends.push_back(p.evaluate(c, b).X);
+            colors.push_back(iso);
+            ends.push_back(p.evaluate(a, c).X);
+            ends.push_back(p.evaluate(b, c).X);
+            colors.push_back(iso);
+          }
+        }
+      }
+  }
+  if (!spec.showHandles) return;
+  const std::vector<KnotData> knots = patchKnotData(spec);
+  if (spec.form == PatchForm::Hermite) {
+    const Vec<3> red(0.85, 0.15, 0.1), green(0.1, 0.6, 0.15), blue(0.15, 0.3, 0.9);
+    for (int a = 0; a <= spec.splits[0]; ++a)
+      for (int b = 0; b <= spec.splits[1]; ++b) {
+        const Vec<3> X = patchHandlePosition(spec, knots, {PatchHandle::Point, a, b, 0, 0});
+        const Vec<3> tu = patchHandlePosition(spec, knots, {PatchHandle::TangentU, a, b, 0, 0});
+        const Vec<3> tv = patchHandlePosition(spec, knots, {PatchHandle::TangentV, a, b, 0, 0});
+        const Vec<3> tw = patchHandlePosition(spec, knots, {PatchHandle::Twist, a, b, 0, 0});
+        for (const auto& [from, to, c] : {std::tuple{X, tu, red}, std::tuple{X, tv, green}, std::tuple{Vec<3>(tu + tv - X), tw, blue}}) {
+          ends.push_back(from);
+          ends.push_back(to);
+          colors.push_back(c);
+        }
+      }
+  } else {
+    const Vec<3> net(0.45, 0.2, 0.6);
+    for (int i = 0; i < g.patchesU(); ++i)
+      for (int j = 0; j < g.patchesV(); ++j) {
+        const auto c = patchControlPoints(spec, knots, i, j);
+        for (int p = 0; p < 4; ++p)
+          for (int q = 0; q < 4; ++q) {
+            if (p < 3) {
+              ends.push_back(c[p][q]);
+              ends.push_back(c[p + 1][q]);
+              colors.push_back(net);
+            }
+            if (q < 3) {
+              ends.push_back(c[p][q]);
+              ends.push_back(c[p][q + 1]);
+              colors.push_back(net);
+            }
+          }
+      }
+  }
+}
+
+ImageRgba8 SceneViewRenderer::renderPatch(const PatchDisplay& patch, const Scene& viewScene, int width, int height) {
+  if (!meshView_) meshView_ = std::make_unique<render::MeshView>();
+  render::MeshDrawData d;
+  d.positions = patch.mesh.positions;
+  d.normals = patch.mesh.normals;
+  d.triangles = patch.mesh.triangles;
+  d.background = viewScene.view.background;
+  const PatchSpec& spec = viewScene.patch;
+  if (spec.showError && !patch.vertexError.empty() && patch.maxError > 0) {
+    // The front colour towards red as the error grows (relative to the largest error).
+    d.colors.resize(3, d.positions.cols());
+    const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]), hot(0.9, 0.12, 0.08);
+    for (Eigen::Index k = 0; k < d.positions.cols(); ++k) {
+      const double t = patch.vertexError[std::size_t(k)] / patch.maxError;
+      d.colors.col(k) = (1 - t) * front + t * hot;
+    }
+  }
+  patchLines(patch, spec, d.lineEnds, d.lineColors);
+  return meshView_->render(sceneCamera(viewScene, width, height), d);
+}
+
+ImageRgba8 SceneViewRenderer::renderHoleFill(const HoleFillStages& st, const Scene& viewScene, int width,
+                                                  int height) {
+  if (!meshView_) meshView_ = std::make_unique<render::MeshView>();
+  // The input in the front colour, each patch (own vertices, so it takes its own colour) in teal;
+  // hole boundaries red, ring samples of the implicit as short green normals.
+  const TriMesh& in = st.input;
+  const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]), patchColour(0.25, 0.7, 0.7);
+  int patchVertices = 0, patchTriangles = 0;
+  for (const auto& h : st.holes) {
+    patchVertices += 3 * int(h.patch.triangles.cols());
+    patchTriangles += int(h.patch.triangles.cols());
+  }
+  const int V = in.vertexCount(), T = in.triangleCount();
+  render::MeshDrawData d;
+  d.positions.resize(3, V + patchVertices);
+  d.normals.resize(3, V + patchVertices);
+  d.colors.resize(3, V + patchVertices);
+  d.triangles.resize(3, T + patchTriangles);
+  d.positions.leftCols(V) = in.vertices;
+  d.normals.leftCols(V) = vertexNormals(in);
+  d.colors.leftCols(V).colwise() = front;
+  d.triangles.leftCols(T) = in.triangles;
+  int v = V, t = T;
+  for (const auto& h : st.holes) {
+    const HolePatch& p = h.patch;
+    const auto at = [&](int id) -> Vec<3> { return id >= p.baseId ? Vec<3>(p.vertices.col(id - p.baseId)) : Vec<3>(in.vertices.col(id)); };
+    for (Eigen::Index k = 0; k < p.triangles.cols(); ++k) {
+      const Vec<3> a = at(p.triangles(0, k)), b = at(p.triangles(1, k)), c = at(p.triangles(2, k));
+      const Vec<3> n = (b - a).cross(c - a).normalized();
+      for (const Vec<3>& x : {a, b, c}) {
+        d.positions.col(v) = x;
+        d.normals.col(v) = n;
+        d.colors.col(v) = patchColour;
+        ++v;
+      }
+      d.triangles.col(t++) << v - 3, v - 2, v - 1;
+    }
+  }
+  const Box<3> box = in.vertexCount() > 0 ? boundingBox<3>(in.vertices) : Box<3>{};
+  const double diag = box.extent().norm();
+  for (const auto& h : st.holes) {
+    for (std::size_t k = 0; k < h.loop.size(); ++k) {
+      d.lineEnds.push_back(in.vertices.col(h.loop[k]));
+      d.lineEnds.push_back(in.vertices.col(h.loop[(k + 1) % h.loop.size()]));
+      d.lineColors.emplace_back(0.9, 0.1, 0.1);
+    }
+    for (Eigen::Index k = 0; k < h.ringPoints.cols(); ++k) {
+      d.lineEnds.push_back(h.ringPoints.col(k));
+      d.lineEnds.push_back(h.ringPoints.col(k) + 0.02 * diag * h.ringNormals.col(k));
+      d.lineColors.emplace_back(0.1, 0.55, 0.15);
+    }
+  }
+  d.background = viewScene.view.background;
+  return meshView_->render(sceneCamera(viewScene, width, height), d);
+}
+
+}  // namespace hermite::app

@@ -1,0 +1,89 @@
+#pragma once
+// Draws a fitted scene's view into an image: the one path the window, the r-explorer
+// thumbnails, the compare split view, `render` and `sweep` share. 2D: the field view (heat map,
+// iso-lines, zero curve, samples). 3D: the implicit tracer (bake, trace, slice, overlays).
+//
+// The field comes from a FitOutcome (kept alive here while the tracer references it); the view
+// settings (camera, slice, overlays, background) from the scene passed to render(), which may be
+// newer than the fit: moving the camera redraws without refitting. Needs a current GL context.
+
+#include <memory>
+#include <optional>
+
+#include "app/gui/fit_worker.h"
+#include "core/trace/image.h"
+#include "render/field2d_view.h"
+#include "render/gl/context.h"
+#include "render/gl/offscreen.h"
+#include "render/implicit_tracer.h"
+#include "render/mesh_view.h"
+
+namespace hermite::app {
+
+enum class ViewQuality {
+  Interactive,  // while dragging: coarse 3D bake (64³), no exact refinement; 2D f every 4 px
+  Settled,      // the view at rest: 128³ bake + exact refinement of every hit; 2D f at every pixel
+};
+
+struct SceneViewResult {
+  int width = 0, height = 0;  // the view's size in pixels
+  ImageRgba8 image;           // its pixels (empty when gpuImage is set)
+  // 3D only: per-pixel surface hits (depth = ray parameter, +inf where none), for picking.
+  std::vector<float> depth;
+  double ms = 0;            // whole render (bake when the field changed, trace, refinement)
+  double colourRange = 0;   // 2D: the heat map covers ±range
+  double isoSpacing = 0;    // 2D
+  int refinedPixels = 0;    // 3D
+  std::string traceMode;    // 3D: "baked", "baked + refined" or "exact"; patch / hole filling: "rasterised"
+  // Set instead of `image` when the render was asked to stay on the GPU (2D): the colour texture
+  // of the renderer's own target, GL rows bottom-up, valid until its next render.
+  const render::Texture* gpuImage = nullptr;
+};
+
+class SceneViewRenderer {
+ public:
+  SceneViewRenderer() = default;
+  ~SceneViewRenderer();
+  SceneViewRenderer(const SceneViewRenderer&) = delete;
+  SceneViewRenderer& operator=(const SceneViewRenderer&) = delete;
+
+  // Renders `fit` with the view of `viewScene` at width × height pixels. Throws InputError for
+  // a failed fit (nothing to draw) and EnvironmentError from GL.
+  // keepOnGpu: a 2D view is drawn into a target kept here and not read back (result.gpuImage;
+  // readGpuImage() when pixels are wanted) — the window's path, which saves a read-back and a
+  // re-upload of the whole view per frame. 3D views are always read back (picking needs depth).
+  SceneViewResult render(const std::shared_ptr<const FitOutcome>& fit, const Scene& viewScene, int width, int height,
+                         ViewQuality quality, bool keepOnGpu = false);
+  // The pixels of the last keepOnGpu render (row 0 = top). Throws InputError when there is none.
+  ImageRgba8 readGpuImage() const;
+
+  // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
+  double colourRange = 0;
+
+ private:
+  std::shared_ptr<const FitOutcome> field_;  // what the tracer / field view reference
+  std::unique_ptr<render::ImplicitTracer> tracer_;
+  std::unique_ptr<render::Field2dView> view2d_;
+  std::unique_ptr<render::MeshView> meshView_;
+  std::unique_ptr<render::OffscreenTarget> target2d_;  // keepOnGpu renders, resized on demand
+  // The rasterised modes' images (the mesh view).
+  ImageRgba8 renderPatch(const PatchDisplay& patch, const Scene& viewScene, int width, int height);
+  ImageRgba8 renderHoleFill(const HoleFillStages& stages, const Scene& viewScene, int width, int height);
+  int bakeResolution_ = 0;
+  std::optional<std::vector<double>> bakedBounds_;
+};
+
+// A hidden offscreen context of the given size on a headless backend ("osmesa", "egl"),
+// current on the calling thread (render, sweep).
+std::unique_ptr<render::RenderContext> offscreenContext(const std::string& backend, int width, int height);
+
+// The patch editor's lines: iso-parameter lines of every patch and, when handles are shown, the
+// Hermite tangent / twist arrows or the Bézier control net (world-space segments + colours).
+void patchLines(const PatchDisplay& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors);
+
+// The 3D camera of a scene's view at a given pixel size.
+Camera sceneCamera(const Scene& scene, int width, int height);
+// The 2D view of a scene at a given pixel size.
+View2d sceneView2d(const Scene& scene, int width, int height);
+
+}  // namespace hermite::app

@@ -1,0 +1,216 @@
+// The patch editor (issue 5 §3): the Patch panel (preset, splits, domain, form switch, display,
+// the torus error table) and the handles in the view — drawn with ImGui over the rasterised
+// grid, grabbed with the mouse and dragged on the plane through the handle facing the camera;
+// holding X, Y or Z constrains the drag to that axis. Every edit is an edit of the knot data in
+// the scene (core/patch_document.h), so undo, save and `render` see it.
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "app/gui/gui_app.h"
+#include "app/gui/gui_widgets.h"
+
+namespace hermite::app {
+
+namespace {
+
+constexpr double kHandlePickPx = 8.0;
+
+ImU32 handleColour(const PatchHandle& h) {
+  switch (h.kind) {
+    case PatchHandle::Point: return IM_COL32(30, 30, 30, 255);
+    case PatchHandle::TangentU: return IM_COL32(215, 40, 25, 255);
+    case PatchHandle::TangentV: return IM_COL32(25, 150, 40, 255);
+    case PatchHandle::Twist: return IM_COL32(40, 75, 230, 255);
+    case PatchHandle::Control: return IM_COL32(115, 50, 155, 255);
+  }
+  return IM_COL32(0, 0, 0, 255);
+}
+
+const char* handleName(const PatchHandle& h) {
+  switch (h.kind) {
+    case PatchHandle::Point: return "point";
+    case PatchHandle::TangentU: return "u-tangent";
+    case PatchHandle::TangentV: return "v-tangent";
+    case PatchHandle::Twist: return "twist";
+    case PatchHandle::Control: return "control point";
+  }
+  return "handle";
+}
+
+}  // namespace
+
+std::optional<Vec<2>> GuiApp::patchHandleScreenPosition(const PatchHandle& h) const {
+  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+  const Vec<3> p = patchHandlePosition(scene().patch, patchKnotData(scene().patch), h);
+  if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) return std::nullopt;
+  return cam.project(p);
+}
+
+bool GuiApp::pressPatchHandle(const Vec<2>& mouse) {
+  if (!scene().patch.showHandles) return false;
+  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+  double best = kHandlePickPx;
+  std::optional<std::pair<PatchHandle, Vec<3>>> hit;
+  for (const auto& [h, p] : patchHandles(scene().patch)) {
+    if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) continue;
+    const double d = (cam.project(p) - mouse).norm();
+    // Ties (shared corners, coincident tips): the first in the list wins — points before tips.
+    if (d < best) {
+      best = d;
+      hit = std::pair{h, p};
+    }
+  }
+  if (!hit) return false;
+  patchHandle_ = hit->first;
+  patchGrabStart_ = hit->second;
+  document_.begin(std::string("move ") + handleName(patchHandle_));
+  setStatus(std::string("moving the ") + handleName(patchHandle_) + " (hold X, Y or Z to constrain)");
+  return true;
+}
+
+void GuiApp::dragPatchHandle(const Vec<2>& mouse, const FrameInput& in) {
+  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+  const Ray ray = cam.ray(mouse.x(), mouse.y());
+  const double denom = ray.direction.dot(cam.forward());
+  if (std::abs(denom) < 1e-12) return;
+  const double t = (patchGrabStart_ - ray.origin).dot(cam.forward()) / denom;
+  if (!(t > 0)) return;
+  Vec<3> target = ray.at(t);
+  // Axis constraint: the closest point of the axis line through the grab point to the ray.
+  for (int axis = 0; axis < 3; ++axis) {
+    if (!in.keysDown[GLFW_KEY_X + axis]) continue;
+    const Vec<3> e = Vec<3>::Unit(axis);
+    const Vec<3> w = patchGrabStart_ - ray.origin;
+    const double b = e.dot(ray.direction), d = e.dot(w), f = ray.direction.dot(w);
+    const double den = 1 - b * b;
+    if (den < 1e-9) break;  // the axis points at the eye: no motion along it is visible
+    const double s = (b * f - d) / den;
+    target = patchGrabStart_ + s * e;
+    break;
+  }
+  Scene s = scene();
+  s.patch = movePatchHandle(s.patch, patchHandle_, target);
+  document_.update(s);
+}
+
+void GuiApp::drawPatchHandles() {
+  const PatchSpec& spec = scene().patch;
+  if (!spec.showHandles || scene().mode != SceneMode::Patch) return;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+  const Vec<2> o = viewOrigin();
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  for (const auto& [h, p] : patchHandles(spec)) {
+    if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) continue;
+    const Vec<2> q = cam.project(p) + o;
+    const ImVec2 at(float(q.x()), float(q.y()));
+    const bool grabbed = drag_ == Drag::PatchHandle && h.kind == patchHandle_.kind && h.a == patchHandle_.a &&
+                         h.b == patchHandle_.b && h.p == patchHandle_.p && h.q == patchHandle_.q;
+    const bool hover = std::hypot(mouse.x - at.x, mouse.y - at.y) < kHandlePickPx;
+    const float r = h.kind == PatchHandle::Point ? 5.0f : 4.0f;
+    dl->AddCircleFilled(at, r + (hover || grabbed ? 2.0f : 0.0f), handleColour(h));
+    dl->AddCircle(at, r + (hover || grabbed ? 2.0f : 0.0f), IM_COL32(255, 255, 255, 200), 12, 1.2f);
+  }
+}
+
+void GuiApp::drawPatchPanel() {
+  Scene s = scene();
+  PatchSpec& p = s.patch;
+  bool changed = false;
+  std::string label = "patch";
+  if (ImGui::BeginCombo("preset##patch", p.preset.c_str())) {
+    for (const auto& [name, description] : patchPresets()) {
+      if (ImGui::Selectable(name.c_str(), name == p.preset) && name != p.preset) {
+        p.preset = name;
+        p.knots.clear();  // a preset replaces the edited data
+        changed = true;
+        label = "preset " + name;
+      }
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", description.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  int splits[2] = {p.splits[0], p.splits[1]};
+  if (ImGui::InputInt2("splits n x m", splits, ImGuiInputTextFlags_EnterReturnsTrue)) {
+    splits[0] = std::clamp(splits[0], 1, 16);
+    splits[1] = std::clamp(splits[1], 1, 16);
+    if (splits[0] != p.splits[0] || splits[1] != p.splits[1]) {
+      p.splits = {splits[0], splits[1]};
+      p.knots.clear();  // new knots: the data come from the preset again
+      changed = true;
+      label = "splits";
+    }
+  }
+  double domain[4] = {p.domain[0], p.domain[1], p.domain[2], p.domain[3]};
+  if (ImGui::InputScalarN("domain u0 u1 v0 v1", ImGuiDataType_Double, domain, 4, nullptr, nullptr, "%.3g",
+                          ImGuiInputTextFlags_EnterReturnsTrue) &&
+      domain[0] < domain[1] && domain[2] < domain[3]) {
+    p.domain = {domain[0], domain[1], domain[2], domain[3]};
+    p.knots.clear();
+    changed = true;
+    label = "domain";
+  }
+  int form = p.form == PatchForm::Hermite ? 0 : 1;
+  ImGui::RadioButton("Hermite", &form, 0);
+  ImGui::SameLine();
+  ImGui::RadioButton("Bezier", &form, 1);
+  if ((form == 1) != (p.form == PatchForm::Bezier)) {
+    p.form = form == 1 ? PatchForm::Bezier : PatchForm::Hermite;  // the surface does not change
+    changed = true;
+    label = "form";
+  }
+  recordWidget("patch.form");
+  helpMarker("Hermite: corner points, u/v tangents (red/green) and twists (blue) per knot. Bezier: the 16 "
+              "control points per patch. Both edit the same knot data, so the surface never jumps when you switch.");
+  changed |= ImGui::Checkbox("error colour", &p.showError);
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("iso-lines", &p.showIsoLines);
+  ImGui::SameLine();
+  changed |= ImGui::Checkbox("handles", &p.showHandles);
+  int tess = p.tessellation;
+  if (ImGui::SliderInt("samples / patch", &tess, 2, 128)) {
+    p.tessellation = tess;
+    changed = true;
+  }
+  if (!p.knots.empty() && ImGui::Button("Reset to the preset")) {
+    p.knots.clear();
+    changed = true;
+    label = "reset patch";
+  }
+  if (changed) document_.apply(s, label);
+
+  const FitOutcome* f = shown_.get();
+  if (f && f->patch) {
+    ImGui::Separator();
+    const PatchDisplay& v = *f->patch;
+    ImGui::Text("%d x %d patches, %d triangles", v.grid.patchesU(), v.grid.patchesV(), int(v.mesh.triangles.cols()));
+    if (options_.showTimings) ImGui::Text("tessellation %.2f ms", v.tessellateMs);
+    if (!v.vertexError.empty()) ImGui::Text("max |X - torus| %.3g", v.maxError);
+    if (!v.table.empty() && ImGui::BeginTable("torus error", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
+      ImGui::TableSetupColumn("splits");
+      ImGui::TableSetupColumn("err x");
+      ImGui::TableSetupColumn("err y");
+      ImGui::TableSetupColumn("err z");
+      ImGui::TableHeadersRow();
+      for (const PatchStudyRow& r : v.table) {
+        ImGui::TableNextRow();
+        ImGui::TableNextColumn();
+        ImGui::Text("%dx%d", r.splits[0], r.splits[1]);
+        for (double e : r.error) {
+          ImGui::TableNextColumn();
+          ImGui::Text("%.3g", e);
+        }
+      }
+      ImGui::EndTable();
+    } else if (f->scene.patch.preset == "torus" && !f->scene.patch.knots.empty()) {
+      ImGui::TextDisabled("(error table: the data are edited, not the torus's)");
+    }
+  }
+}
+
+}  // namespace hermite::app

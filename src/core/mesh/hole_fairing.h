@@ -1,0 +1,14 @@
+#pragma once
+// Stage 3 of hole filling (hole_fill.h): smoothing the patch with the boundary fixed.
+
+#include "core/mesh/hole_patch.h"
+#include "core/mesh/prepared_mesh.h"
+
+namespace hermite {
+
+// 3. Least-squares-mesh fairing (uniform Laplacian rows for the new vertices and the boundary
+// vertices, boundary fixed), solved by a sparse Cholesky factorisation of the normal equations.
+// Returns the patch with moved vertices (unchanged when it has none). NumericalError if the solve fails.
+HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch);
+
+}  // namespace hermite

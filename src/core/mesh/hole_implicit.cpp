@@ -1,0 +1,154 @@
+// Stages 4–5 of hole filling (hole_fill.h): the implicit around a hole and the Newton projection
+// of the patch onto its zero set.
+
+#include "core/mesh/hole_implicit.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include <Eigen/Geometry>
+
+#include "core/base/errors.h"
+#include "core/rbf/hrbf.h"
+#include "core/rbf/rbf_offset.h"
+
+namespace hermite {
+
+HoleImplicit fitHoleImplicit(const PreparedMesh& prepared, const HolePatch& patch, const HoleFillOptions& options) {
+  if (options.rings < 1) throw InputError("hole filling: rings must be ≥ 1");
+  if (!(options.offsetFraction > 0)) throw InputError("hole filling: the offset fraction must be > 0");
+  // Rings: the boundary, then each ring's original-mesh neighbours not seen yet.
+  std::vector<int> ringVertices = patch.loop, frontier = patch.loop;
+  std::vector<int> seen = patch.loop;
+  std::sort(seen.begin(), seen.end());
+  for (int r = 1; r < options.rings; ++r) {
+    std::vector<int> next;
+    for (int v : frontier)
+      for (int u : prepared.neighbours(v))
+        if (!std::binary_search(seen.begin(), seen.end(), u)) next.push_back(u);
+    std::sort(next.begin(), next.end());
+    next.erase(std::unique(next.begin(), next.end()), next.end());
+    ringVertices.insert(ringVertices.end(), next.begin(), next.end());
+    seen.insert(seen.end(), next.begin(), next.end());
+    std::sort(seen.begin(), seen.end());
+    frontier = std::move(next);
+  }
+  // Usable samples: a non-zero normal and a position not seen before (unwelded copies).
+  std::vector<int> use;
+  for (int v : ringVertices)
+    if (prepared.normals().col(v).norm() > 0.5) use.push_back(v);
+  std::sort(use.begin(), use.end(), [&](int a, int b) {
+    const Eigen::Vector3d pa = prepared.mesh().vertices.col(a), pb = prepared.mesh().vertices.col(b);
+    return std::lexicographical_compare(pa.data(), pa.data() + 3, pb.data(), pb.data() + 3);
+  });
+  use.erase(std::unique(use.begin(), use.end(),
+                        [&](int a, int b) { return prepared.mesh().vertices.col(a) == prepared.mesh().vertices.col(b); }),
+            use.end());
+  if (static_cast<int>(use.size()) > options.maxFitSamples) {  // evenly thinned, deterministic
+    std::vector<int> thin;
+    const double stride = static_cast<double>(use.size()) / options.maxFitSamples;
+    for (int i = 0; i < options.maxFitSamples; ++i) thin.push_back(use[static_cast<size_t>(i * stride)]);
+    use = std::move(thin);
+  }
+  if (use.size() < 4) throw NumericalError("hole filling: fewer than 4 usable vertices around the hole to fit");
+
+  HermiteSamples<3> samples;
+  samples.points.resize(3, static_cast<Eigen::Index>(use.size()));
+  samples.normals.resize(3, static_cast<Eigen::Index>(use.size()));
+  for (size_t i = 0; i < use.size(); ++i) {
+    samples.points.col(static_cast<Eigen::Index>(i)) = prepared.mesh().vertices.col(use[i]);
+    samples.normals.col(static_cast<Eigen::Index>(i)) = prepared.normals().col(use[i]);
+  }
+  HoleImplicit out;
+  out.kind = options.implicit;
+  out.points = samples.points;
+  out.normals = samples.normals;
+  if (options.implicit == HoleImplicitKind::RbfOffset) {
+    RbfOffsetOptions o;  // cubic x³ with a linear polynomial: the classic choice
+    out.offset = options.offsetFraction * std::max(patch.diameter, 1e-12);
+    o.shift = out.offset;
+    out.field = std::make_unique<RbfOffsetModel<3>>(fitRbfOffset<3>(samples, o));
+  } else {
+    out.field = std::make_unique<HrbfModel<3>>(fitHrbf<3>(samples, HrbfOptions{}));
+  }
+  return out;
+}
+
+ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& patch, const ImplicitField<3>& field,
+                              const HoleFillOptions& options) {
+  ProjectionResult result;
+  result.patch = patch;
+  HolePatch& P = result.patch;
+  const int K = static_cast<int>(P.vertices.cols());
+  const Eigen::Index T = P.triangles.cols();
+  auto position = [&](int id) -> Eigen::Vector3d {
+    return id >= P.baseId ? Eigen::Vector3d(P.vertices.col(id - P.baseId)) : Eigen::Vector3d(prepared.mesh().vertices.col(id));
+  };
+  auto triangleNormal = [&](Eigen::Index t) {  // 2 × area times the unit normal
+    return Eigen::Vector3d((position(P.triangles(1, t)) - position(P.triangles(0, t)))
+                               .cross(position(P.triangles(2, t)) - position(P.triangles(0, t))));
+  };
+  std::vector<Eigen::Vector3d> reference(static_cast<size_t>(T));
+  std::vector<std::vector<Eigen::Index>> incident(static_cast<size_t>(K));
+  for (Eigen::Index t = 0; t < T; ++t) {
+    reference[static_cast<size_t>(t)] = triangleNormal(t);
+    for (int k = 0; k < 3; ++k)
+      if (P.triangles(k, t) >= P.baseId) incident[static_cast<size_t>(P.triangles(k, t) - P.baseId)].push_back(t);
+  }
+  const double scale = std::max(P.diameter, 1e-300);
+  const double minArea2 = 1e-10 * P.meanEdgeLength * P.meanEdgeLength;
+  // Whether vertex k at its current position leaves its triangles unflipped and non-degenerate.
+  auto acceptable = [&](int k) {
+    for (Eigen::Index t : incident[static_cast<size_t>(k)]) {
+      const Eigen::Vector3d n = triangleNormal(t);
+      if (!(n.norm() > minArea2) || !(n.dot(reference[static_cast<size_t>(t)]) > 0)) return false;
+    }
+    return true;
+  };
+  // Gauss–Seidel sweeps: a vertex whose step was blocked by a neighbour not yet projected gets
+  // another chance once the neighbours have moved.
+  const Eigen::Matrix3Xd faired = P.vertices;
+  std::vector<char> converged(static_cast<size_t>(K), 0);
+  for (int sweep = 0; sweep < 3; ++sweep) {
+    bool blocked = false;
+    for (int k = 0; k < K; ++k) {
+      if (converged[static_cast<size_t>(k)]) continue;
+      for (int it = 0; it < options.newtonIterations; ++it) {
+        const Eigen::Vector3d x = P.vertices.col(k);
+        Vec<3> g;
+        const double f = field.evaluate(x, &g);
+        const double g2 = g.squaredNorm();
+        if (!std::isfinite(f) || !(g2 > 0) || !std::isfinite(g2)) break;
+        Eigen::Vector3d step = -f / g2 * g;
+        if (step.norm() > 0.5 * scale) step *= 0.5 * scale / step.norm();  // a wild step: bounded
+        bool accepted = false;
+        for (int halving = 0; halving <= 4 && !accepted; ++halving, step *= 0.5) {
+          P.vertices.col(k) = x + step;
+          accepted = acceptable(k);
+        }
+        if (!accepted) {
+          P.vertices.col(k) = x;
+          blocked = true;
+          break;
+        }
+        if ((P.vertices.col(k) - x).norm() < options.newtonTolerance * scale) {
+          converged[static_cast<size_t>(k)] = 1;
+          break;
+        }
+      }
+    }
+    if (!blocked) break;
+  }
+  for (int k = 0; k < K; ++k) {
+    if (converged[static_cast<size_t>(k)]) continue;
+    ++result.unconverged;
+    const Eigen::Vector3d last = P.vertices.col(k);
+    P.vertices.col(k) = faired.col(k);  // back to the faired position, unless that would now flip a triangle
+    if (!acceptable(k)) P.vertices.col(k) = last;
+  }
+  for (int k = 0; k < K; ++k) result.maxAbsF = std::max(result.maxAbsF, std::abs(field.value(P.vertices.col(k))));
+  return result;
+}
+
+}  // namespace hermite

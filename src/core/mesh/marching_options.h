@@ -1,0 +1,49 @@
+#pragma once
+// Contouring an implicit field's zero set over a box (DESIGN.md §2 meshing and export):
+// marching squares (2D → polylines) and marching cubes (3D → a triangle mesh).
+//
+// Both sample f on a regular grid (evaluateBatch, threaded), place one vertex on every grid edge
+// whose end values differ in sign (f < 0 inside, f ≥ 0 outside), and resolve the ambiguous faces
+// (cells) with the asymptotic decider: the sign of the bilinear interpolant at its saddle point.
+// Every decision about a face depends on that face's four values only, so the two cubes sharing
+// a face build the same segments there: the output is watertight where the zero set is closed
+// inside the box, and manifold (every edge of the mesh is used by exactly two triangles, each
+// vertex's triangles form one fan). Each cube's face segments are chained into closed polygons and
+// triangulated by a fan that never puts a diagonal on a cube face (so no edge can repeat in the
+// neighbouring cube), or around a centre vertex where no such fan exists.
+//
+// Orientation (DESIGN.md §3): triangles are counter-clockwise seen from outside (face normals
+// along +∇f); 2D polylines run counter-clockwise around the inside (outside on the right).
+// Vertices are refined by Newton's iteration restricted to their grid edge,
+// t ← t − f / (∇f · (b − a)), safeguarded by the sign bracket (Illinois false position when a
+// step leaves it) and kept within [τ, 1 − τ] of the edge (τ = 1e-3), so the mesh's combinatorics
+// stay those of the grid and no triangle degenerates; normals are ∇f / ‖∇f‖ at the final positions.
+
+#include <array>
+
+#include "core/base/geometry.h"
+
+namespace hermite {
+
+struct MarchingOptions {
+  int resolution = 64;  // cells along the box's longest side (≥ 1); the others in proportion
+  int newtonSteps = 4;  // Newton iterations along each vertex's grid edge (0: linear interpolation)
+  // Skip f at grid points far from the zero set: f is evaluated at the centre c of every block of
+  // 4³ cells, and a block with |f(c)| > L·r (L = lipschitzBound over its 16³-cell super-block, r
+  // its half-diagonal) cannot change sign, so its points only need that sign. Exact: the mesh is
+  // identical to the dense one (every value the mesh uses — on sign-changing edges and ambiguous
+  // faces — lies in a block that is not skipped).
+  bool cull = true;
+};
+
+// What the contouring measured.
+struct MarchingReport {
+  std::array<int, 3> cells{0, 0, 0};  // cells per axis (the third is 1 in 2D)
+  double evaluateMs = 0;              // grid values (the bulk of the time for RBF fields)
+  long long gridPoints = 0;           // points of the grid
+  long long evaluatedPoints = 0;      // of which f was evaluated (the rest culled, plus block centres)
+  double totalMs = 0;
+  double maxAbsF = 0;                 // max |f| over the edge vertices after refinement
+};
+
+}  // namespace hermite

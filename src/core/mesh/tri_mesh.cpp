@@ -1,0 +1,228 @@
+#include "core/mesh/tri_mesh.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <utility>
+
+#include <Eigen/Geometry>
+
+namespace hermite {
+
+namespace {
+
+// Directed edge (a → b) as one sortable key.
+std::uint64_t directedKey(int a, int b) {
+  return (std::uint64_t(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
+}
+int keyFrom(std::uint64_t k) { return static_cast<int>(k >> 32); }
+int keyTo(std::uint64_t k) { return static_cast<int>(k & 0xffffffffu); }
+
+// Undirected edges with their use counts, sorted by key.
+std::vector<std::pair<std::uint64_t, int>> undirectedEdgeCounts(const TriMesh& mesh) {
+  std::vector<std::uint64_t> keys;
+  keys.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) keys.push_back(edgeKey(mesh.triangles(k, t), mesh.triangles((k + 1) % 3, t)));
+  std::sort(keys.begin(), keys.end());
+  std::vector<std::pair<std::uint64_t, int>> out;
+  for (size_t i = 0; i < keys.size();) {
+    size_t j = i;
+    while (j < keys.size() && keys[j] == keys[i]) ++j;
+    out.emplace_back(keys[i], static_cast<int>(j - i));
+    i = j;
+  }
+  return out;
+}
+
+int findRoot(std::vector<int>& parent, int x) {
+  while (parent[x] != x) {
+    parent[x] = parent[parent[x]];
+    x = parent[x];
+  }
+  return x;
+}
+
+}  // namespace
+
+std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
+  // One sort of the half-edges by undirected edge (the low bit keeps the direction): an edge
+  // alone in its group is a boundary edge, traversed as its one triangle does.
+  std::vector<std::uint64_t> halfEdges;
+  halfEdges.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles(k, t), b = mesh.triangles((k + 1) % 3, t);
+      halfEdges.push_back((edgeKey(a, b) << 1) | (a > b ? 1u : 0u));
+    }
+  std::sort(halfEdges.begin(), halfEdges.end());
+  std::vector<std::uint64_t> boundary;  // directed keys
+  for (size_t i = 0; i < halfEdges.size();) {
+    size_t j = i + 1;
+    while (j < halfEdges.size() && (halfEdges[j] >> 1) == (halfEdges[i] >> 1)) ++j;
+    if (j == i + 1) {
+      const std::uint64_t key = halfEdges[i] >> 1;
+      const int lo = keyFrom(key), hi = keyTo(key);
+      boundary.push_back(halfEdges[i] & 1 ? directedKey(hi, lo) : directedKey(lo, hi));
+    }
+    i = j;
+  }
+  std::sort(boundary.begin(), boundary.end());  // grouped by source vertex
+  std::vector<char> used(boundary.size(), 0);
+  // First boundary edge leaving v not used yet, or -1.
+  auto nextUnused = [&](int v) -> int {
+    auto it = std::lower_bound(boundary.begin(), boundary.end(), directedKey(v, 0));
+    for (; it != boundary.end() && keyFrom(*it) == v; ++it) {
+      const size_t i = static_cast<size_t>(it - boundary.begin());
+      if (!used[i]) return static_cast<int>(i);
+    }
+    return -1;
+  };
+
+  std::vector<BoundaryLoop> loops;
+  std::vector<int> posOf(static_cast<size_t>(mesh.vertexCount()), -1);  // position on the current path
+  std::vector<int> path;
+  for (size_t e0 = 0; e0 < boundary.size(); ++e0) {
+    if (used[e0]) continue;
+    used[e0] = 1;
+    path.assign(1, keyFrom(boundary[e0]));
+    posOf[path[0]] = 0;
+    int cur = keyTo(boundary[e0]);
+    for (;;) {
+      if (posOf[cur] >= 0) {
+        // Back on the path: the part from cur's first visit is a simple loop.
+        const int p = posOf[cur];
+        BoundaryLoop loop(path.begin() + p, path.end());
+        for (int v : loop) posOf[v] = -1;
+        path.resize(static_cast<size_t>(p));
+        if (loop.size() >= 3) loops.push_back(std::move(loop));
+      }
+      posOf[cur] = static_cast<int>(path.size());
+      path.push_back(cur);
+      const int e = nextUnused(cur);
+      if (e < 0) break;  // an open chain (inconsistent orientation): not a loop
+      used[static_cast<size_t>(e)] = 1;
+      cur = keyTo(boundary[static_cast<size_t>(e)]);
+    }
+    for (int v : path) posOf[v] = -1;
+  }
+  return loops;
+}
+
+std::vector<int> triangleComponents(const TriMesh& mesh, int* count) {
+  const int T = mesh.triangleCount();
+  std::vector<std::pair<std::uint64_t, int>> edgeTri;
+  edgeTri.reserve(3 * static_cast<size_t>(T));
+  for (int t = 0; t < T; ++t)
+    for (int k = 0; k < 3; ++k) edgeTri.emplace_back(edgeKey(mesh.triangles(k, t), mesh.triangles((k + 1) % 3, t)), t);
+  std::sort(edgeTri.begin(), edgeTri.end());
+  std::vector<int> parent(static_cast<size_t>(T));
+  std::iota(parent.begin(), parent.end(), 0);
+  for (size_t i = 1; i < edgeTri.size(); ++i)
+    if (edgeTri[i].first == edgeTri[i - 1].first) {
+      const int a = findRoot(parent, edgeTri[i].second), b = findRoot(parent, edgeTri[i - 1].second);
+      if (a != b) parent[std::max(a, b)] = std::min(a, b);
+    }
+  std::vector<int> label(static_cast<size_t>(T), -1), rootLabel(static_cast<size_t>(T), -1);
+  int n = 0;
+  for (int t = 0; t < T; ++t) {
+    const int r = findRoot(parent, t);
+    if (rootLabel[r] < 0) rootLabel[r] = n++;
+    label[t] = rootLabel[r];
+  }
+  if (count) *count = n;
+  return label;
+}
+
+int connectedComponentCount(const TriMesh& mesh) {
+  int n = 0;
+  triangleComponents(mesh, &n);
+  return n;
+}
+
+Eigen::Matrix3Xd vertexNormals(const TriMesh& mesh, NormalWeighting weighting) {
+  Eigen::Matrix3Xd N = Eigen::Matrix3Xd::Zero(3, mesh.vertexCount());
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Eigen::Vector3i tri = mesh.triangles.col(t);
+    const Eigen::Vector3d p[3] = {mesh.vertices.col(tri[0]), mesh.vertices.col(tri[1]), mesh.vertices.col(tri[2])};
+    const Eigen::Vector3d n = (p[1] - p[0]).cross(p[2] - p[0]);  // length = 2 × area
+    if (weighting == NormalWeighting::Area) {
+      for (int k = 0; k < 3; ++k) N.col(tri[k]) += n;
+    } else {
+      const double len = n.norm();
+      if (!(len > 0)) continue;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d a = p[(k + 1) % 3] - p[k], b = p[(k + 2) % 3] - p[k];
+        const double angle = std::atan2(a.cross(b).norm(), a.dot(b));
+        N.col(tri[k]) += angle / len * n;
+      }
+    }
+  }
+  for (int v = 0; v < N.cols(); ++v) {
+    const double len = N.col(v).norm();
+    if (len > 0 && std::isfinite(len)) N.col(v) /= len;
+    else N.col(v).setZero();
+  }
+  return N;
+}
+
+MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea) {
+  MeshCheck c;
+  if (degenerateArea < 0) {
+    const double diag = mesh.vertexCount() > 0
+                            ? (mesh.vertices.rowwise().maxCoeff() - mesh.vertices.rowwise().minCoeff()).norm()
+                            : 0.0;
+    degenerateArea = 1e-12 * diag * diag;
+  }
+  for (const auto& [key, n] : undirectedEdgeCounts(mesh)) {
+    ++c.edgeCount;
+    if (n == 1) ++c.boundaryEdges;
+    if (n >= 3) ++c.nonManifoldEdges;
+  }
+  std::vector<std::uint64_t> directed;
+  directed.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
+  std::vector<char> referenced(static_cast<size_t>(mesh.vertexCount()), 0);
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Eigen::Vector3i tri = mesh.triangles.col(t);
+    for (int k = 0; k < 3; ++k) {
+      directed.push_back(directedKey(tri[k], tri[(k + 1) % 3]));
+      referenced[tri[k]] = 1;
+    }
+    const double area2 = (mesh.vertices.col(tri[1]) - mesh.vertices.col(tri[0]))
+                             .cross(mesh.vertices.col(tri[2]) - mesh.vertices.col(tri[0]))
+                             .norm();
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || !(0.5 * area2 > degenerateArea))
+      ++c.degenerateTriangles;
+  }
+  std::sort(directed.begin(), directed.end());
+  for (size_t i = 1; i < directed.size(); ++i)
+    if (directed[i] == directed[i - 1]) ++c.inconsistentEdges;
+  const int V = static_cast<int>(std::count(referenced.begin(), referenced.end(), 1));
+  c.eulerCharacteristic = V - c.edgeCount + mesh.triangleCount();
+  c.components = connectedComponentCount(mesh);
+  return c;
+}
+
+int countFlippedTriangles(const TriMesh& mesh, const Eigen::Matrix3Xd& referenceNormals) {
+  int flipped = 0;
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Eigen::Vector3i tri = mesh.triangles.col(t);
+    const Eigen::Vector3d n = (mesh.vertices.col(tri[1]) - mesh.vertices.col(tri[0]))
+                                  .cross(mesh.vertices.col(tri[2]) - mesh.vertices.col(tri[0]));
+    const Eigen::Vector3d ref =
+        referenceNormals.col(tri[0]) + referenceNormals.col(tri[1]) + referenceNormals.col(tri[2]);
+    if (n.dot(ref) < 0) ++flipped;
+  }
+  return flipped;
+}
+
+double signedVolume(const TriMesh& mesh) {
+  double v = 0;
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Eigen::Vector3i tri = mesh.triangles.col(t);
+    v += mesh.vertices.col(tri[0]).dot(mesh.vertices.col(tri[1]).cross(mesh.vertices.col(tri[2])));
+  }
+  return v / 6.0;
+}
+
+}  // namespace hermite

@@ -1,0 +1,268 @@
+#include "core/points/hermite_samples.h"
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+#include "core/base/errors.h"
+#include "core/base/format_number.h"
+
+namespace hermite {
+
+namespace {
+
+// At most 2^20 cells per axis keeps every cell index of the spacing grid in 21 bits.
+constexpr int kCellBits = 21;
+constexpr double kMaxCellsPerAxis = double(1 << 20);
+
+template <int Dim>
+std::string formatVector(const Vec<Dim>& v) {
+  std::string s = "(";
+  for (int k = 0; k < Dim; ++k) s += (k ? ", " : "") + formatNumber(v[k]);
+  return s + ")";
+}
+
+}  // namespace
+
+template <int Dim>
+void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& warnings,
+                     const std::string& source) {
+  Points<Dim>& P = samples.points;
+  Points<Dim>& N = samples.normals;
+  if (P.cols() != N.cols())
+    throw InputError(source + ": " + std::to_string(P.cols()) + " points but " +
+                     std::to_string(N.cols()) + " normals (one normal per point)");
+  const Eigen::Index n = P.cols();
+
+  for (Eigen::Index i = 0; i < n; ++i) {
+    // Built only for a message: a string per sample cost ~100 ms per million samples.
+    const auto sample = [&] { return source + ": sample " + std::to_string(i) + ": "; };
+    if (!P.col(i).allFinite()) throw InputError(sample() + "non-finite coordinate " + formatVector<Dim>(P.col(i)));
+    if (!N.col(i).allFinite()) throw InputError(sample() + "non-finite normal " + formatVector<Dim>(N.col(i)));
+    // Scaling by the largest component first keeps tiny and huge normals from under/overflowing.
+    const double largest = N.col(i).cwiseAbs().maxCoeff();
+    if (largest == 0) throw InputError(sample() + "normal is zero");
+    const Vec<Dim> scaled = N.col(i) / largest;
+    N.col(i) = scaled / scaled.norm();
+  }
+
+  // Exact duplicates: sort lexicographically by coordinates, O(N log N). The coordinates are
+  // copied next to their index so the sort compares contiguous keys instead of chasing indices.
+  struct Key {
+    std::array<double, Dim> p;
+    Eigen::Index index;
+  };
+  std::vector<Key> keys(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    Key& k = keys[static_cast<std::size_t>(i)];
+    for (int c = 0; c < Dim; ++c) k.p[static_cast<std::size_t>(c)] = P(c, i);
+    k.index = i;
+  }
+  // Equal points ordered by index, so the first of a run is the smallest index.
+  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+    for (std::size_t c = 0; c < Dim; ++c) {
+      if (a.p[c] < b.p[c]) return true;
+      if (b.p[c] < a.p[c]) return false;
+    }
+    return a.index < b.index;
+  });
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
+  keys = {};
+
+  constexpr double kNormalTolerance = 1e-12;
+  std::vector<char> removed(static_cast<std::size_t>(n), 0);
+  Eigen::Index mergedCount = 0;
+  Eigen::Index exampleKept = -1, exampleRemoved = -1;
+  for (std::size_t s = 0; s < order.size();) {
+    std::size_t e = s + 1;
+    const Eigen::Index first = order[s];
+    while (e < order.size() && P.col(order[e]) == P.col(first)) {
+      const Eigen::Index j = order[e];
+      if ((N.col(j) - N.col(first)).cwiseAbs().maxCoeff() > kNormalTolerance)
+        throw InputError(source + ": samples " + std::to_string(first) + " and " + std::to_string(j) +
+                         " are at the same point " + formatVector<Dim>(P.col(first)) +
+                         " but have different normals " + formatVector<Dim>(N.col(first)) + " and " +
+                         formatVector<Dim>(N.col(j)));
+      removed[j] = 1;
+      if (mergedCount == 0) exampleKept = first, exampleRemoved = j;
+      ++mergedCount;
+      ++e;
+    }
+    s = e;
+  }
+  if (mergedCount == 0) return;
+
+  Eigen::Index out = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (removed[i]) continue;
+    if (out != i) {
+      P.col(out) = P.col(i);
+      N.col(out) = N.col(i);
+    }
+    ++out;
+  }
+  P.conservativeResize(Eigen::NoChange, out);
+  N.conservativeResize(Eigen::NoChange, out);
+  warnings.push_back(source + ": merged " + std::to_string(mergedCount) + " exact duplicate sample" +
+                     (mergedCount == 1 ? "" : "s") + " (e.g. sample " + std::to_string(exampleRemoved) +
+                     " repeats sample " + std::to_string(exampleKept) + "); " + std::to_string(out) +
+                     " samples remain");
+}
+
+template <int Dim>
+double meanSampleSpacing(const Points<Dim>& points) {
+  const Eigen::Index n = points.cols();
+  if (n < 2) return 0.0;
+
+  const Vec<Dim> lo = points.rowwise().minCoeff();
+  const Vec<Dim> extent = points.rowwise().maxCoeff() - lo;
+  const double largest = extent.maxCoeff();
+  if (largest == 0) return 0.0;  // all points coincide
+
+  // Uniform grid hash; cells are packed into a 64-bit key, kCellBits bits per axis.
+  using Key = std::uint64_t;
+  using Cell = std::array<std::int64_t, Dim>;
+  const double minCell = largest / kMaxCellsPerAxis;
+  auto cellOf = [&lo](const Vec<Dim>& p, double h) {
+    Cell c;
+    for (int k = 0; k < Dim; ++k)
+      c[k] = static_cast<std::int64_t>(std::min(std::floor((p[k] - lo[k]) / h), kMaxCellsPerAxis));
+    return c;
+  };
+  auto keyOf = [](const Cell& c) {
+    Key key = 0;
+    for (int k = 0; k < Dim; ++k) key = (key << kCellBits) | static_cast<Key>(c[k]);
+    return key;
+  };
+
+  // Cell size: first the one that gives one point per cell if the points filled their bounding
+  // box; samples on a curve or surface fill a thin part of it, so shrink until at least n/4
+  // cells are occupied, jumping by the growth rate (the data's apparent dimension) once known.
+  double volume = 1.0;
+  int spannedAxes = 0;
+  for (int k = 0; k < Dim; ++k)
+    if (extent[k] > 0) volume *= extent[k], ++spannedAxes;
+  double cell = std::max(minCell, std::pow(volume / double(n), 1.0 / spannedAxes));
+  std::vector<Key> keys(static_cast<std::size_t>(n));
+  double previousCell = 0;
+  double previousOccupied = 0;
+  for (int attempt = 0;; ++attempt) {
+    for (Eigen::Index i = 0; i < n; ++i) keys[i] = keyOf(cellOf(points.col(i), cell));
+    std::sort(keys.begin(), keys.end());
+    const double occupied = double(std::unique(keys.begin(), keys.end()) - keys.begin());
+    if (4 * occupied >= double(n) || cell <= minCell || attempt >= 40) break;
+    double factor = 0.5;
+    if (previousOccupied > 0 && occupied > previousOccupied) {
+      const double dimension =
+          std::clamp(std::log(occupied / previousOccupied) / std::log(previousCell / cell), 1.0, double(Dim));
+      factor = std::clamp(std::pow(occupied / (0.5 * double(n)), 1.0 / dimension), 1.0 / 1024, 0.5);
+    }
+    previousCell = cell;
+    previousOccupied = occupied;
+    cell = std::max(minCell, factor * cell);
+  }
+
+  // Points sorted by cell, copied so that the points of a cell are contiguous in memory.
+  std::vector<std::pair<Key, Eigen::Index>> byCell(static_cast<std::size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) byCell[i] = {keyOf(cellOf(points.col(i), cell)), i};
+  std::sort(byCell.begin(), byCell.end());
+  Points<Dim> sorted(Dim, n);
+  for (Eigen::Index s = 0; s < n; ++s) sorted.col(s) = points.col(byCell[s].second);
+  // Cell key → [begin, end) in `sorted`.
+  std::unordered_map<Key, std::pair<Eigen::Index, Eigen::Index>> cells;
+  for (Eigen::Index s = 0; s < n;) {
+    Eigen::Index e = s + 1;
+    while (e < n && byCell[e].first == byCell[s].first) ++e;
+    cells.emplace(byCell[s].first, std::make_pair(s, e));
+    s = e;
+  }
+  const Cell maxCell = cellOf(lo + extent, cell);
+
+  std::vector<double> nearest(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (Eigen::Index self = 0; self < n; ++self) {
+    const Vec<Dim> p = sorted.col(self);
+    const Cell c = cellOf(p, cell);
+    double best2 = std::numeric_limits<double>::infinity();
+    auto visit = [&](Eigen::Index begin, Eigen::Index end) {
+      for (Eigen::Index s = begin; s < end; ++s)
+        if (s != self) best2 = std::min(best2, (sorted.col(s) - p).squaredNorm());
+    };
+    std::int64_t lastRing = 0;  // beyond it no cell holds points
+    for (int k = 0; k < Dim; ++k) lastRing = std::max({lastRing, c[k], maxCell[k] - c[k]});
+    double cubeCells = 0;
+    bool bruteForce = false;
+    for (std::int64_t ring = 0; ring <= lastRing; ++ring) {
+      // Rings 0 … ring−1 are done: every point not yet visited lies at least (ring−1)·h away
+      // along some axis (less a margin for rounding of points on cell boundaries).
+      if (ring > 1 && std::sqrt(best2) <= (double(ring - 1) - 1e-6) * cell) break;
+      cubeCells += std::pow(2.0 * double(ring) + 1.0, Dim);
+      if (cubeCells > 4.0 * double(n)) {  // an isolated point: scanning everything is cheaper
+        bruteForce = true;
+        break;
+      }
+      Cell lower, upper;
+      for (int k = 0; k < Dim; ++k) {
+        lower[k] = std::max<std::int64_t>(0, c[k] - ring);
+        upper[k] = std::min(maxCell[k], c[k] + ring);
+      }
+      Cell q = lower;
+      while (true) {
+        std::int64_t chebyshev = 0;
+        for (int k = 0; k < Dim; ++k) chebyshev = std::max(chebyshev, std::abs(q[k] - c[k]));
+        if (chebyshev == ring) {
+          const auto it = cells.find(keyOf(q));
+          if (it != cells.end()) visit(it->second.first, it->second.second);
+        }
+        int k = 0;
+        for (; k < Dim; ++k) {
+          if (q[k] < upper[k]) {
+            ++q[k];
+            break;
+          }
+          q[k] = lower[k];
+        }
+        if (k == Dim) break;
+      }
+    }
+    if (bruteForce) {
+      best2 = std::numeric_limits<double>::infinity();
+      visit(0, n);
+    }
+    nearest[self] = std::sqrt(best2);
+  }
+  // Summed in a fixed order so the result does not depend on the thread count.
+  double sum = 0;
+  for (double d : nearest) sum += d;
+  return sum / double(n);
+}
+
+template void validateSamples<2>(HermiteSamples<2>&, std::vector<std::string>&, const std::string&);
+template void validateSamples<3>(HermiteSamples<3>&, std::vector<std::string>&, const std::string&);
+template double meanSampleSpacing<2>(const Points<2>&);
+template double meanSampleSpacing<3>(const Points<3>&);
+
+template <int Dim>
+HermiteSamples<Dim> withoutSample(const HermiteSamples<Dim>& samples, int i) {
+  const int N = samples.size();
+  HermiteSamples<Dim> rest;
+  rest.points.resize(Dim, N - 1);
+  rest.normals.resize(Dim, N - 1);
+  for (int j = 0, k = 0; j < N; ++j) {
+    if (j == i) continue;
+    rest.points.col(k) = samples.points.col(j);
+    rest.normals.col(k++) = samples.normals.col(j);
+  }
+  return rest;
+}
+
+template HermiteSamples<2> withoutSample<2>(const HermiteSamples<2>&, int);
+template HermiteSamples<3> withoutSample<3>(const HermiteSamples<3>&, int);
+
+}  // namespace hermite

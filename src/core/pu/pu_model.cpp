@@ -1,0 +1,546 @@
+#include "core/pu/pu_model.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <map>
+#include <mutex>
+
+#include <omp.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+
+#include "core/base/errors.h"
+
+extern "C" int openblas_get_num_threads(void);
+extern "C" void openblas_set_num_threads(int num_threads);
+
+namespace hermite {
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// max over t ∈ [−1, 1] of |d/dt (1 − t²)³| = |6t(1 − t²)²|, reached at t = 1/√5.
+constexpr double kMaxBumpSlope = 6.0 / 2.2360679774997896964 * 0.64;
+
+bool isIdentity(const Similarity<2>& T) {
+  return T.q == 1.0 && T.t.isZero(0.0) && T.R == Mat<2>::Identity();
+}
+bool isIdentity(const Similarity<3>& T) {
+  return T.q == 1.0 && T.t.isZero(0.0) && T.R == Mat<3>::Identity();
+}
+
+// The C² bump of one support at y, with ∇ and Hessian in y coordinates when asked; axes in
+// `frozen` (y clamped there) have zero derivatives. Returns 0 outside the support.
+template <int Dim>
+double bump(const Box<Dim>& support, const Vec<Dim>& y, const bool* frozen, Vec<Dim>* g, Mat<Dim>* H) {
+  double b[Dim], db[Dim], d2b[Dim];
+  for (int k = 0; k < Dim; ++k) {
+    const double h = 0.5 * (support.hi(k) - support.lo(k));
+    const double t = (y(k) - 0.5 * (support.hi(k) + support.lo(k))) / h;
+    const double u = 1.0 - t * t;
+    if (!(u > 0)) return 0.0;
+    b[k] = u * u * u;
+    db[k] = frozen[k] ? 0.0 : -6.0 * t * u * u / h;
+    d2b[k] = frozen[k] ? 0.0 : u * (30.0 * t * t - 6.0) / (h * h);
+  }
+  double w = 1.0;
+  for (int k = 0; k < Dim; ++k) w *= b[k];
+  if (g) {
+    for (int k = 0; k < Dim; ++k) {
+      double p = db[k];
+      for (int j = 0; j < Dim; ++j)
+        if (j != k) p *= b[j];
+      (*g)(k) = p;
+    }
+  }
+  if (H) {
+    for (int k = 0; k < Dim; ++k)
+      for (int l = 0; l < Dim; ++l) {
+        double p = (k == l) ? d2b[k] : db[k] * db[l];
+        for (int j = 0; j < Dim; ++j)
+          if (j != k && j != l) p *= b[j];
+        (*H)(k, l) = p;
+      }
+  }
+  return w;
+}
+
+// Local systems up to this many unknowns are solved in-process with Eigen (LLT for the SPD case,
+// else partial-pivot LU on the whole saddle matrix): measured on the two-tori benchmark (typical
+// local systems of 30–200 unknowns) the LAPACK path of fitHrbf spent most of its time in
+// per-call overhead (NaN checks, condition estimation, workspace queries), 4–5× the solve.
+constexpr int kInProcessUnknowns = 800;
+
+// The local HRBF fit: fitHrbf for large supports, the same system solved in-process for small
+// ones. Throws NumericalError for a singular or non-finite local system (the caller grows it).
+template <int Dim>
+HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& options, FitReport& report) {
+  const int N = sub.size();
+  const int m = monomialCount<Dim>(options.polynomial);
+  constexpr int B = Dim + 1;
+  const int n = N * B;
+  if (n + m > kInProcessUnknowns || options.solver != SolverChoice::Auto) return fitHrbf<Dim>(sub, options, &report);
+  const auto t0 = std::chrono::steady_clock::now();
+  SaddleSystem sys = assembleHrbf<Dim>(sub, options);
+  Eigen::VectorXd x, c;
+  double condition = 0;
+  bool solved = false;
+  if (m == 0 && sys.definiteSign > 0) {
+    Eigen::LLT<Eigen::MatrixXd> llt(sys.A.template selfadjointView<Eigen::Lower>());
+    if (llt.info() == Eigen::Success) {
+      x = llt.solve(sys.b);
+      c.resize(0);
+      const Eigen::VectorXd d = llt.matrixLLT().diagonal();
+      const double ratio = d.maxCoeff() / d.minCoeff();
+      condition = ratio * ratio;  // a cheap estimate: (max/min pivot)² ≤ κ₂
+      solved = x.allFinite();
+      report.solver = "cholesky";
+    }
+  }
+  if (!solved) {
+    // One saddle-matrix buffer per thread, reused: fresh allocations of these sizes went to mmap
+    // and page faults (measured: ~15 % of the fit).
+    thread_local Eigen::MatrixXd buffer;
+    if (buffer.rows() < n + m) buffer.resize(n + m, n + m);
+    Eigen::Ref<Eigen::MatrixXd> K = buffer.topLeftCorner(n + m, n + m);
+    K.topLeftCorner(n, n) = sys.A.template selfadjointView<Eigen::Lower>();
+    if (m > 0) {
+      K.topRightCorner(n, m) = sys.P;
+      K.bottomLeftCorner(m, n) = sys.P.transpose();
+      K.bottomRightCorner(m, m).setZero();
+    }
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+    rhs.head(n) = sys.b;
+    Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(K);  // in place
+    const double rcond = lu.rcond();
+    // Near-singular or non-finite: the LAPACK path decides (pivoted fallbacks, warnings, and a
+    // NumericalError only for a failed factorisation — which makes the caller grow the support).
+    if (!(rcond > 1e-15)) return fitHrbf<Dim>(sub, options, &report);
+    const Eigen::VectorXd sol = lu.solve(rhs);
+    if (!sol.allFinite()) return fitHrbf<Dim>(sub, options, &report);
+    x = sol.head(n);
+    c = sol.tail(m);
+    condition = 1.0 / rcond;
+    report.solver = "lu";
+  }
+  Eigen::VectorXd alpha(N);
+  Points<Dim> beta(Dim, N);
+  for (int j = 0; j < N; ++j) {
+    alpha(j) = x(Eigen::Index(j) * B);
+    beta.col(j) = x.template segment<Dim>(Eigen::Index(j) * B + 1);
+  }
+  report.nSamples = N;
+  report.nUnknowns = n + m;
+  report.conditionEstimate = condition;
+  report.warnings = polynomialOrderWarnings(options.kernel, options.polynomial);
+  if (condition > 1e12) report.warnings.push_back("condition estimate " + std::to_string(condition) + " (ill-conditioned)");
+  report.fitMs = msSince(t0);
+  return HrbfModel<Dim>(options.kernel, options.polynomial, sub.points, std::move(alpha), std::move(beta), std::move(c));
+}
+
+}  // namespace
+
+template <int Dim>
+Similarity<Dim> composeSimilarity(const Similarity<Dim>& S, const Similarity<Dim>& T) {
+  Similarity<Dim> out;
+  out.q = S.q * T.q;
+  out.R = S.R * T.R;
+  out.t = S.q * (S.R * T.t) + S.t;
+  return out;
+}
+
+template <int Dim>
+PuModel<Dim>::PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOptions& options,
+                      const Similarity<Dim>& frame)
+    : tree_(std::move(tree)), leaves_(std::move(leaves)), options_(options), frame_(frame) {
+  identityFrame_ = isIdentity(frame_);
+  minFactor_ = leaves_.empty() ? 1.0 : leaves_.front().factor;
+  for (const Leaf& l : leaves_) minFactor_ = std::min(minFactor_, l.factor);
+  buildReach();
+}
+
+template <int Dim>
+void PuModel<Dim>::buildReach() {
+  const auto& nodes = tree_.nodes();
+  reach_.assign(nodes.size(), Box<Dim>{});
+  // Children come after their parent: a backward pass sees them first.
+  for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
+    const auto& nd = nodes[id];
+    if (nd.firstChild < 0) {
+      reach_[id] = leaves_[nd.leaf].support;
+    } else {
+      Box<Dim> r = reach_[nd.firstChild];
+      for (int ch = 1; ch < PuTree<Dim>::kChildren; ++ch) {
+        r.lo = r.lo.cwiseMin(reach_[nd.firstChild + ch].lo);
+        r.hi = r.hi.cwiseMax(reach_[nd.firstChild + ch].hi);
+      }
+      reach_[id] = r;
+    }
+  }
+}
+
+template <int Dim>
+template <class F>
+void PuModel<Dim>::forSupportsAt(const Vec<Dim>& y, F&& visit) const {
+  const auto& nodes = tree_.nodes();
+  int stack[64 * PuTree<Dim>::kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int id = stack[--top];
+    if (!reach_[id].contains(y)) continue;
+    const auto& nd = nodes[id];
+    if (nd.firstChild < 0) {
+      visit(nd.leaf);
+    } else {
+      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+}
+
+template <int Dim>
+template <class F>
+void PuModel<Dim>::forSupportsTouching(const Box<Dim>& b, F&& visit) const {
+  const auto& nodes = tree_.nodes();
+  int stack[64 * PuTree<Dim>::kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int id = stack[--top];
+    if (!boxesIntersect<Dim>(reach_[id], b)) continue;
+    const auto& nd = nodes[id];
+    if (nd.firstChild < 0) {
+      visit(nd.leaf);
+    } else {
+      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+}
+
+template <int Dim>
+double PuModel<Dim>::evaluate(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H) const {
+  const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
+  if (options_.blend == PuBlend::Hard) return leaves_[tree_.locateLeaf(y)].model.evaluate(x, g, H);
+  const Box<Dim>& root = tree_.root();
+  const Vec<Dim> yc = y.cwiseMax(root.lo).cwiseMin(root.hi);
+  bool frozen[Dim];
+  for (int k = 0; k < Dim; ++k) frozen[k] = yc(k) != y(k);
+  const bool needG = g != nullptr || H != nullptr;
+  const bool needH = H != nullptr;
+  // f = N/S with N = Σ wᵢfᵢ, S = Σ wᵢ; derivatives of N and S by the product rule.
+  double S = 0, N = 0;
+  Vec<Dim> gS = Vec<Dim>::Zero(), gN = Vec<Dim>::Zero();
+  Mat<Dim> HS = Mat<Dim>::Zero(), HN = Mat<Dim>::Zero();
+  const double invQ = 1.0 / frame_.q;
+  forSupportsAt(yc, [&](int i) {
+    const Leaf& leaf = leaves_[i];
+    if (!leaf.support.contains(yc)) return;
+    Vec<Dim> gw;
+    Mat<Dim> Hw;
+    const double w = bump<Dim>(leaf.support, yc, frozen, needG ? &gw : nullptr, needH ? &Hw : nullptr);
+    if (w == 0.0) return;
+    if (!identityFrame_) {
+      // y = R⁻¹(x − t)/q: ∇ₓ = R∇_y/q, Hₓ = R H_y Rᵀ/q².
+      if (needG) gw = invQ * (frame_.R * gw);
+      if (needH) Hw = (invQ * invQ) * (frame_.R * Hw * frame_.R.transpose());
+    }
+    Vec<Dim> gi;
+    Mat<Dim> Hi;
+    const double fi = leaf.model.evaluate(x, needG ? &gi : nullptr, needH ? &Hi : nullptr);
+    S += w;
+    N += w * fi;
+    if (needG) {
+      gS += gw;
+      gN += fi * gw + w * gi;
+    }
+    if (needH) {
+      HS += Hw;
+      HN += fi * Hw + gw * gi.transpose() + gi * gw.transpose() + w * Hi;
+    }
+  });
+  if (!(S > 0)) {
+    // No support reaches y (only with overlap 1 on shared faces): the containing box's fit.
+    return leaves_[tree_.locateLeaf(yc)].model.evaluate(x, g, H);
+  }
+  const double f = N / S;
+  if (needG) {
+    const Vec<Dim> gf = (gN - f * gS) / S;
+    if (g) *g = gf;
+    if (needH) *H = (HN - gf * gS.transpose() - gS * gf.transpose() - f * HS) / S;
+  }
+  return f;
+}
+
+template <int Dim>
+void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
+  const Eigen::Index n = X.cols();
+  f.resize(n);
+  if (G) G->resize(Dim, n);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (G) {
+      Vec<Dim> g;
+      f(i) = evaluate(X.col(i), &g);
+      G->col(i) = g;
+    } else {
+      f(i) = evaluate(X.col(i));
+    }
+  }
+}
+
+template <int Dim>
+std::vector<std::pair<int, double>> PuModel<Dim>::weights(const Vec<Dim>& x) const {
+  std::vector<std::pair<int, double>> out;
+  const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
+  if (options_.blend == PuBlend::Hard) {
+    out.emplace_back(tree_.locateLeaf(y), 1.0);
+    return out;
+  }
+  const Vec<Dim> yc = y.cwiseMax(tree_.root().lo).cwiseMin(tree_.root().hi);
+  const bool frozen[3] = {false, false, false};
+  double S = 0;
+  forSupportsAt(yc, [&](int i) {
+    const double w = bump<Dim>(leaves_[i].support, yc, frozen, nullptr, nullptr);
+    if (w > 0) {
+      out.emplace_back(i, w);
+      S += w;
+    }
+  });
+  for (auto& p : out) p.second /= S;
+  return out;
+}
+
+template <int Dim>
+double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
+  if (options_.blend == PuBlend::Hard || !(minFactor_ > 1.0)) return std::numeric_limits<double>::infinity();
+  // The box in frame coordinates (bounding box of its mapped corners), clamped to the root.
+  Box<Dim> yb;
+  if (identityFrame_) {
+    yb = box;
+  } else {
+    yb.lo.setConstant(std::numeric_limits<double>::infinity());
+    yb.hi.setConstant(-std::numeric_limits<double>::infinity());
+    for (int corner = 0; corner < (1 << Dim); ++corner) {
+      Vec<Dim> c;
+      for (int k = 0; k < Dim; ++k) c(k) = (corner >> k) & 1 ? box.hi(k) : box.lo(k);
+      const Vec<Dim> y = frame_.applyInverse(c);
+      yb.lo = yb.lo.cwiseMin(y);
+      yb.hi = yb.hi.cwiseMax(y);
+    }
+  }
+  const Box<Dim>& root = tree_.root();
+  yb.lo = yb.lo.cwiseMax(root.lo).cwiseMin(root.hi);
+  yb.hi = yb.hi.cwiseMax(root.lo).cwiseMin(root.hi);
+  // Every root point lies in a leaf box, whose support is at least minFactor times larger: there
+  // |tₖ| ≤ 1/minFactor on every axis, so S ≥ (1 − 1/minFactor²)^(3·Dim).
+  const double u0 = 1.0 - 1.0 / (minFactor_ * minFactor_);
+  const double s0 = std::pow(u0, 3 * Dim);
+  const Vec<Dim> xc = box.center();
+  const double reach = 0.5 * box.extent().norm();
+  double sumGF = 0, sumG = 0, fMax = 0, lMax = 0, sMin = 0;
+  forSupportsTouching(yb, [&](int i) {
+    const Leaf& leaf = leaves_[i];
+    double inv2 = 0, wMin = 1;
+    for (int k = 0; k < Dim; ++k) {
+      const double c = 0.5 * (leaf.support.lo(k) + leaf.support.hi(k));
+      const double h = 0.5 * (leaf.support.hi(k) - leaf.support.lo(k));
+      inv2 += 1.0 / (h * h);
+      const double t = std::max(std::abs(yb.lo(k) - c), std::abs(yb.hi(k) - c)) / h;
+      const double u = 1.0 - t * t;
+      wMin *= u > 0 ? u * u * u : 0.0;
+    }
+    const double G = kMaxBumpSlope * std::sqrt(inv2) / frame_.q;  // ≥ ‖∇ₓwᵢ‖
+    const double L = leaf.model.lipschitzBound(box);
+    const double F = std::abs(leaf.model.value(xc)) + L * reach;  // ≥ |fᵢ| on the box
+    sumGF += G * F;
+    sumG += G;
+    fMax = std::max(fMax, F);
+    lMax = std::max(lMax, L);
+    sMin += wMin;
+  });
+  sMin = std::max(sMin, s0);
+  // Rounding of the sums: a relative 1e-12 margin.
+  return (1.0 + 1e-12) * ((sumGF + fMax * sumG) / sMin + lMax);
+}
+
+template <int Dim>
+PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options, PuReport* report,
+                   const Similarity<Dim>& frame) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (samples.size() < 1) throw InputError("partition: no samples");
+  if (!(options.overlap >= 1)) throw InputError("partition: overlap must be >= 1");
+  if (!(options.growth > 1)) throw InputError("partition: growth must be > 1");
+  const int n = samples.size();
+  const bool identity = isIdentity(frame);
+  Points<Dim> Y;
+  if (!identity) {
+    Y.resize(Dim, n);
+    for (int i = 0; i < n; ++i) Y.col(i) = frame.applyInverse(samples.points.col(i));
+  }
+  const Points<Dim>& frameY = identity ? samples.points : Y;
+  const int m = monomialCount<Dim>(options.local.polynomial);
+  const int minSamples =
+      options.minSamples > 0 ? options.minSamples
+                             : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
+  const int maxSupport = std::max(minSamples, options.maxSupportSamples > 0 ? options.maxSupportSamples
+                                                                          : 6 * options.maxPointsPerBox);
+  PuTreeOptions treeOptions;
+  treeOptions.maxPointsPerBox = options.maxPointsPerBox;
+  treeOptions.boxSize = options.boxSize;
+  treeOptions.maxSupportSamples = maxSupport;
+  treeOptions.overlap = options.overlap;
+  PuTree<Dim> tree(frameY, treeOptions);
+  const double treeMs = msSince(t0);
+
+  const double supportFloor = 0.5 * (1.0 + options.overlap);
+  const int leafCount = tree.leafCount();
+  std::vector<typename PuModel<Dim>::Leaf> leaves(static_cast<std::size_t>(leafCount));
+  std::vector<FitReport> reports(static_cast<std::size_t>(leafCount));
+  HrbfOptions local = options.local;
+  local.kernel.radius *= frame.q;
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  // The local systems are small: one BLAS thread each, parallel over boxes.
+  const int blasThreads = openblas_get_num_threads();
+  openblas_set_num_threads(1);
+#pragma omp parallel
+  {
+    std::vector<int> idx;
+    std::vector<double> dist;
+    HermiteSamples<Dim> sub;
+#pragma omp for schedule(dynamic, 8)
+    for (int i = 0; i < leafCount; ++i) {
+      try {
+        const Box<Dim>& box = tree.leafBox(i);
+        const Vec<Dim> c = box.center();
+        const Vec<Dim> invH = (0.5 * box.extent()).cwiseInverse();
+        // The factor s at which the support scaledBox(box, s) reaches sample j.
+        auto reachOf = [&](int j) { return ((frameY.col(j) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff(); };
+        // The support just large enough for the `rank`-th nearest sample (normalised L∞ about the
+        // box centre) among idx, but at least `floor`.
+        auto fitTo = [&](int rank, double floor) {
+          dist.resize(idx.size());
+          for (std::size_t j = 0; j < idx.size(); ++j) dist[j] = reachOf(idx[j]);
+          std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
+          // A relative 1e-9 beyond the sample: rounding of the scaled box cannot drop it (its
+          // weight there, ~1e-26, is negligible).
+          return std::max(floor, dist[rank - 1] * (1.0 + 1e-9));
+        };
+        double s = options.overlap;
+        tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+        const int want = std::min(minSamples, n);
+        if (static_cast<int>(idx.size()) < want) {
+          while (static_cast<int>(idx.size()) < want) {
+            s *= options.growth;
+            tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+          }
+          s = fitTo(want, options.overlap);
+          tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+        } else if (static_cast<int>(idx.size()) > maxSupport) {
+          s = fitTo(maxSupport, supportFloor);
+          tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+        }
+        // A singular local system (e.g. collinear samples under a quadratic term) grows too.
+        for (int attempt = 0;; ++attempt) {
+          std::sort(idx.begin(), idx.end());
+          const int k = static_cast<int>(idx.size());
+          sub.points.resize(Dim, k);
+          sub.normals.resize(Dim, k);
+          for (int j = 0; j < k; ++j) {
+            sub.points.col(j) = samples.points.col(idx[j]);
+            sub.normals.col(j) = samples.normals.col(idx[j]);
+          }
+          try {
+            leaves[i].model = fitLocal<Dim>(sub, local, reports[i]);
+            leaves[i].support = scaledBox<Dim>(box, s);
+            leaves[i].factor = s;
+            leaves[i].samples = k;
+            break;
+          } catch (const NumericalError& e) {
+            if (attempt >= 4 || k >= n)
+              throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
+                                   " samples) failed: " + e.what());
+            s *= options.growth;
+            tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
+            reports[i] = FitReport{};
+          }
+        }
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failureMutex);
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  }
+  openblas_set_num_threads(blasThreads);
+  if (failure) std::rethrow_exception(failure);
+
+  if (report) {
+    PuReport& r = *report;
+    r = PuReport{};
+    r.boxes = leafCount;
+    r.treeMs = treeMs;
+    const std::vector<std::string> orderWarnings = polynomialOrderWarnings(local.kernel, local.polynomial);
+    r.warnings = orderWarnings;
+    std::map<std::string, int> solvers;
+    // Local warnings grouped by kind (the text with its numbers blanked): count + first example.
+    std::vector<std::pair<std::string, std::pair<int, std::string>>> kinds;
+    for (int i = 0; i < leafCount; ++i) {
+      r.maxBoxSamples = std::max(r.maxBoxSamples, tree.leafSampleCount(i));
+      r.maxSupportSamples = std::max(r.maxSupportSamples, leaves[i].samples);
+      r.meanSupportSamples += leaves[i].samples / double(leafCount);
+      if (leaves[i].factor > options.overlap) ++r.grownSupports;
+      r.unknowns += reports[i].nUnknowns;
+      r.maxConditionEstimate = std::max(r.maxConditionEstimate, reports[i].conditionEstimate);
+      ++solvers[reports[i].solver];
+      for (const std::string& w : reports[i].warnings) {
+        if (std::find(orderWarnings.begin(), orderWarnings.end(), w) != orderWarnings.end()) continue;
+        std::string kind;
+        for (char ch : w)
+          if (!(ch >= '0' && ch <= '9') && ch != '.' && ch != '+' && ch != 'e') kind += ch;
+        auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == kind; });
+        if (it == kinds.end())
+          kinds.push_back({kind, {1, "box " + std::to_string(i) + ": " + w}});
+        else
+          ++it->second.first;
+      }
+    }
+    int best = -1;
+    for (const auto& [name, count] : solvers)
+      if (count > best) {
+        best = count;
+        r.solver = name;
+      }
+    for (const auto& [kind, info] : kinds)
+      r.warnings.push_back("partition: " + std::to_string(info.first) + " of " + std::to_string(leafCount) +
+                           " local fits warned like " + info.second);
+    r.fitMs = msSince(t0);
+  }
+  return PuModel<Dim>(std::move(tree), std::move(leaves), options, frame);
+}
+
+template <int Dim>
+PuModel<Dim> transformPu(const PuModel<Dim>& model, const Similarity<Dim>& T) {
+  std::vector<typename PuModel<Dim>::Leaf> leaves = model.leaves();
+  const int count = static_cast<int>(leaves.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < count; ++i) leaves[i].model = transformModel<Dim>(leaves[i].model, T);
+  return PuModel<Dim>(model.tree(), std::move(leaves), model.options(), composeSimilarity<Dim>(T, model.frame()));
+}
+
+template class PuModel<2>;
+template class PuModel<3>;
+template PuModel<2> fitPu<2>(const HermiteSamples<2>&, const PuOptions&, PuReport*, const Similarity<2>&);
+template PuModel<3> fitPu<3>(const HermiteSamples<3>&, const PuOptions&, PuReport*, const Similarity<3>&);
+template PuModel<2> transformPu<2>(const PuModel<2>&, const Similarity<2>&);
+template PuModel<3> transformPu<3>(const PuModel<3>&, const Similarity<3>&);
+template Similarity<2> composeSimilarity<2>(const Similarity<2>&, const Similarity<2>&);
+template Similarity<3> composeSimilarity<3>(const Similarity<3>&, const Similarity<3>&);
+
+}  // namespace hermite

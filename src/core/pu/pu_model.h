@@ -1,0 +1,122 @@
+#pragma once
+// Partition-of-unity HRBF (DESIGN.md §1, §4 `fit.partition`): local HRBF fits on the boxes of a
+// quadtree/octree (pu_tree.h), blended by Shepard weights
+//
+//   f(x) = Σᵢ wᵢ(y) fᵢ(x) / Σᵢ wᵢ(y),   y = T⁻¹x  (T: the model's frame, identity until transformed)
+//
+// with wᵢ the C² tensor-product bump Πₖ (1 − tₖ²)³₊, tₖ = (yₖ − cₖ)/hₖ over support i (centre c,
+// half-extents h). f, ∇f and the Hessian are C² wherever the local fits are. Outside the root box
+// the weights are those of the nearest root point (y clamped to the root box): f stays continuous
+// and finite everywhere, never NaN. Boxes whose support holds too few samples for their local
+// system grow it (borrow neighbours) by `growth` steps until it does.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/pu/pu_tree.h"
+#include "core/rbf/hrbf.h"
+#include "core/rbf/similarity_transform.h"
+
+namespace hermite {
+
+struct PuOptions {
+  HrbfOptions local;            // kernel, polynomial, smoothing, solver of every local fit
+  int maxPointsPerBox = 20;     // ≥ 1: DESIGN.md §4 default
+  double boxSize = 0.0;         // ≥ 0; 0 = only the point-count rule
+  double overlap = 1.5;         // ≥ 1: support = box scaled about its centre (1.5: 25 % margin per side)
+  PuBlend blend = PuBlend::Smooth;
+  // A support must hold at least this many samples (0 = automatic: enough for the polynomial
+  // and at least min(maxPointsPerBox, 2·(Dim + 1)) so empty boxes do not fit from one sample).
+  int minSamples = 0;
+  double growth = 1.5;          // > 1: factor a too-sparse support grows by per step
+  // A box whose support holds more than this many samples (0 = automatic: 6·maxPointsPerBox, at
+  // least minSamples) is split further (pu_tree.h); where that cannot help (depth limit) the
+  // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2: a big
+  // box beside a dense region would otherwise solve thousands of unknowns.
+  int maxSupportSamples = 0;
+};
+
+// What the fit reports besides the model (`fit --json` "partition").
+struct PuReport {
+  int boxes = 0;
+  int maxBoxSamples = 0;   // most samples in one leaf box
+  int maxSupportSamples = 0;  // most samples in one local fit
+  double meanSupportSamples = 0;
+  int grownSupports = 0;   // supports grown to reach minSamples
+  double fitMs = 0;        // tree + local fits, wall clock
+  double treeMs = 0;
+  int unknowns = 0;        // Σ over local systems
+  double maxConditionEstimate = 0;  // worst local fit
+  std::string solver;      // the local solver path most fits took
+  std::vector<std::string> warnings;
+};
+
+template <int Dim>
+class PuModel : public ImplicitField<Dim> {
+ public:
+  struct Leaf {
+    Box<Dim> support;     // in frame coordinates: the leaf box scaled by `factor` about its centre
+    double factor = 1.5;  // overlap, or more for a grown support, or less (≥ the floor) for a capped one
+    int samples = 0;      // samples in the support (the local fit's data)
+    HrbfModel<Dim> model;  // in world coordinates
+  };
+
+  PuModel() = default;
+  PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOptions& options, const Similarity<Dim>& frame);
+
+  double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override;
+  void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
+  // Smooth blend: Σᵢ (Gᵢ Fᵢ + F_max Gᵢ) / S_min + maxᵢ Lᵢ over the supports reaching the box, with
+  // Gᵢ ≥ ‖∇wᵢ‖, Fᵢ ≥ |fᵢ| on the box, S_min ≤ Σ wᵢ; infinite for the hard blend (f jumps).
+  double lipschitzBound(const Box<Dim>& box) const override;
+
+  const PuTree<Dim>& tree() const { return tree_; }
+  const std::vector<Leaf>& leaves() const { return leaves_; }
+  const PuOptions& options() const { return options_; }
+  // World x = frame.apply(y) for frame coordinates y of boxes and supports.
+  const Similarity<Dim>& frame() const { return frame_; }
+
+  // Normalised weights Wᵢ(x) of the leaves whose support contains y = T⁻¹x (clamped to the root
+  // box), for tests: pairs (leaf, Wᵢ). Empty where no support reaches (overlap 1 on a face).
+  std::vector<std::pair<int, double>> weights(const Vec<Dim>& x) const;
+
+ private:
+  void buildReach();
+  template <class F>
+  void forSupportsAt(const Vec<Dim>& y, F&& visit) const;
+  template <class F>
+  void forSupportsTouching(const Box<Dim>& b, F&& visit) const;
+
+  PuTree<Dim> tree_;
+  std::vector<Leaf> leaves_;
+  std::vector<Box<Dim>> reach_;  // per tree node: union of the supports of its leaves
+  PuOptions options_;
+  Similarity<Dim> frame_;
+  bool identityFrame_ = true;
+  double minFactor_ = 1.0;  // smallest support factor (the weight sum's lower bound needs it)
+};
+
+// Fits a PU model to validated samples. The tree is built on frame.applyInverse(points) (its
+// boxes live in frame coordinates); the local fits use the samples as given, with the kernel
+// radius scaled by frame.q. With the identity frame (the default) this is the plain PU fit; with
+// the frame of a transform it is the re-solve of a transformed PU model on transformed data.
+// Throws InputError for bad options, NumericalError when a local fit fails after growing.
+template <int Dim>
+PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options, PuReport* report = nullptr,
+                   const Similarity<Dim>& frame = Similarity<Dim>());
+
+// The PU model of the transformed data by coefficient updates: the tree is kept (boxes and
+// supports move with T through the frame), every local model is transformed (transform.h).
+// Equals fitPu on transformSamples(samples, T) with frame T·frame when the update is exact.
+template <int Dim>
+PuModel<Dim> transformPu(const PuModel<Dim>& model, const Similarity<Dim>& T);
+
+// S ∘ T: x ↦ S(T(x)).
+template <int Dim>
+Similarity<Dim> composeSimilarity(const Similarity<Dim>& S, const Similarity<Dim>& T);
+
+extern template class PuModel<2>;
+extern template class PuModel<3>;
+
+}  // namespace hermite

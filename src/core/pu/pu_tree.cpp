@@ -1,0 +1,178 @@
+#include "core/pu/pu_tree.h"
+
+#include <algorithm>
+#include <numeric>
+#include <string>
+
+#include "core/base/errors.h"
+
+namespace hermite {
+
+std::string_view puBlendName(PuBlend b) { return b == PuBlend::Hard ? "hard" : "smooth"; }
+
+PuBlend parsePuBlend(std::string_view s) {
+  if (s == "smooth") return PuBlend::Smooth;
+  if (s == "hard") return PuBlend::Hard;
+  throw InputError("unknown blend '" + std::string(s) + "' (expected smooth or hard)");
+}
+
+
+template <int Dim>
+PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
+  if (points.cols() < 1) throw InputError("partition: no samples to subdivide");
+  if (options.maxPointsPerBox < 1)
+    throw InputError("partition: max_points_per_box must be >= 1 (got " + std::to_string(options.maxPointsPerBox) + ")");
+  if (!(options.boxSize >= 0))
+    throw InputError("partition: box_size must be >= 0 (got " + std::to_string(options.boxSize) + ")");
+  const int n = static_cast<int>(points.cols());
+  Box<Dim> root = boundingBox<Dim>(points);
+  // 5 % of the largest extent on every side (1 for a single point): no sample on the root's
+  // faces, and flat data still gets boxes with volume.
+  const double extent = root.extent().maxCoeff();
+  const double margin = 0.05 * (extent > 0 ? extent : 1.0);
+  root.lo.array() -= margin;
+  root.hi.array() += margin;
+
+  order_.resize(n);
+  std::iota(order_.begin(), order_.end(), 0);
+  nodes_.reserve(2 * static_cast<std::size_t>(n / std::max(1, options.maxPointsPerBox) + 1) * kChildren);
+  nodes_.push_back(Node{root, -1, -1, 0, n, 0});
+  std::vector<int> scratch;
+  // Splits node `id` into kChildren children (its samples bucketed by child); returns the first.
+  auto splitNode = [&](int id) {
+    const Node nd = nodes_[id];
+    // Bucket the node's samples by child: child bit k set ⇔ coordinate k ≥ the centre's.
+    const Vec<Dim> c = nd.box.center();
+    int counts[kChildren] = {};
+    auto childOf = [&](int s) {
+      int ch = 0;
+      for (int k = 0; k < Dim; ++k)
+        if (points(k, s) >= c(k)) ch |= 1 << k;
+      return ch;
+    };
+    for (int i = nd.begin; i < nd.end; ++i) ++counts[childOf(order_[i])];
+    int offsets[kChildren];
+    offsets[0] = nd.begin;
+    for (int ch = 1; ch < kChildren; ++ch) offsets[ch] = offsets[ch - 1] + counts[ch - 1];
+    scratch.assign(order_.begin() + nd.begin, order_.begin() + nd.end);
+    int fill[kChildren];
+    std::copy(offsets, offsets + kChildren, fill);
+    for (int s : scratch) order_[fill[childOf(s)]++] = s;
+    const int first = static_cast<int>(nodes_.size());
+    nodes_[id].firstChild = first;
+    for (int ch = 0; ch < kChildren; ++ch) {
+      Node child;
+      for (int k = 0; k < Dim; ++k) {
+        const bool upper = (ch >> k) & 1;
+        child.box.lo(k) = upper ? c(k) : nd.box.lo(k);
+        child.box.hi(k) = upper ? nd.box.hi(k) : c(k);
+      }
+      child.begin = offsets[ch];
+      child.end = offsets[ch] + counts[ch];
+      child.depth = nd.depth + 1;
+      nodes_.push_back(child);
+    }
+    return first;
+  };
+  // Pass 1: the DESIGN.md §4 rules.
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    const Node& nd = nodes_[id];
+    const int count = nd.end - nd.begin;
+    const bool tooMany = count > options.maxPointsPerBox;
+    const bool tooBig = options.boxSize > 0 && nd.box.extent().maxCoeff() > options.boxSize;
+    if (count == 0 || !(tooMany || tooBig) || nd.depth >= options.maxDepth) continue;
+    const int first = splitNode(id);
+    for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
+  }
+  // Pass 2, on the complete tree (so support queries are fast): crowded supports split further.
+  if (options.maxSupportSamples > 0) {
+    for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
+      if (nodes_[id].firstChild < 0) stack.push_back(id);
+    const int limit = options.maxSupportSamples;
+    while (!stack.empty()) {
+      const int id = stack.back();
+      stack.pop_back();
+      if (nodes_[id].depth >= options.maxDepth) continue;
+      if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
+      const int first = splitNode(id);
+      for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
+    }
+  }
+  // Leaves in depth-first order (children before later siblings) for locality.
+  stack.assign(1, 0);
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    if (nodes_[id].firstChild < 0) {
+      nodes_[id].leaf = static_cast<int>(leaves_.size());
+      leaves_.push_back(id);
+    } else {
+      for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(nodes_[id].firstChild + ch);
+    }
+  }
+}
+
+template <int Dim>
+int PuTree<Dim>::locateLeaf(const Vec<Dim>& y) const {
+  const Vec<Dim> p = y.cwiseMax(root().lo).cwiseMin(root().hi);
+  int id = 0;
+  while (nodes_[id].firstChild >= 0) {
+    const Vec<Dim> c = nodes_[id].box.center();
+    int ch = 0;
+    for (int k = 0; k < Dim; ++k)
+      if (p(k) >= c(k)) ch |= 1 << k;
+    id = nodes_[id].firstChild + ch;
+  }
+  return nodes_[id].leaf;
+}
+
+template <int Dim>
+int PuTree<Dim>::countInBox(const Points<Dim>& points, const Box<Dim>& query, int limit) const {
+  int count = 0;
+  int stack[64 * kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0 && count <= limit) {
+    const Node& nd = nodes_[stack[--top]];
+    if (nd.begin == nd.end || !boxesIntersect<Dim>(nd.box, query)) continue;
+    const bool inside = (nd.box.lo.array() >= query.lo.array()).all() && (nd.box.hi.array() <= query.hi.array()).all();
+    if (inside) {
+      count += nd.end - nd.begin;
+    } else if (nd.firstChild < 0) {
+      for (int i = nd.begin; i < nd.end; ++i)
+        if (query.contains(points.col(order_[i]))) ++count;
+    } else {
+      for (int ch = 0; ch < kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+  return count;
+}
+
+template <int Dim>
+void PuTree<Dim>::samplesInBox(const Points<Dim>& points, const Box<Dim>& query, std::vector<int>& out) const {
+  out.clear();
+  int stack[64 * kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& nd = nodes_[stack[--top]];
+    if (nd.begin == nd.end || !boxesIntersect<Dim>(nd.box, query)) continue;
+    const bool inside = (nd.box.lo.array() >= query.lo.array()).all() && (nd.box.hi.array() <= query.hi.array()).all();
+    if (inside) {
+      out.insert(out.end(), order_.begin() + nd.begin, order_.begin() + nd.end);
+    } else if (nd.firstChild < 0) {
+      for (int i = nd.begin; i < nd.end; ++i)
+        if (query.contains(points.col(order_[i]))) out.push_back(order_[i]);
+    } else {
+      for (int ch = 0; ch < kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+}
+
+template class PuTree<2>;
+template class PuTree<3>;
+
+}  // namespace hermite

@@ -1,0 +1,383 @@
+#include "core/rbf/dense_solver.h"
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <cstdio>
+#include <string>
+
+#include <cblas.h>
+#include <lapacke.h>
+
+#include "core/base/errors.h"
+
+// LAPACK's reverse-communication 1-norm estimator (no LAPACKE wrapper exists for it).
+extern "C" void dlacn2_(const int* n, double* v, double* x, int* isgn, double* est, int* kase, int* isave);
+
+namespace hermite {
+
+static_assert(sizeof(lapack_int) == sizeof(int), "DenseLu keeps LAPACK pivots as int");
+
+namespace {
+
+using Index = Eigen::Index;
+
+std::string fmt(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
+lapack_int toLapack(Index n) { return static_cast<lapack_int>(n); }
+
+// Restores a symmetric matrix whose lower triangle and diagonal were overwritten (by dpotrf or
+// the projection) from its untouched upper triangle and a saved copy of the diagonal.
+void restoreSymmetric(Eigen::MatrixXd& M, const Eigen::VectorXd& diagonal) {
+  M.triangularView<Eigen::StrictlyLower>() = M.transpose().triangularView<Eigen::StrictlyLower>();
+  M.diagonal() = diagonal;
+}
+
+// Records the wall-clock time since the previous lap under a phase name.
+class PhaseClock {
+ public:
+  explicit PhaseClock(std::vector<std::pair<std::string, double>>& out) : out_(out) {}
+  void lap(const char* name) {
+    const auto now = std::chrono::steady_clock::now();
+    out_.emplace_back(name, std::chrono::duration<double, std::milli>(now - last_).count());
+    last_ = now;
+  }
+
+ private:
+  std::vector<std::pair<std::string, double>>& out_;
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+struct Factorised {
+  bool ok = false;
+  std::string failure;  // why the factorisation failed
+  double rcond = 0;
+};
+
+// Cholesky of sign·M in place, M = the k × k block at `M` with leading dimension `ld` (lower
+// triangle only; the upper triangle is left untouched so a failure can be undone). Solves
+// sign·M y = sign·rhs in place of rhs.
+Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs,
+                         PhaseClock& clock) {
+  Factorised out;
+  if (sign < 0)
+    for (lapack_int j = 0; j < k; ++j)
+      for (lapack_int i = j; i < k; ++i) M[size_t(j) * ld + i] = -M[size_t(j) * ld + i];
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', k, M, ld);
+  const lapack_int info = LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', k, M, ld);
+  clock.lap("factor");
+  if (info != 0) {
+    out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
+                                 " of " + std::to_string(k) + ")"
+                           : "Cholesky: invalid argument " + std::to_string(-info);
+    return out;
+  }
+  LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', k, M, ld, anorm, &out.rcond);
+  clock.lap("condition");
+  if (sign < 0) rhs *= -1.0;
+  LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
+  out.ok = true;
+  return out;
+}
+
+// Replaces the lower triangle of the symmetric A (n × n, both triangles valid) by that of
+// B = Qᵀ A Q, Q = I − V T Vᵀ from the QR of P, leaving the upper triangle (= A) untouched.
+// With Y = A V T and W = Tᵀ Vᵀ Y (symmetric): B = A − Z Vᵀ − V Zᵀ, Z = Y − ½ V W — one symmetric
+// product and one rank-2m update of the lower triangle, as in LAPACK's dsytrd.
+void projectLower(Eigen::MatrixXd& A, const Eigen::MatrixXd& QR, const Eigen::VectorXd& tau) {
+  const lapack_int n = toLapack(A.rows()), m = toLapack(QR.cols());
+  Eigen::MatrixXd V = QR.triangularView<Eigen::UnitLower>();
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
+  LAPACKE_dlarft(LAPACK_COL_MAJOR, 'F', 'C', n, m, V.data(), n, tau.data(), T.data(), m);
+  Eigen::MatrixXd AV(n, m);
+  cblas_dsymm(CblasColMajor, CblasLeft, CblasUpper, n, m, 1.0, A.data(), n, V.data(), n, 0.0, AV.data(), n);
+  const Eigen::MatrixXd Y = AV * T.triangularView<Eigen::Upper>();
+  const Eigen::MatrixXd W = T.triangularView<Eigen::Upper>().transpose() * (V.transpose() * Y);
+  const Eigen::MatrixXd Z = Y - 0.5 * V * W;
+  cblas_dsyr2k(CblasColMajor, CblasLower, CblasNoTrans, n, m, -1.0, Z.data(), n, V.data(), n, 1.0, A.data(), n);
+}
+
+// Full saddle matrix K = [[A, P], [Pᵀ, 0]] (both triangles).
+Eigen::MatrixXd saddleMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& P) {
+  const Index n = A.rows(), m = P.cols();
+  Eigen::MatrixXd K(n + m, n + m);
+  K.topLeftCorner(n, n) = A;
+  K.topRightCorner(n, m) = P;
+  K.bottomLeftCorner(m, n) = P.transpose();
+  K.bottomRightCorner(m, m).setZero();
+  return K;
+}
+
+Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
+  Factorised out;
+  const lapack_int n = toLapack(K.rows());
+  std::vector<lapack_int> ipiv(n);
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, K.data(), n);
+  const lapack_int info = LAPACKE_dsytrf(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data());
+  if (info != 0) {
+    out.failure = info > 0 ? "symmetric-indefinite LDLᵀ: D(" + std::to_string(info) + "," +
+                                 std::to_string(info) + ") is exactly zero (singular)"
+                           : "LDLᵀ: invalid argument " + std::to_string(-info);
+    return out;
+  }
+  LAPACKE_dsycon(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data(), anorm, &out.rcond);
+  LAPACKE_dsytrs(LAPACK_COL_MAJOR, 'L', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
+  out.ok = true;
+  return out;
+}
+
+Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
+  Factorised out;
+  const lapack_int n = toLapack(K.rows());
+  std::vector<lapack_int> ipiv(n);
+  const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, K.data(), n);
+  const lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, K.data(), n, ipiv.data());
+  if (info != 0) {
+    out.failure = info > 0 ? "LU: U(" + std::to_string(info) + "," + std::to_string(info) +
+                                 ") is exactly zero (the system is singular)"
+                           : "LU: invalid argument " + std::to_string(-info);
+    return out;
+  }
+  LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, K.data(), n, anorm, &out.rcond);
+  LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
+  out.ok = true;
+  return out;
+}
+
+// QR of P (n × m) in place, with a rank check: the polynomial term must be determined by the
+// data, otherwise the saddle system is singular whatever the kernel.
+void factorPolynomialBlock(Eigen::MatrixXd& QR, Eigen::VectorXd& tau) {
+  const lapack_int n = toLapack(QR.rows()), m = toLapack(QR.cols());
+  if (n < m)
+    throw NumericalError("singular system: the samples do not determine the polynomial term (" + std::to_string(m) +
+                         " polynomial coefficients but only " + std::to_string(n) +
+                         " conditions; use a lower polynomial degree or more samples)");
+  tau.resize(m);
+  LAPACKE_dgeqrf(LAPACK_COL_MAJOR, n, m, QR.data(), n, tau.data());
+  const Eigen::VectorXd diag = QR.topLeftCorner(m, m).diagonal().cwiseAbs();
+  const double biggest = diag.maxCoeff();
+  for (lapack_int k = 0; k < m; ++k) {
+    if (!(diag(k) > 1e-12 * biggest)) {
+      throw NumericalError("singular system: the samples do not determine the polynomial term (column " +
+                           std::to_string(k) + " of the polynomial block is dependent on the others; "
+                           "use a lower polynomial degree or more, non-degenerate samples)");
+    }
+  }
+}
+
+// Applies Q or Qᵀ (from factorPolynomialBlock) to M from the left ('L') or right ('R').
+void applyQ(const Eigen::MatrixXd& QR, const Eigen::VectorXd& tau, char side, char trans, Eigen::Ref<Eigen::MatrixXd> M) {
+  LAPACKE_dormqr(LAPACK_COL_MAJOR, side, trans, toLapack(M.rows()), toLapack(M.cols()), toLapack(QR.cols()),
+                 QR.data(), toLapack(QR.rows()), tau.data(), M.data(), toLapack(M.outerStride()));
+}
+
+// Copies the lower triangle onto the upper one, in 64 × 64 tiles (cache- and TLB-friendly),
+// in parallel over tile columns.
+void mirrorLowerToUpper(Eigen::MatrixXd& M) {
+  const Index n = M.rows();
+  constexpr Index kTile = 64;
+  const Index tiles = (n + kTile - 1) / kTile;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (Index tj = 0; tj < tiles; ++tj) {
+    for (Index ti = tj; ti < tiles; ++ti) {
+      const Index j0 = tj * kTile, i0 = ti * kTile;
+      const Index j1 = std::min(n, j0 + kTile), i1 = std::min(n, i0 + kTile);
+      for (Index i = i0; i < i1; ++i)
+        for (Index j = j0; j < std::min(j1, i); ++j) M(j, i) = M(i, j);
+    }
+  }
+}
+
+bool allFinite(const Eigen::MatrixXd& M) { return M.allFinite(); }
+
+}  // namespace
+
+std::string_view solverName(SolverChoice s) {
+  switch (s) {
+    case SolverChoice::Auto: return "auto";
+    case SolverChoice::Cholesky: return "cholesky";
+    case SolverChoice::NullspaceCholesky: return "nullspace-cholesky";
+    case SolverChoice::Ldlt: return "ldlt";
+    case SolverChoice::Lu: return "lu";
+  }
+  return "?";
+}
+
+SolverChoice parseSolverChoice(std::string_view name) {
+  for (SolverChoice s : {SolverChoice::Auto, SolverChoice::Cholesky, SolverChoice::NullspaceCholesky,
+                         SolverChoice::Ldlt, SolverChoice::Lu})
+    if (solverName(s) == name) return s;
+  throw InputError("unknown solver '" + std::string(name) +
+                   "', expected one of: auto, cholesky, nullspace-cholesky, ldlt, lu");
+}
+
+SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
+  const Index n = sys.A.rows(), m = sys.P.cols();
+  if (sys.A.cols() != n || sys.P.rows() != n || sys.b.size() != n)
+    throw NumericalError("solveSaddle: inconsistent shapes");
+  SaddleSolution out;
+  PhaseClock clock(out.phaseMs);
+  mirrorLowerToUpper(sys.A);
+  if (!allFinite(sys.A) || !allFinite(sys.P) || !sys.b.allFinite())
+    throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
+  clock.lap("mirror");
+
+  Eigen::MatrixXd QR;
+  Eigen::VectorXd tau;
+  if (m > 0) {
+    QR = sys.P;
+    factorPolynomialBlock(QR, tau);
+    clock.lap("qr");
+  }
+
+  if (choice == SolverChoice::Auto) {
+    if (sys.definiteSign != 0)
+      choice = m == 0 ? SolverChoice::Cholesky : SolverChoice::NullspaceCholesky;
+    else
+      choice = SolverChoice::Ldlt;
+  }
+  if (choice == SolverChoice::Cholesky && m > 0) {
+    out.warnings.push_back("cholesky needs a system without polynomial term; using nullspace-cholesky");
+    choice = SolverChoice::NullspaceCholesky;
+  }
+  if (choice == SolverChoice::NullspaceCholesky && m == 0) choice = SolverChoice::Cholesky;
+  const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
+
+  const Eigen::VectorXd diagonal = sys.A.diagonal();  // for restoring A after a failed Cholesky
+  Factorised fact;
+  if (choice == SolverChoice::Cholesky) {
+    out.x = sys.b;
+    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock);
+    if (fact.ok) {
+      out.solver = "cholesky";
+      out.c.resize(0);
+    } else {
+      restoreSymmetric(sys.A, diagonal);
+    }
+  } else if (choice == SolverChoice::NullspaceCholesky) {
+    // Lower triangle of A := that of B = Qᵀ A Q; its trailing (n − m) block is Zᵀ A Z with Z
+    // spanning null(Pᵀ): the unknowns x = Q [0; y] satisfy Pᵀx = 0 by construction.
+    projectLower(sys.A, QR, tau);
+    clock.lap("project");
+    Eigen::VectorXd bq = sys.b;
+    applyQ(QR, tau, 'L', 'T', bq);
+    Eigen::VectorXd y = bq.tail(n - m);
+    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y, clock);
+    if (fact.ok) {
+      out.solver = "nullspace-cholesky";
+      // R c = (Qᵀ b)₁ − B₁₂ y, with B₁₂ = B₂₁ᵀ from the (untouched by dpotrf) lower part.
+      Eigen::VectorXd rhs = bq.head(m) - sys.A.block(m, 0, n - m, m).transpose() * y;
+      out.c = QR.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(rhs);
+      out.x = Eigen::VectorXd::Zero(n);
+      out.x.tail(n - m) = y;
+      applyQ(QR, tau, 'L', 'N', out.x);
+    } else {
+      restoreSymmetric(sys.A, diagonal);  // the upper triangle still holds A
+    }
+  }
+
+  if (!fact.ok && (choice == SolverChoice::Cholesky || choice == SolverChoice::NullspaceCholesky)) {
+    out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
+    choice = SolverChoice::Lu;
+  }
+  if (choice == SolverChoice::Ldlt || choice == SolverChoice::Lu) {
+    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+    rhs.head(n) = sys.b;
+    Eigen::MatrixXd K = m > 0 ? saddleMatrix(sys.A, sys.P) : std::move(sys.A);
+    if (choice == SolverChoice::Ldlt) {
+      Eigen::MatrixXd Kcopy = K;  // kept for the LU fallback
+      Eigen::VectorXd r = rhs;
+      fact = ldltSolve(K, r);
+      if (fact.ok) {
+        out.solver = "ldlt";
+        rhs = r;
+      } else {
+        out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
+        K = std::move(Kcopy);
+        choice = SolverChoice::Lu;
+      }
+    }
+    if (choice == SolverChoice::Lu) {
+      fact = luSolve(K, rhs);
+      if (!fact.ok) throw NumericalError("singular system: " + fact.failure);
+      out.solver = "lu";
+    }
+    out.x = rhs.head(n);
+    out.c = rhs.tail(m);
+  }
+
+  clock.lap("solve");
+  out.conditionEstimate = fact.rcond > 0 ? 1.0 / fact.rcond : std::numeric_limits<double>::infinity();
+  if (!out.x.allFinite() || !out.c.allFinite())
+    throw NumericalError("the solution is not finite (solver " + out.solver + ", condition estimate " +
+                         fmt(out.conditionEstimate) + ")");
+  if (out.conditionEstimate > kIllConditionedEstimate)
+    out.warnings.push_back("ill-conditioned system: condition estimate " + fmt(out.conditionEstimate) +
+                           " (" + out.solver + "); expect lost digits in the coefficients");
+  return out;
+}
+
+Eigen::MatrixXd saddleMatrix(const SaddleSystem& system) {
+  Eigen::MatrixXd A = system.A;
+  mirrorLowerToUpper(A);
+  if (!allFinite(A) || !allFinite(system.P))
+    throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
+  return saddleMatrix(A, system.P);
+}
+
+DenseLu::DenseLu(Eigen::MatrixXd K) : lu_(std::move(K)) {
+  if (lu_.rows() != lu_.cols()) throw NumericalError("LU: the matrix is not square");
+  if (!allFinite(lu_)) throw NumericalError("LU: the matrix has non-finite entries");
+  const lapack_int n = toLapack(lu_.rows());
+  pivots_.resize(std::size_t(n));
+  if (n == 0) return;
+  const lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, lu_.data(), n, pivots_.data());
+  if (info != 0)
+    throw NumericalError(info > 0 ? "singular system: LU pivot U(" + std::to_string(info) + "," +
+                                        std::to_string(info) + ") is exactly zero"
+                                  : "LU: invalid argument " + std::to_string(-info));
+}
+
+// The solves run in Eigen, not dgetrs: a drag calls them every frame with a few columns, where
+// LAPACKE's NaN scan of the whole factor (n² per call) and OpenBLAS's worker threads — which
+// then spin in sched_yield for a while, taking a core from the renderer — cost more than the
+// solve (2D drag at N = 200: 27 % of all CPU samples in the scheduler, measured with perf).
+template <class Rhs>
+void solveWithFactors(const Eigen::MatrixXd& lu, const std::vector<int>& pivots, Rhs& rhs) {
+  if (rhs.rows() != lu.rows()) throw NumericalError("LU solve: right-hand side of the wrong size");
+  for (Index k = 0; k < lu.rows(); ++k) {  // the row interchanges of dgetrf, in order (1-based)
+    const Index p = pivots[std::size_t(k)] - 1;
+    if (p != k) rhs.row(k).swap(rhs.row(p));
+  }
+  lu.triangularView<Eigen::UnitLower>().solveInPlace(rhs);
+  lu.triangularView<Eigen::Upper>().solveInPlace(rhs);
+}
+
+void DenseLu::solveInPlace(Eigen::MatrixXd& rhs) const { solveWithFactors(lu_, pivots_, rhs); }
+
+void DenseLu::solveInPlace(Eigen::VectorXd& rhs) const { solveWithFactors(lu_, pivots_, rhs); }
+
+double symmetricInverseNormEstimate(Eigen::Index n, const std::function<void(Eigen::VectorXd&)>& solve) {
+  if (n <= 0) return 0;
+  const int size = toLapack(n);
+  Eigen::VectorXd v(n), x(n);
+  std::vector<int> sign(static_cast<std::size_t>(n));
+  int isave[3] = {0, 0, 0};
+  int kase = 0;
+  double estimate = 0;
+  // kase 1 asks for M⁻¹x, kase 2 for M⁻ᵀx: the same solve for a symmetric M. The estimator
+  // stops by itself after at most 5 iterations.
+  for (;;) {
+    dlacn2_(&size, v.data(), x.data(), sign.data(), &estimate, &kase, isave);
+    if (kase == 0) break;
+    solve(x);
+  }
+  return estimate;
+}
+
+}  // namespace hermite

@@ -1,0 +1,145 @@
+#include "core/rbf/hrbf.h"
+
+#include <chrono>
+#include <string>
+
+#include "core/base/errors.h"
+
+namespace hermite {
+
+std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomial polynomial) {
+  std::vector<std::string> w;
+  const int order = kernel.cpdOrder();
+  if (polynomialDegree(polynomial) < order - 1) {
+    w.push_back("polynomial '" + std::string(polynomialName(polynomial)) + "' is below the order of kernel '" +
+                std::string(kernelName(kernel.type)) + "' (conditionally definite of order " +
+                std::to_string(order) + ": needs degree ≥ " + std::to_string(order - 1) +
+                "); the system is not guaranteed to be solvable");
+  }
+  return w;
+}
+
+int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoothing) {
+  if (smoothing < 0) return 0;
+  if (polynomialDegree(polynomial) < kernel.cpdOrder() - 1) return 0;
+  return kernel.smoothingSign() > 0 ? 1 : -1;
+}
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Kernel& kernel, Polynomial polynomial,
+                              int nSamples, std::chrono::steady_clock::time_point start, FitReport* report) {
+  const Eigen::Index nUnknowns = system.A.rows() + system.P.cols();
+  std::vector<std::string> warnings = polynomialOrderWarnings(kernel, polynomial);
+  const auto tSolve = std::chrono::steady_clock::now();
+  SaddleSolution sol = solveSaddle(std::move(system), solver);
+  warnings.insert(warnings.end(), sol.warnings.begin(), sol.warnings.end());
+  if (report) {
+    report->nSamples = nSamples;
+    report->nUnknowns = static_cast<int>(nUnknowns);
+    report->solver = sol.solver;
+    report->conditionEstimate = sol.conditionEstimate;
+    report->warnings = std::move(warnings);
+    report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - start).count();
+    report->solveMs = msSince(tSolve);
+    report->fitMs = msSince(start);
+  }
+  return sol;
+}
+
+template <int Dim>
+SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options) {
+  const int N = samples.size();
+  if (N < 1) throw InputError("HRBF fit: no samples");
+  if (!(options.smoothing >= 0)) throw InputError("HRBF fit: smoothing must be ≥ 0");
+  const Kernel& kernel = options.kernel;
+  if (kernel.usesRadius() && !(kernel.radius > 0)) throw InputError("HRBF fit: radius must be > 0");
+  constexpr int B = Dim + 1;  // unknowns per centre: α, β (Dim); rows per sample: f, ∇f (Dim)
+  const int m = monomialCount<Dim>(options.polynomial);
+  const Eigen::Index n = Eigen::Index(N) * B;
+
+  SaddleSystem sys;
+  sys.A.resize(n, n);
+  sys.P.resize(n, m);
+  sys.b.setZero(n);
+  sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
+  const double lambda = kernel.smoothingSign() * options.smoothing;
+  const Points<Dim>& p = samples.points;
+
+  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ:
+  // hrbfBlock); solveSaddle mirrors it (writing the transposed blocks here strides across
+  // columns: slower).
+#pragma omp parallel for schedule(dynamic, 8)
+  for (int j = 0; j < N; ++j) {
+    for (int i = j; i < N; ++i)
+      sys.A.template block<B, B>(Eigen::Index(i) * B, Eigen::Index(j) * B) = hrbfBlock<Dim>(kernel, p.col(i) - p.col(j));
+  }
+  if (lambda != 0) sys.A.diagonal().array() += lambda;
+  for (int i = 0; i < N; ++i) {
+    sys.b.template segment<Dim>(Eigen::Index(i) * B + 1) = samples.normals.col(i);
+    if (m > 0) sys.P.middleRows(Eigen::Index(i) * B, B) = hrbfPolynomialRows<Dim>(options.polynomial, p.col(i));
+  }
+  return sys;
+}
+
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Dim + 1> hrbfBlock(const Kernel& kernel, const Vec<Dim>& d) {
+  const RadialTerms t = kernel.terms(d.norm());
+  Eigen::Matrix<double, Dim + 1, Dim + 1> blk;
+  blk(0, 0) = t.phi;
+  blk.template block<1, Dim>(0, 1) = -t.a * d.transpose();
+  blk.template block<Dim, 1>(1, 0) = t.a * d;
+  blk.template block<Dim, Dim>(1, 1) = -(t.a * Mat<Dim>::Identity() + t.e * d * d.transpose());
+  return blk;
+}
+
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p) {
+  const int m = monomialCount<Dim>(polynomial);
+  Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> rows(Dim + 1, m);
+  if (m == 0) return rows;
+  Eigen::VectorXd q(m);
+  Eigen::Matrix<double, Dim, Eigen::Dynamic> gq(Dim, m);
+  monomials<Dim>(polynomial, p, q, gq);
+  rows.row(0) = q.transpose();
+  rows.bottomRows(Dim) = gq;
+  return rows;
+}
+
+template <int Dim>
+HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options, FitReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SaddleSystem sys = assembleHrbf(samples, options);
+  const Kernel& kernel = options.kernel;
+  constexpr int B = Dim + 1;
+  const int N = samples.size();
+  const Points<Dim>& p = samples.points;
+  SaddleSolution sol =
+      solveFitSystem(std::move(sys), options.solver, kernel, options.polynomial, N, t0, report);
+
+  Eigen::VectorXd alpha(N);
+  Points<Dim> beta(Dim, N);
+  for (int j = 0; j < N; ++j) {
+    alpha(j) = sol.x(Eigen::Index(j) * B);
+    beta.col(j) = sol.x.template segment<Dim>(Eigen::Index(j) * B + 1);
+  }
+  HrbfModel<Dim> model(kernel, options.polynomial, p, std::move(alpha), std::move(beta), std::move(sol.c));
+  return model;
+}
+
+template Eigen::Matrix<double, 3, 3> hrbfBlock<2>(const Kernel&, const Vec<2>&);
+template Eigen::Matrix<double, 4, 4> hrbfBlock<3>(const Kernel&, const Vec<3>&);
+template Eigen::Matrix<double, 3, Eigen::Dynamic> hrbfPolynomialRows<2>(Polynomial, const Vec<2>&);
+template Eigen::Matrix<double, 4, Eigen::Dynamic> hrbfPolynomialRows<3>(Polynomial, const Vec<3>&);
+template SaddleSystem assembleHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&);
+template SaddleSystem assembleHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&);
+template HrbfModel<2> fitHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&, FitReport*);
+template HrbfModel<3> fitHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&, FitReport*);
+
+}  // namespace hermite

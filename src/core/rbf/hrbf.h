@@ -1,0 +1,82 @@
+#pragma once
+// Hermite RBF implicit (DESIGN.md §3):
+//   f(x) = Σⱼ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x),   cⱼ = pⱼ,
+// with f(pᵢ) = 0, ∇f(pᵢ) = nᵢ and Σⱼ αⱼ q(pⱼ) + βⱼ·∇q(pⱼ) = 0 for every monomial q.
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "core/points/hermite_samples.h"
+#include "core/rbf/dense_solver.h"
+#include "core/rbf/kernels.h"
+#include "core/rbf/polynomial.h"
+#include "core/rbf/radial_sum.h"
+
+namespace hermite {
+
+struct HrbfOptions {
+  Kernel kernel{KernelType::Cubic, 1.0};
+  Polynomial polynomial = Polynomial::Linear;  // linear: enough for every kernel but polyharmonic
+  double smoothing = 0.0;                      // λ ≥ 0; 0 = interpolation
+  SolverChoice solver = SolverChoice::Auto;    // auto: cheapest path the kernel allows
+};
+
+// What a fit reports besides the model (the `fit --json` keys come from here).
+struct FitReport {
+  int nSamples = 0;
+  int nUnknowns = 0;
+  std::string solver;
+  double conditionEstimate = 0;
+  double fitMs = 0;       // assembly + factorisation + solve, wall clock
+  double assemblyMs = 0;  // building the kernel and polynomial blocks
+  double solveMs = 0;     // factorisation + solve (solveSaddle)
+  std::vector<std::string> warnings;
+};
+
+template <int Dim>
+class HrbfModel : public RadialSum<Dim> {
+ public:
+  HrbfModel() = default;
+  HrbfModel(Kernel kernel, Polynomial polynomial, Points<Dim> centres, Eigen::VectorXd alpha,
+            Points<Dim> beta, Eigen::VectorXd poly)
+      : RadialSum<Dim>(kernel, polynomial, std::move(centres), std::move(alpha), std::move(beta),
+                       std::move(poly)) {}
+};
+
+// The saddle system of the fit (kernel block with smoothing, polynomial block, right-hand side),
+// unknowns ordered per centre as [αⱼ, βⱼ]; for tests, diagnostics and the r explorer.
+template <int Dim>
+SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options);
+
+// The (Dim+1)² block of the HRBF system coupling the conditions at pᵢ (f, then ∇f) with the
+// unknowns of centre pⱼ (α, then β), d = pᵢ − pⱼ (kernels.h: a = φ′/x, e = a′/x):
+//   [ φ      −a dᵀ        ]
+//   [ a d    −(aI + e ddᵀ) ]        symmetric overall: block (j, i) is the transpose
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Dim + 1> hrbfBlock(const Kernel& kernel, const Vec<Dim>& d);
+
+// The Dim + 1 rows of the polynomial block P for the conditions at p: monomial values, then
+// their gradients (Dim + 1 × monomialCount).
+template <int Dim>
+Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p);
+
+// Fits the HRBF to validated samples. Throws NumericalError when no solver path succeeds or the
+// coefficients are not finite; warnings (order, conditioning, fallback) go to the report.
+template <int Dim>
+HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options,
+                       FitReport* report = nullptr);
+
+// The part every fit method shares: solves the assembled system, collects the warnings
+// (polynomial order, solver) and fills `report` (may be null); `start` is when assembly began.
+SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Kernel& kernel, Polynomial polynomial,
+                              int nSamples, std::chrono::steady_clock::time_point start, FitReport* report);
+
+// Warnings every fit shares: polynomial below the kernel's order (DESIGN.md §3).
+std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomial polynomial);
+
+// Definiteness of the kernel block on null(Pᵀ) for the solver, or 0 when unknown
+// (polynomial below the order, or smoothing with the wrong sign).
+int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoothing);
+
+}  // namespace hermite

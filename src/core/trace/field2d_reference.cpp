@@ -1,0 +1,115 @@
+#include "core/trace/field2d_reference.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "core/trace/color_map.h"
+#include "core/trace/shading.h"
+
+namespace hermite {
+
+namespace {
+
+// Anti-aliased coverage of a line of full width w at distance d pixels from its centre line:
+// a 1-pixel linear ramp centred on the edge.
+double coverage(double d, double w) { return std::clamp(0.5 * w + 0.5 - d, 0.0, 1.0); }
+
+Vec<3> toVec(const std::array<double, 3>& a) { return Vec<3>(a[0], a[1], a[2]); }
+
+// Blends `color` into the linear-colour buffer over the pixels within `reach` of the segment a–b
+// (pixel coordinates), with coverage(distance, width).
+void drawSegment(std::vector<Vec<3>>& buffer, int W, int H, const Vec<2>& a, const Vec<2>& b, double width,
+                 const Vec<3>& color) {
+  const double reach = 0.5 * width + 1.0;
+  const int i0 = std::max(0, int(std::floor(std::min(a.x(), b.x()) - reach)));
+  const int i1 = std::min(W - 1, int(std::ceil(std::max(a.x(), b.x()) + reach)));
+  const int j0 = std::max(0, int(std::floor(std::min(a.y(), b.y()) - reach)));
+  const int j1 = std::min(H - 1, int(std::ceil(std::max(a.y(), b.y()) + reach)));
+  const Vec<2> ab = b - a;
+  const double len2 = ab.squaredNorm();
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const Vec<2> p(i + 0.5, j + 0.5);
+      const double s = len2 > 0 ? std::clamp((p - a).dot(ab) / len2, 0.0, 1.0) : 0.0;
+      const double c = coverage((p - (a + s * ab)).norm(), width);
+      if (c > 0) buffer[std::size_t(j) * W + i] = (1 - c) * buffer[std::size_t(j) * W + i] + c * color;
+    }
+}
+
+}  // namespace
+
+Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d& view, const Field2dStyle& style,
+                                    const Points<2>& points, const Points<2>& normals) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int W = view.width(), H = view.height();
+  const std::size_t n = std::size_t(W) * H;
+  Points<2> X(2, Eigen::Index(n));
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) X.col(Eigen::Index(j) * W + i) = view.pixelCenter(i, j);
+  Eigen::VectorXd f;
+  Points<2> G;
+  field.evaluateBatch(X, f, &G);
+
+  Field2dImage out;
+  out.range = style.range;
+  if (!(out.range > 0)) {
+    double m = 0;
+    for (Eigen::Index p = 0; p < f.size(); ++p)
+      if (std::isfinite(f(p))) m = std::max(m, std::abs(f(p)));
+    out.range = m > 0 ? m : 1.0;
+  }
+  out.isoSpacing = style.isoSpacing == 0 ? niceIsoSpacing(out.range) : style.isoSpacing;
+  out.value.resize(n);
+  out.zeroCoverage.resize(n);
+
+  const double px = view.pixelSize();
+  const Vec<3> zeroColor = toVec(kZeroCurveColor);
+  std::vector<Vec<3>> color(n);
+#pragma omp parallel for schedule(static)
+  for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p) {
+    const double v = f(p);
+    const double gradPx = G.col(p).norm() * px;  // change of f per pixel
+    Vec<3> c = divergingColor(v, out.range);
+    if (out.isoSpacing > 0) {
+      const double k = std::round(v / out.isoSpacing);
+      if (k != 0) {
+        const double d = gradPx > 0 ? std::abs(v - k * out.isoSpacing) / gradPx : std::numeric_limits<double>::infinity();
+        const double cov = coverage(d, style.isoWidthPx);
+        c = (1 - cov) * c + cov * (kIsoLineDarken * c);
+      }
+    }
+    const double d0 = v == 0 ? 0.0 : gradPx > 0 ? std::abs(v) / gradPx : std::numeric_limits<double>::infinity();
+    const double cov0 = coverage(d0, style.zeroWidthPx);
+    c = (1 - cov0) * c + cov0 * zeroColor;
+    color[p] = c;
+    out.value[p] = float(v);
+    out.zeroCoverage[p] = float(cov0);
+  }
+
+  const bool withNormals = normals.cols() == points.cols();
+  if (withNormals && style.normalLengthPx > 0)
+    for (Eigen::Index s = 0; s < points.cols(); ++s) {
+      const Vec<2> a = view.worldToPixel(points.col(s));
+      const Vec<2> nrm = normals.col(s).normalized();
+      const Vec<2> b = a + style.normalLengthPx * Vec<2>(nrm.x(), -nrm.y());  // rows grow downwards
+      drawSegment(color, W, H, a, b, 1.5, toVec(style.normalColor));
+    }
+  if (style.pointRadiusPx > 0)
+    for (Eigen::Index s = 0; s < points.cols(); ++s) {
+      const Vec<2> a = view.worldToPixel(points.col(s));
+      drawSegment(color, W, H, a, a, 2.0 * style.pointRadiusPx, toVec(style.pointColor));
+    }
+
+  out.image = ImageRgba8(W, H);
+  for (std::size_t p = 0; p < n; ++p) {
+    std::uint8_t* o = out.image.pixels.data() + 4 * p;
+    for (int k = 0; k < 3; ++k) o[k] = shading::toByte(color[p](k));
+    o[3] = 255;
+  }
+  out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+  return out;
+}
+
+}  // namespace hermite

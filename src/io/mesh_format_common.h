@@ -1,0 +1,72 @@
+#pragma once
+// Pieces shared by the mesh and point-set readers (io_off, io_obj, io_ply, io_gltf): reading a
+// whole file into memory, rejecting text that is not ASCII / UTF-8, parsing numbers without
+// locale or allocation, and the checks every reader's result must pass. Every error is an
+// InputError whose message starts with the file name.
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "core/mesh/tri_mesh.h"
+
+namespace hermite {
+
+// The whole file in one read. InputError when it cannot be opened or read, is a directory, or
+// is empty (`what` names the format in that message, e.g. "PLY").
+std::string readFileBytes(const std::string& path, std::string_view what);
+
+// InputError when `bytes` look like UTF-16 or UTF-32 text (a byte-order mark, or NUL bytes in
+// the first kilobyte) instead of ASCII / UTF-8, which is all the text formats accept. `what`
+// names the text in the message: "OBJ files", "a PLY header".
+void requireSingleByteText(std::string_view bytes, const std::string& path, std::string_view what);
+
+// Strict number parsing of one whole token (no leading '+' except before a digit or '.', no
+// trailing characters). Return false when the token is not of that form; a double may be
+// non-finite ("nan", "inf") — the caller decides whether that is allowed.
+bool parseDouble(std::string_view token, double& value);
+bool parseInteger(std::string_view token, std::int64_t& value);
+
+// The lines of a text, one at a time: a UTF-8 byte-order mark at the start and a trailing '\r'
+// (CRLF files) are dropped. No copies; the views point into the text.
+class TextLines {
+ public:
+  explicit TextLines(std::string_view text, std::size_t start = 0);
+  // False at the end of the text; otherwise `line` is the next line (without its '\n').
+  bool next(std::string_view& line);
+  // 1-based number of the line `next` returned last (counting from `start`'s line as 1).
+  long number() const { return number_; }
+  // Byte offset just past the line `next` returned last (its '\n' included).
+  std::size_t offset() const { return pos_; }
+
+ private:
+  std::string_view text_;
+  std::size_t pos_;
+  long number_ = 0;
+};
+
+// The blank-separated tokens of one line (blanks: space, tab, '\r', '\v', '\f').
+class Tokens {
+ public:
+  explicit Tokens(std::string_view line) : line_(line) {}
+  bool next(std::string_view& token);
+  // Everything not yet consumed.
+  std::string_view rest() const { return line_.substr(pos_); }
+
+ private:
+  std::string_view line_;
+  std::size_t pos_ = 0;
+};
+
+bool isBlankChar(char c);
+
+// Checks and completes what every reader returns, so a caller can rely on it:
+//  - every vertex coordinate finite ("vertex I has a non-finite coordinate");
+//  - every triangle index in [0, V) ("triangle T refers to vertex I, but there are V vertices");
+//  - normals: 3 × V or 3 × 0; each finite and non-zero, then normalised to unit length.
+void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path);
+
+// Largest element count a reader accepts in one file (TriMesh indexes with int).
+constexpr std::int64_t kMaxMeshElements = 2'000'000'000;
+
+}  // namespace hermite

@@ -1,0 +1,168 @@
+#include "io/obj_file.h"
+
+#define TINYOBJLOADER_USE_DOUBLE
+#include <tiny_obj_loader.h>
+
+#include <charconv>
+#include <cmath>
+#include <vector>
+
+#include "core/base/errors.h"
+#include "io/mesh_format_common.h"
+
+namespace hermite {
+
+namespace {
+
+// tinyobjloader reads a malformed number as 0 and a missing coordinate as 0 without a word, and
+// its own number parser is not correctly rounded: parse every `v` and `vn` line ourselves first
+// (from_chars, exact), with line numbers in the errors. x y z of each line go to `vertices` /
+// `normals`.
+void parseVertexLines(std::string_view bytes, const std::string& path, std::vector<double>& vertices,
+                      std::vector<double>& normals) {
+  TextLines lines(bytes);
+  std::string_view line, token;
+  while (lines.next(line)) {
+    Tokens tokens(line);
+    if (!tokens.next(token) || (token != "v" && token != "vn")) continue;
+    const bool normal = token == "vn";
+    for (int c = 0; c < 3; ++c) {
+      double value = 0;
+      const auto where = [&] { return path + ":" + std::to_string(lines.number()) + ": "; };
+      if (!tokens.next(token))
+        throw InputError(where() + "'" + (normal ? "vn" : "v") + "' has " + std::to_string(c) +
+                         " numbers, expected 3 (" + (normal ? "nx ny nz" : "x y z") + ")");
+      if (!parseDouble(token, value))
+        throw InputError(where() + "'" + std::string(token) + "' is not a number");
+      if (!std::isfinite(value))
+        throw InputError(where() + "'" + std::string(token) + "' is not a finite number");
+      (normal ? normals : vertices).push_back(value);
+    }
+  }
+}
+
+}  // namespace
+
+TriMesh readObj(std::string_view bytes, const std::string& path) {
+  requireSingleByteText(bytes, path, "OBJ files");
+  std::vector<double> vertexValues, normalValues;
+  parseVertexLines(bytes, path, vertexValues, normalValues);
+
+  tinyobj::ObjReaderConfig config;
+  config.triangulate = false;  // fan-triangulated below, with our own index checks
+  config.vertex_color = false;
+  tinyobj::ObjReader reader;
+  // The material text is empty: an `mtllib` line reads nothing from disk.
+  if (!reader.ParseFromString(std::string(bytes), std::string(), config)) {
+    std::string message = reader.Error();
+    while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
+    throw InputError(path + ": not a valid OBJ file (" + (message.empty() ? "unknown parse error" : message) + ")");
+  }
+  const tinyobj::attrib_t& attrib = reader.GetAttrib();
+  const Eigen::Index vertexCount = static_cast<Eigen::Index>(attrib.vertices.size() / 3);
+  const Eigen::Index normalCount = static_cast<Eigen::Index>(attrib.normals.size() / 3);
+  if (vertexCount == 0) throw InputError(path + ": no vertices ('v' lines)");
+
+  // Our exactly rounded values where both parsers saw the same lines (they always should).
+  const std::vector<double>& vertexData = vertexValues.size() == attrib.vertices.size() ? vertexValues : attrib.vertices;
+  const std::vector<double>& normalData = normalValues.size() == attrib.normals.size() ? normalValues : attrib.normals;
+
+  TriMesh mesh;
+  mesh.vertices = Eigen::Map<const Eigen::Matrix3Xd>(vertexData.data(), 3, vertexCount);
+
+  std::vector<int> corners;
+  Eigen::Matrix3Xd normalSums = Eigen::Matrix3Xd::Zero(3, normalCount > 0 ? vertexCount : 0);
+  bool everyCornerHasNormal = normalCount > 0;
+  std::size_t faceNumber = 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    std::size_t next = 0;
+    for (const auto sides : shape.mesh.num_face_vertices) {
+      const std::size_t n = sides;
+      if (n < 3)
+        throw InputError(path + ": face " + std::to_string(faceNumber) + " has " + std::to_string(n) +
+                         " vertices; a face needs at least 3");
+      if (next + n > indices.size())
+        throw InputError(path + ": face " + std::to_string(faceNumber) + " has fewer indices than vertices");
+      for (std::size_t k = 0; k < n; ++k) {
+        const tinyobj::index_t& corner = indices[next + k];
+        if (corner.vertex_index < 0 || corner.vertex_index >= vertexCount)
+          throw InputError(path + ": face " + std::to_string(faceNumber) + " refers to vertex " +
+                           std::to_string(corner.vertex_index + 1) + ", but there are " +
+                           std::to_string(vertexCount) + " 'v' lines");
+        if (corner.normal_index < 0) {
+          everyCornerHasNormal = false;
+        } else if (corner.normal_index >= normalCount) {
+          throw InputError(path + ": face " + std::to_string(faceNumber) + " refers to normal " +
+                           std::to_string(corner.normal_index + 1) + ", but there are " +
+                           std::to_string(normalCount) + " 'vn' lines");
+        } else if (everyCornerHasNormal) {
+          normalSums.col(corner.vertex_index) +=
+              Eigen::Map<const Eigen::Vector3d>(normalData.data() + 3 * corner.normal_index);
+        }
+        if (k >= 2)
+          corners.insert(corners.end(), {indices[next].vertex_index, indices[next + k - 1].vertex_index,
+                                         corner.vertex_index});
+      }
+      next += n;
+      ++faceNumber;
+    }
+  }
+  mesh.triangles = Eigen::Map<const Eigen::Matrix3Xi>(corners.data(), 3, static_cast<Eigen::Index>(corners.size() / 3));
+
+  if (faceNumber == 0) {
+    // An oriented point set: the i-th vn is the normal of the i-th v.
+    if (normalCount > 0 && normalCount != vertexCount)
+      throw InputError(path + ": " + std::to_string(vertexCount) + " 'v' lines but " + std::to_string(normalCount) +
+                       " 'vn' lines; without faces, each point needs exactly one normal");
+    if (normalCount > 0) mesh.normals = Eigen::Map<const Eigen::Matrix3Xd>(normalData.data(), 3, normalCount);
+  } else if (everyCornerHasNormal) {
+    // Vertices no face uses keep a zero sum: give the mesh normals only when every vertex has one.
+    bool complete = true;
+    for (Eigen::Index i = 0; i < vertexCount && complete; ++i) complete = normalSums.col(i).cwiseAbs().maxCoeff() > 0;
+    if (complete) mesh.normals = std::move(normalSums);
+  }
+  checkAndNormalizeMesh(mesh, path);
+  return mesh;
+}
+
+std::string writeObj(const TriMesh& mesh) {
+  std::string out = "# written by Hermite Lab\n";
+  out.reserve(out.size() + static_cast<std::size_t>(mesh.vertexCount()) * (mesh.hasNormals() ? 140 : 70) +
+              static_cast<std::size_t>(mesh.triangleCount()) * 40);
+  char line[256];
+  // Shortest text that reads back to the same double.
+  auto appendRow = [&](const char* tag, const auto& column) {
+    char* p = line;
+    for (const char* t = tag; *t; ++t) *p++ = *t;
+    for (int c = 0; c < 3; ++c) {
+      *p++ = ' ';
+      p = std::to_chars(p, line + sizeof(line), column(c)).ptr;
+    }
+    *p++ = '\n';
+    out.append(line, static_cast<std::size_t>(p - line));
+  };
+  for (int i = 0; i < mesh.vertexCount(); ++i) appendRow("v", mesh.vertices.col(i));
+  const bool normals = mesh.hasNormals();
+  if (normals)
+    for (int i = 0; i < mesh.vertexCount(); ++i) appendRow("vn", mesh.normals.col(i));
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    char* p = line;
+    *p++ = 'f';
+    for (int k = 0; k < 3; ++k) {
+      const int index = mesh.triangles(k, t) + 1;
+      *p++ = ' ';
+      p = std::to_chars(p, line + sizeof(line), index).ptr;
+      if (normals) {
+        *p++ = '/';
+        *p++ = '/';
+        p = std::to_chars(p, line + sizeof(line), index).ptr;
+      }
+    }
+    *p++ = '\n';
+    out.append(line, static_cast<std::size_t>(p - line));
+  }
+  return out;
+}
+
+}  // namespace hermite

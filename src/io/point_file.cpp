@@ -1,0 +1,265 @@
+#include "io/point_file.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+
+#include "core/base/errors.h"
+#include "core/points/normal_estimation.h"
+#include "io/atomic_file.h"
+#include "io/mesh_file.h"
+
+namespace hermite {
+
+namespace {
+
+// The whole file in memory: one read, then a pointer walk over the lines.
+std::string readWholeFile(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open (it is a directory)");
+  std::FILE* f = std::fopen(path.c_str(), "rb");
+  if (!f) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
+  std::string text;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (!ec) text.reserve(static_cast<std::size_t>(size));
+  char chunk[1 << 16];
+  std::size_t got;
+  while ((got = std::fread(chunk, 1, sizeof(chunk), f)) > 0) text.append(chunk, got);
+  const bool failed = std::ferror(f) != 0;
+  const int error = errno;
+  std::fclose(f);
+  if (failed) throw InputError(path + ": cannot read (" + std::strerror(error) + ")");
+  return text;
+}
+
+// Iterates over the data lines of a text file: skips a UTF-8 byte-order mark, blank lines and
+// lines whose first non-blank character is '#'; strips a trailing '\r' (CRLF files).
+class LineReader {
+ public:
+  explicit LineReader(const std::string& text) : p_(text.data()), end_(text.data() + text.size()) {
+    if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;
+  }
+
+  // False at the end of the text; otherwise `line` holds the next data line and `number` its
+  // 1-based line number in the file.
+  bool next(std::string_view& line, long& number) {
+    while (p_ < end_) {
+      const char* eol = static_cast<const char*>(std::memchr(p_, '\n', static_cast<std::size_t>(end_ - p_)));
+      if (!eol) eol = end_;
+      const char* b = p_;
+      const char* e = eol;
+      p_ = eol < end_ ? eol + 1 : end_;
+      ++lineNumber_;
+      while (b < e && (*b == ' ' || *b == '\t')) ++b;
+      while (e > b && (e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t')) --e;
+      if (b == e || *b == '#') continue;
+      line = std::string_view(b, static_cast<std::size_t>(e - b));
+      number = lineNumber_;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  const char* p_;
+  const char* end_;
+  long lineNumber_ = 0;
+};
+
+bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+
+// Parses the blank-separated numbers of one line into `values` (at most `capacity` are stored)
+// and returns how many there are. A token that is not a finite number throws "path:LINE: ...".
+int parseNumbers(std::string_view line, double* values, int capacity, const std::string& path, long lineNumber) {
+  int count = 0;
+  const char* p = line.data();
+  const char* end = p + line.size();
+  while (true) {
+    while (p < end && isBlank(*p)) ++p;
+    if (p == end) break;
+    const char* tokenBegin = p;
+    while (p < end && !isBlank(*p)) ++p;
+    const std::string_view token(tokenBegin, static_cast<std::size_t>(p - tokenBegin));
+    auto where = [&] { return path + ":" + std::to_string(lineNumber) + ": "; };
+
+    const char* b = token.data();
+    const char* e = b + token.size();
+    if (*b == '+' && e - b > 1 && (std::isdigit(static_cast<unsigned char>(b[1])) || b[1] == '.')) ++b;
+    double v = 0;
+    const auto r = std::from_chars(b, e, v);
+    if (r.ec == std::errc::invalid_argument || r.ptr != e)
+      throw InputError(where() + "'" + std::string(token) + "' is not a number");
+    if (r.ec == std::errc::result_out_of_range) {
+      // from_chars reports both overflow and underflow; strtod tells them apart (underflow → 0).
+      const std::string copy(b, e);
+      v = std::strtod(copy.c_str(), nullptr);
+    }
+    if (!std::isfinite(v))
+      throw InputError(where() + "'" + std::string(token) + "' is not a finite number");
+    if (count < capacity) values[count] = v;
+    ++count;
+  }
+  return count;
+}
+
+std::string columnNames(int dim, bool withNormals) {
+  if (dim == 2) return withNormals ? "x y nx ny" : "x y";
+  return withNormals ? "x y z nx ny nz" : "x y z";
+}
+
+template <int Dim>
+HermiteSamples<Dim> readSamples(const std::string& path, std::vector<std::string>& warnings) {
+  const std::string text = readWholeFile(path);
+  constexpr int kColumns = 2 * Dim;
+  // Dim × N column-major: coordinates of consecutive samples are consecutive.
+  std::vector<double> points, normals;
+  const std::size_t estimatedLines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
+  points.reserve(estimatedLines * Dim);
+  normals.reserve(estimatedLines * Dim);
+
+  LineReader lines(text);
+  std::string_view line;
+  long lineNumber = 0;
+  double values[kColumns];
+  // The first data line decides: 2·Dim columns (points and normals) or Dim (positions only:
+  // normals are estimated below). Every other line must have the same columns.
+  int columns = 0;
+  long firstLine = 0;
+  while (lines.next(line, lineNumber)) {
+    const int count = parseNumbers(line, values, kColumns, path, lineNumber);
+    if (columns == 0 && (count == kColumns || count == Dim)) {
+      columns = count;
+      firstLine = lineNumber;
+    }
+    if (count != columns || columns == 0) {
+      const bool withNormals = columns != Dim;
+      throw InputError(path + ":" + std::to_string(lineNumber) + ": expected " +
+                       std::to_string(withNormals ? kColumns : Dim) + " numbers (" + columnNames(Dim, withNormals) +
+                       ")" + (columns != Dim ? std::string() : " like line " + std::to_string(firstLine)) + ", got " +
+                       std::to_string(count));
+    }
+    points.insert(points.end(), values, values + Dim);
+    if (columns == kColumns) normals.insert(normals.end(), values + Dim, values + kColumns);
+  }
+  if (points.empty()) throw InputError(path + ": no points");
+  if (columns == Dim) {
+    const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
+    if (count < 2) throw InputError(path + ": has no normals and a single point; normals cannot be estimated");
+    const Points<Dim> P = Eigen::Map<const Points<Dim>>(points.data(), Dim, count);
+    NormalEstimationOptions estimation;
+    const Points<Dim> N = estimateNormals<Dim>(P, estimation);
+    normals.assign(N.data(), N.data() + N.size());
+    warnings.push_back(path + ": has no normals (" + std::to_string(Dim) +
+                       " columns): normals estimated by PCA over " + std::to_string(estimation.neighbours) +
+                       " nearest neighbours and oriented by propagation over a minimum spanning tree, "
+                       "outward from each component's centroid; check their direction (flip if inside out)");
+  }
+
+  HermiteSamples<Dim> samples;
+  const Eigen::Index n = static_cast<Eigen::Index>(points.size() / Dim);
+  samples.points = Eigen::Map<const Points<Dim>>(points.data(), Dim, n);
+  samples.normals = Eigen::Map<const Points<Dim>>(normals.data(), Dim, n);
+  validateSamples(samples, warnings, path);
+  return samples;
+}
+
+template <int Dim>
+HermiteSamples<Dim> loadSamples(const std::string& path, std::vector<std::string>& warnings) {
+  const int fileDim = pointFileDimension(path);
+  if (fileDim != Dim)
+    throw InputError(path + ": a " + std::to_string(fileDim) + "D point file (" + lowercaseExtension(path) +
+                     ") cannot be used in a " + std::to_string(Dim) + "D scene; use " +
+                     (Dim == 2 ? ".xyn (x y nx ny)" : ".xyz, .pwn or .xyzn (x y z nx ny nz)"));
+  return readSamples<Dim>(path, warnings);
+}
+
+template <int Dim>
+Points<Dim> readProbes(const std::string& path) {
+  const std::string text = readWholeFile(path);
+  std::vector<double> coords;
+  coords.reserve((static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1) * Dim);
+  LineReader lines(text);
+  std::string_view line;
+  long lineNumber = 0;
+  double values[Dim];
+  while (lines.next(line, lineNumber)) {
+    const int count = parseNumbers(line, values, Dim, path, lineNumber);
+    if (count != Dim)
+      throw InputError(path + ":" + std::to_string(lineNumber) + ": expected " + std::to_string(Dim) +
+                       " numbers (" + columnNames(Dim, false) + "), got " + std::to_string(count));
+    coords.insert(coords.end(), values, values + Dim);
+  }
+  if (coords.empty()) throw InputError(path + ": no points");
+  return Eigen::Map<const Points<Dim>>(coords.data(), Dim, static_cast<Eigen::Index>(coords.size() / Dim));
+}
+
+template <int Dim>
+void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
+  if (samples.points.cols() != samples.normals.cols())
+    throw InputError(path + ": cannot save " + std::to_string(samples.points.cols()) + " points with " +
+                     std::to_string(samples.normals.cols()) + " normals");
+  AtomicFileWriter writer(path);
+  // Shortest representation that reads back to the same double (as exact as %.17g, shorter).
+  char line[2 * Dim * 32];
+  for (Eigen::Index i = 0; i < samples.points.cols(); ++i) {
+    char* p = line;
+    for (int c = 0; c < 2 * Dim; ++c) {
+      const double v = c < Dim ? samples.points(c, i) : samples.normals(c - Dim, i);
+      if (c > 0) *p++ = ' ';
+      p = std::to_chars(p, line + sizeof(line), v).ptr;
+    }
+    *p++ = '\n';
+    writer.write(std::string_view(line, static_cast<std::size_t>(p - line)));
+  }
+  writer.commit();
+}
+
+// The vertices and vertex normals of a mesh or point-set file (.ply, .obj, .gltf, .glb, .off),
+// faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF.
+HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings) {
+  TriMesh mesh = loadMeshFile(path);
+  if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
+  if (!mesh.hasNormals())
+    throw InputError(path + ": has no normals (positions only); normal estimation is not available yet — give "
+                            "per-vertex normals (PLY nx ny nz, OBJ vn, glTF NORMAL)");
+  HermiteSamples<3> samples;
+  samples.points = std::move(mesh.vertices);
+  samples.normals = std::move(mesh.normals);
+  validateSamples(samples, warnings, path);
+  return samples;
+}
+
+}  // namespace
+
+int pointFileDimension(const std::string& path) {
+  const std::string ext = lowercaseExtension(path);
+  if (ext == ".xyz" || ext == ".pwn" || ext == ".xyzn") return 3;
+  if (ext == ".xyn") return 2;
+  if (isMeshFileExtension(path)) return 3;
+  throw InputError(path + ": unsupported point file extension '" + ext +
+                   "' (supported: .xyz, .pwn, .xyzn with x y z nx ny nz per line; .xyn with x y nx ny; .ply, .obj, "
+                   ".gltf, .glb, .off with vertex normals)");
+}
+
+HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings) {
+  return loadSamples<2>(path, warnings);
+}
+
+HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings) {
+  if (isMeshFileExtension(path)) return readMeshFileSamples(path, warnings);
+  return loadSamples<3>(path, warnings);
+}
+
+Points<2> loadProbePoints2d(const std::string& path) { return readProbes<2>(path); }
+Points<3> loadProbePoints3d(const std::string& path) { return readProbes<3>(path); }
+
+void savePointFile(const std::string& path, const HermiteSamples<3>& samples) { writeSamples<3>(path, samples); }
+void savePointFile(const std::string& path, const HermiteSamples<2>& samples) { writeSamples<2>(path, samples); }
+
+}  // namespace hermite

@@ -1,0 +1,35 @@
+#pragma once
+// Oriented point files (DESIGN.md §4):
+//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated,
+//                         normal_estimation.h, with a warning)
+//   .xyn                  2D: x y nx ny per line (2 columns = no normals: estimated too)
+//   .ply .obj .gltf .glb .off  3D: the vertices and vertex normals of a mesh or point-set file
+//                         (PLY nx ny nz, OBJ v + vn, glTF POINTS/TRIANGLES with NORMAL, NOFF),
+//                         read by mesh_io; faces are ignored; no normals is an error for now.
+// Blank lines and lines starting with '#' are skipped. A malformed line is an InputError
+// "FILE:LINE: ..." saying what was expected.
+
+#include <string>
+#include <vector>
+
+#include "core/points/hermite_samples.h"
+
+namespace hermite {
+
+// Dimension a point file's extension implies (2 for .xyn, 3 otherwise); InputError for an
+// unknown extension, listing the supported ones.
+int pointFileDimension(const std::string& path);
+
+// Loads and validates (validateSamples) a point file; warnings are appended.
+HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings);
+HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings);
+
+// Reads probe points for `eval --at FILE`: Dim numbers per line (extra columns are an error).
+Points<2> loadProbePoints2d(const std::string& path);
+Points<3> loadProbePoints3d(const std::string& path);
+
+// Writes samples as .xyzn / .xyn (temporary + rename).
+void savePointFile(const std::string& path, const HermiteSamples<3>& samples);
+void savePointFile(const std::string& path, const HermiteSamples<2>& samples);
+
+}  // namespace hermite

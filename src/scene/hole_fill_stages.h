@@ -1,0 +1,47 @@
+#pragma once
+// The hole-filling pipeline stopped at a chosen stage, for the GUI's `holefill` mode and its
+// headless renders (issue 8 §3: each stage visible on its own): the input mesh, its holes, and
+// per hole the patch as that stage leaves it, plus the ring samples the implicit was fitted to.
+// Built-in holed meshes (`holefill.preset`) let a class start without a file.
+
+#include <string>
+#include <vector>
+
+#include "core/mesh/hole_fill.h"
+
+namespace hermite {
+
+std::string_view holeFillStageName(HoleFillStage s);  // holes, front, fair, fit, project
+
+struct HoleFillSpec {
+  std::string mesh;           // a mesh file as written in the scene ("" = the preset)
+  std::string resolvedMesh;   // resolved against the scene file's directory
+  std::string preset = "torus";  // torus | sphere: built-in meshes with holes cut
+  HoleFillStage stage = HoleFillStage::Project;
+  HoleImplicitKind implicit = HoleImplicitKind::RbfOffset;
+  int rings = 2;
+  bool operator==(const HoleFillSpec&) const = default;
+};
+
+const std::vector<std::pair<std::string, std::string>>& holeFillPresets();
+// The preset's closed surface with holes cut (InputError for an unknown name).
+TriMesh holeFillPresetMesh(const std::string& name);
+
+struct HoleFillStageHole : HoleOutcome {
+  BoundaryLoop loop;
+};
+
+struct HoleFillStages {
+  TriMesh input;
+  std::vector<HoleFillStageHole> holes;
+  TriMesh result;            // input + every patch at the stage (for export)
+  int trianglesAdded = 0;
+  int unconverged = 0;
+  double maxAbsF = 0;        // after projection
+  double ms = 0;
+};
+
+// Runs the pipeline up to `spec.stage` on `mesh` (the spec's file or preset when null).
+HoleFillStages runHoleFillStages(const HoleFillSpec& spec);
+
+}  // namespace hermite

@@ -1,0 +1,82 @@
+#pragma once
+// From a parsed Scene to a fitted field: the samples the scene names (preset, file or inline),
+// the fit it asks for (HRBF or RBF-offset), and its `transform` (DESIGN.md §4).
+//
+// The transformed model is the interpolant of the transformed data (points Tpᵢ, normals Rnᵢ,
+// radius q·r, shift q·δ), which equals q·f(T⁻¹x) (DESIGN.md §3): obtained by coefficient
+// updates (transform.h) and checked against a re-solve; where the update is not exact (λ ≠ 0,
+// polynomial below the kernel's order) the re-solve is used, with a warning.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/base/affine_field.h"
+#include "core/pu/pu_model.h"
+#include "core/rbf/hrbf.h"
+#include "core/rbf/rbf_offset.h"
+#include "core/rbf/similarity_transform.h"
+#include "scene/scene_file.h"
+
+namespace hermite {
+
+// The samples of a scene, validated; warnings (merged duplicates, ...) are appended.
+template <int Dim>
+HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& warnings);
+
+// The similarity x ↦ scale·R·x + translate of a scene's `transform` key (3D: axis-angle in
+// degrees, right-hand rule; 2D: counter-clockwise degrees).
+template <int Dim>
+Similarity<Dim> sceneSimilarity(const TransformSpec& spec);
+
+// The `transform` object of `fit --json` (DESIGN.md §5).
+struct TransformReport {
+  double updateMs = 0;     // coefficient update
+  double resolveMs = 0;    // re-solve on the transformed data
+  double maxAbsDf = 0;     // max |f_update − f_resolve| over probe points
+  double maxGradDiff = 0;  // max ‖∇f_update − ∇f_resolve‖
+  int probes = 0;
+  bool exact = true;       // the update is the re-solved fit (else the re-solve is used)
+  std::string method;      // "coefficient-update" or "re-solve"
+};
+
+template <int Dim>
+struct SceneFit {
+  HermiteSamples<Dim> samples;             // the scene's data, before the transform
+  HermiteSamples<Dim> data;                // what the model interpolates: samples, transformed if asked
+  std::unique_ptr<RadialSum<Dim>> model;   // the fitted (and transformed) global field; null for PU
+  std::unique_ptr<PuModel<Dim>> pu;        // the partition-of-unity field when fit.partition.enabled
+  PuReport puReport;                       // of the PU fit on the untransformed data
+  FitReport report;                        // of the fit on the untransformed data
+  std::vector<std::string> warnings;       // data + fit warnings, in order
+  bool transformed = false;
+  TransformReport transform;
+
+  // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
+  // transform.matrix outside the similarities: the exact composition f(T⁻¹x) of the fitted field
+  // (model or pu stay the untransformed fit it wraps).
+  std::unique_ptr<ImplicitField<Dim>> composed;
+  const ImplicitField<Dim>& field() const {
+    if (composed) return *composed;
+    if (pu) return *pu;
+    return *model;
+  }
+};
+
+// Residuals of a fitted scene against the data it interpolates (SceneFit::data).
+struct FitResiduals {
+  double maxAbsF = 0;       // max |f(pᵢ)|
+  double maxGradError = 0;  // max ‖∇f(pᵢ) − nᵢ‖
+};
+template <int Dim>
+FitResiduals fitResiduals(const SceneFit<Dim>& fit);
+
+// The PU options of a scene's `fit` (kernel, polynomial, smoothing, solver, `fit.partition`).
+PuOptions scenePuOptions(const FitSpec& fit);
+
+// Throws InputError for scene settings that cannot be fitted (wrong mode, partition of unity
+// with a method other than hrbf) and NumericalError from the solver.
+template <int Dim>
+SceneFit<Dim> fitScene(const Scene& scene);
+
+}  // namespace hermite

@@ -1,0 +1,152 @@
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "core/mesh/marching_cubes.h"
+#include "core/mesh/tri_mesh.h"
+#include "core/shapes/analytic_shapes.h"
+#include "io/mesh_file.h"
+#include "support/cli_runner.h"
+#include "support/mesh_test_shapes.h"
+
+using hermite::testing::readAll;
+using hermite::testing::runCli;
+using hermite::testing::writeTemp;
+using json = nlohmann::json;
+
+namespace {
+
+const char* kTorusScene =
+    R"({"version": 1, "mode": "implicit3d", "data": {"preset": "torus", "count": 150},
+        "fit": {"kernel": "cubic", "radius": 1.0, "polynomial": "linear"}})";
+const char* kCurveScene =
+    R"({"version": 1, "mode": "implicit2d", "data": {"preset": "curve2d", "count": 40},
+        "fit": {"kernel": "cubic", "radius": 1.0, "polynomial": "linear"}})";
+
+std::string tempPath(const std::string& name) { return writeTemp(name, ""); }
+
+}  // namespace
+
+TEST_CASE("mesh: a 3D scene becomes a closed manifold in every output format") {
+  const std::string scene = writeTemp("mesh_torus.json", kTorusScene);
+  for (const char* ext : {"obj", "ply", "glb", "gltf"}) {
+    CAPTURE(ext);
+    const std::string out = tempPath(std::string("torus_mesh.") + ext);
+    std::filesystem::remove(out);
+    const auto r = runCli("mesh " + scene + " -o " + out + " --resolution 40");
+    REQUIRE(r.rc == 0);
+    CHECK(r.out.find("closed manifold") != std::string::npos);
+    const hermite::TriMesh mesh = hermite::loadMesh(out);
+    const hermite::MeshCheck c = hermite::checkMesh(mesh);
+    CHECK(c.closedManifold());
+    CHECK(c.eulerCharacteristic == 0);  // the torus preset
+    CHECK(hermite::signedVolume(mesh) > 0);
+  }
+}
+
+TEST_CASE("mesh: a 2D scene becomes closed polylines, OBJ `l` elements or SVG paths") {
+  const std::string scene = writeTemp("mesh_curve.json", kCurveScene);
+  const std::string obj = tempPath("curve.obj"), svg = tempPath("curve.svg");
+  auto r = runCli("mesh " + scene + " -o " + obj + " --resolution 80");
+  REQUIRE(r.rc == 0);
+  std::istringstream in(readAll(obj));
+  std::string line;
+  int vertices = 0, lines = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("v ", 0) == 0) ++vertices;
+    if (line.rfind("l ", 0) == 0) {
+      ++lines;
+      // Closed: the element returns to its first vertex.
+      std::istringstream ids(line.substr(2));
+      std::vector<long> v;
+      for (long id; ids >> id;) v.push_back(id);
+      REQUIRE(v.size() >= 4);
+      CHECK(v.front() == v.back());
+      for (long id : v) CHECK((id >= 1 && id <= vertices));
+    }
+  }
+  CHECK(vertices > 20);
+  CHECK(lines >= 1);
+  r = runCli("mesh " + scene + " -o " + svg + " --resolution 80");
+  REQUIRE(r.rc == 0);
+  const std::string text = readAll(svg);
+  CHECK(text.rfind("<svg", 0) == 0);
+  CHECK(text.find("<path d=\"M") != std::string::npos);
+  CHECK(text.find("Z\"/>") != std::string::npos);
+}
+
+TEST_CASE("mesh: unknown extension is a usage error, an unwritable output exit 4, an old file survives") {
+  const std::string scene = writeTemp("mesh_err.json", kTorusScene);
+  auto r = runCli("mesh " + scene + " -o " + tempPath("out.stl"));
+  CHECK(r.rc == 2);
+  CHECK(r.err.find(".stl") != std::string::npos);
+  CHECK(r.err.find(".glb") != std::string::npos);
+  r = runCli("mesh " + writeTemp("mesh_err2d.json", kCurveScene) + " -o " + tempPath("out2d.ply"));
+  CHECK(r.rc == 2);  // 2D scenes write .obj or .svg
+  r = runCli("mesh " + scene + " -o /nonexistent-dir/out.obj");
+  CHECK(r.rc == 4);
+  CHECK(r.err.find("/nonexistent-dir") != std::string::npos);
+  const std::string dir = tempPath("placeholder") + "_dir.obj";
+  std::filesystem::create_directories(dir);
+  r = runCli("mesh " + scene + " -o " + dir);
+  CHECK(r.rc == 4);
+  // A failing command leaves an existing output as it was.
+  const std::string keep = writeTemp("keep.obj", "old contents\n");
+  r = runCli("mesh " + scene + " -o " + keep + " --set fit.radius=-1");
+  CHECK(r.rc == 1);
+  CHECK(readAll(keep) == "old contents\n");
+  r = runCli("mesh " + scene);  // -o is required
+  CHECK(r.rc == 2);
+  r = runCli("mesh " + scene + " -o " + tempPath("res.obj") + " --resolution 0");
+  CHECK(r.rc == 2);
+}
+
+TEST_CASE("holefill: fills the holes of a mesh file and reports the DESIGN.md §5 keys") {
+  const hermite::SphereField sphere;
+  hermite::Box<3> box;
+  box.lo = hermite::Vec<3>::Constant(-1.3);
+  box.hi = hermite::Vec<3>::Constant(1.3);
+  hermite::TriMesh holed = hermite::marchingCubes(sphere, box, {40});
+  holed.normals.resize(3, 0);
+  holed = hermite::testing::cutBall(holed, Eigen::Vector3d(0, 0, 1), 0.3);
+  holed = hermite::testing::cutBall(holed, Eigen::Vector3d(1, 0, 0), 0.25);
+  const std::string in = tempPath("holed.ply"), out = tempPath("filled.obj");
+  hermite::saveMesh(in, holed);
+
+  auto r = runCli("holefill " + in + " -o " + out + " --json");
+  REQUIRE(r.rc == 0);
+  const json j = json::parse(r.out);
+  for (const char* key : {"holes_found", "holes_filled", "triangles_added", "max_abs_f", "unconverged", "ms"})
+    CHECK(j.contains(key));
+  CHECK(j["holes_found"] == 2);
+  CHECK(j["holes_filled"] == 2);
+  CHECK(j["triangles_added"].get<int>() > 0);
+  CHECK(j["max_abs_f"].get<double>() <= 1e-6);
+  CHECK(j["unconverged"] == 0);
+  const hermite::TriMesh filled = hermite::loadMesh(out);
+  CHECK(hermite::checkMesh(filled).closedManifold());
+  CHECK(filled.triangleCount() == holed.triangleCount() + j["triangles_added"].get<int>());
+
+  r = runCli("holefill " + in + " -o " + out + " --implicit hrbf");
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("holes found:      2") != std::string::npos);
+  CHECK(r.out.find("holes filled:     2") != std::string::npos);
+}
+
+TEST_CASE("holefill: errors name the file and map to exit codes") {
+  auto r = runCli("holefill /nonexistent/in.obj -o " + tempPath("x.obj"));
+  CHECK(r.rc == 1);
+  CHECK(r.err.find("/nonexistent/in.obj") != std::string::npos);
+  const std::string garbage = writeTemp("garbage.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n");
+  r = runCli("holefill " + garbage + " -o " + tempPath("y.obj"));
+  CHECK(r.rc == 1);
+  CHECK(r.err.find("garbage.off") != std::string::npos);
+  r = runCli("holefill " + garbage + " -o " + tempPath("y.stl"));
+  CHECK(r.rc == 2);
+  r = runCli("holefill " + garbage + " -o /nonexistent-dir/y.obj");
+  CHECK(r.rc == 4);
+}

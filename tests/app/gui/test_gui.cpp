@@ -1,0 +1,437 @@
+// Scripted headless UI tests (issue 4 §4, DESIGN.md §8): the application on an OSMesa context,
+// driven frame by frame with FrameInput (mouse position, buttons, keys), checking the document,
+// the fit and the undo history.
+
+#include <doctest/doctest.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+
+#include "app/gui/gui_app.h"
+#include "app/gui/scene_view.h"
+#include "render/gl/context.h"
+#include "render/gl/offscreen.h"
+#include "scene/scene_file.h"
+#include "scene/scene_fit.h"
+
+using namespace hermite;
+using namespace hermite::app;
+
+namespace {
+
+struct Harness {
+  std::unique_ptr<render::RenderContext> context;
+  std::unique_ptr<render::OffscreenTarget> target;
+  std::unique_ptr<GuiApp> app;
+  FrameInput input;
+
+  Harness(const Scene& scene, bool synchronous = true, int w = 1000, int h = 700) {
+    render::ContextOptions co;
+    co.width = w;
+    co.height = h;
+    co.visible = false;
+    context = render::createContext("osmesa", co);
+    target = std::make_unique<render::OffscreenTarget>(w, h, false);
+    GuiOptions o;
+    o.synchronousFits = synchronous;
+    o.screenshotDirectory = std::filesystem::temp_directory_path().string();
+    app = std::make_unique<GuiApp>(Document(scene), o);
+    input.width = w;
+    input.height = h;
+  }
+  void frame() {
+    target->bind();
+    app->frame(input);
+    input.wheel = 0;
+    input.characters.clear();
+    input.droppedFiles.clear();
+  }
+  void frames(int n) {
+    for (int k = 0; k < n; ++k) frame();
+  }
+  void moveTo(double x, double y) {
+    input.mouseX = x;
+    input.mouseY = y;
+    frame();
+  }
+  // Press at (x0, y0), move in `steps` to (x1, y1), release: a drag as ImGui and the tools see it.
+  void drag(double x0, double y0, double x1, double y1, int steps = 6) {
+    moveTo(x0, y0);
+    input.mouseDown[0] = true;
+    frame();
+    for (int k = 1; k <= steps; ++k) moveTo(x0 + (x1 - x0) * k / steps, y0 + (y1 - y0) * k / steps);
+    input.mouseDown[0] = false;
+    frame();
+  }
+  void click(double x, double y) { drag(x, y, x, y, 0); }
+  void key(int code, bool ctrl = false, bool shift = false) {
+    input.ctrl = ctrl;
+    input.shift = shift;
+    input.keysDown[code] = true;
+    frame();
+    input.keysDown[code] = false;
+    input.ctrl = input.shift = false;
+    frame();
+  }
+};
+
+Scene scene2d(int count = 24) {
+  Scene s;
+  s.mode = SceneMode::Implicit2d;
+  s.data.preset = "curve2d";
+  s.data.count = count;
+  s.fit.kernel = KernelType::Cubic;
+  s.sourceName = "test-2d";
+  return s;
+}
+
+Scene scene3d(const std::string& preset = "sphere", int count = 40) {
+  Scene s;
+  s.mode = SceneMode::Implicit3d;
+  s.data.preset = preset;
+  s.data.count = count;
+  s.view.size = {320, 240};
+  s.sourceName = "test-3d";
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("UI: dragging a 2D sample moves it and the field is refitted through its new position") {
+  Harness h(scene2d());
+  h.frames(2);
+  REQUIRE(h.app->shownFit() != nullptr);
+  const int i = 3;
+  const auto p = h.app->sampleScreenPosition(i);
+  REQUIRE(p);
+  const Vec<2> origin = h.app->viewOrigin();
+  const Vec<2> from = *p + origin, to = from + Vec<2>(25, -18);
+  h.drag(from.x(), from.y(), to.x(), to.y());
+  CHECK(h.app->selectedSample() == i);
+  const Scene& s = h.app->document().scene();
+  REQUIRE(s.data.isInline());  // the first edit wrote the preset's samples into the scene
+  // Where the sample went, in world coordinates, and the refitted field vanishes there.
+  const View2d view = sceneView2d(s, h.app->viewResult().width, h.app->viewResult().height);
+  const Vec<2> expected = view.pixelToWorld(to.x() - origin.x(), to.y() - origin.y());
+  const Vec<2> moved(s.data.points[i][0], s.data.points[i][1]);
+  CHECK((moved - expected).norm() < 1e-9);
+  REQUIRE(h.app->shownVersion() == h.app->document().version());
+  const FitOutcome* fit = h.app->shownFit();
+  REQUIRE(fit->fit2);
+  CHECK(std::abs(fit->fit2->field().value(moved)) < 1e-9);
+  // One undo step for the whole drag, and it restores the exact previous document.
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == scene2d());
+  h.key(GLFW_KEY_Z, true, true);  // redo
+  CHECK(h.app->document().scene().data.points[i][0] == moved.x());
+}
+
+TEST_CASE("UI: dragging the normal's tip rotates the normal; N flips it; Del deletes; undo restores each") {
+  Harness h(scene2d());
+  h.frames(2);
+  const Vec<2> origin = h.app->viewOrigin();
+  const int i = 5;
+  h.click(h.app->sampleScreenPosition(i)->x() + origin.x(), h.app->sampleScreenPosition(i)->y() + origin.y());
+  REQUIRE(h.app->selectedSample() == i);
+  const Scene before = h.app->document().scene();
+  const Vec<2> tip = *h.app->normalTipScreenPosition(i) + origin;
+  const Vec<2> p = *h.app->sampleScreenPosition(i) + origin;
+  // Drag the tip a quarter turn around the sample (screen y points down).
+  const Vec<2> d = tip - p;
+  const Vec<2> rotated = p + Vec<2>(-d.y(), d.x());
+  h.drag(tip.x(), tip.y(), rotated.x(), rotated.y());
+  const Scene& s = h.app->document().scene();
+  const auto& n = s.data.normals[i];
+  // The new normal points at the dragged tip: world direction = screen direction with y flipped.
+  const Vec<2> want = Vec<2>(rotated.x() - p.x(), -(rotated.y() - p.y())).normalized();
+  CHECK(Vec<2>(n[0], n[1]).dot(want) > 1 - 1e-9);
+  CHECK(h.app->shownFit()->fit2->field().gradient(Vec<2>(s.data.points[i][0], s.data.points[i][1])).normalized().dot(want) >
+        1 - 1e-6);
+  const Scene afterRotate = s;
+  h.key(GLFW_KEY_N);
+  CHECK(h.app->document().scene().data.normals[i][0] == -afterRotate.data.normals[i][0]);
+  h.key(GLFW_KEY_DELETE);
+  CHECK(h.app->document().scene().data.points.size() == afterRotate.data.points.size() - 1);
+  h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == afterRotate);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == before);
+}
+
+TEST_CASE("UI: the r slider changes the radius, refits, and is one undo step") {
+  Scene s = scene2d();
+  s.fit.kernel = KernelType::Gaussian;
+  s.fit.radius = 0.3;
+  Harness h(s);
+  h.frames(2);
+  const auto rect = h.app->widgetRect("fit.radius");
+  REQUIRE(rect);
+  const double y = 0.5 * ((*rect)[1] + (*rect)[3]);
+  // Drag the slider's grab towards the right end: a larger radius (logarithmic slider).
+  h.drag((*rect)[0] + 0.55 * ((*rect)[2] - (*rect)[0]), y, (*rect)[0] + 0.8 * ((*rect)[2] - (*rect)[0]), y);
+  const double r = h.app->document().scene().fit.radius;
+  CHECK(r > 0.3);
+  REQUIRE(h.app->shownFit());
+  CHECK(h.app->shownFit()->scene.fit.radius == r);
+  CHECK(h.app->shownVersion() == h.app->document().version());
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
+
+TEST_CASE("UI: orbit, zoom and fit-to-view move the 3D camera and never touch the undo history") {
+  Harness h(scene3d(), true, 640, 480);
+  h.frames(2);
+  const CameraSpec c0 = h.app->document().scene().view.camera;
+  const Vec<2> o = h.app->viewOrigin();
+  h.drag(o.x() + 40, o.y() + 40, o.x() + 120, o.y() + 60);  // empty corner: orbit
+  const CameraSpec c1 = h.app->document().scene().view.camera;
+  CHECK(c1.eye != c0.eye);
+  const auto dist = [](const CameraSpec& c) {
+    return std::hypot(c.eye[0] - c.target[0], c.eye[1] - c.target[1], c.eye[2] - c.target[2]);
+  };
+  CHECK(dist(c1) == doctest::Approx(dist(c0)).epsilon(1e-9));  // orbiting keeps the distance
+  h.input.wheel = 2;
+  h.moveTo(o.x() + 150, o.y() + 200);
+  CHECK(dist(h.app->document().scene().view.camera) < dist(c1));
+  CHECK(!h.app->document().canUndo());
+  h.key(GLFW_KEY_HOME);
+  CHECK(h.app->document().scene().view.camera == c0);
+}
+
+TEST_CASE("UI: Alt + drag moves the slice plane along its normal, as one undo step, without orbiting") {
+  Scene s = scene3d();
+  s.view.slice.enabled = true;
+  s.view.slice.normal = {1, 0, 0};
+  s.view.slice.offset = 0;
+  Harness h(s, true, 640, 480);
+  h.frames(2);
+  const CameraSpec camera = h.app->document().scene().view.camera;
+  const Vec<2> o = h.app->viewOrigin();
+  const Vec<2> size = h.app->viewSize();
+  const Vec<2> c = o + 0.5 * size;
+  // The world x of the plane point under the cursor, 80 px right of the centre (the camera looks
+  // down −z with x to the right): the plane follows the mouse there.
+  const Camera cam = sceneCamera(h.app->document().scene(), int(size.x()), int(size.y()));
+  const Ray ray = cam.ray(0.5 * size.x() + 80, 0.5 * size.y());
+  const double expected = ray.at(-ray.origin.z() / ray.direction.z()).x();
+  h.input.alt = true;
+  h.drag(c.x(), c.y(), c.x() + 80, c.y());
+  h.input.alt = false;
+  h.frame();
+  const SliceSpec& moved = h.app->document().scene().view.slice;
+  CHECK(moved.offset == doctest::Approx(expected).epsilon(0.02));
+  CHECK(h.app->document().scene().view.camera == camera);  // no orbit
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene().view.slice.offset == 0.0);
+  CHECK(!h.app->document().canUndo());
+}
+
+TEST_CASE("UI: with the slice normal along the view direction, Alt + vertical drag moves the plane") {
+  Scene facing = scene3d();
+  facing.view.slice.enabled = true;
+  facing.view.slice.normal = {0, 0, 1};
+  Harness f(facing, true, 640, 480);
+  f.frames(2);
+  const Vec<2> o = f.app->viewOrigin();
+  const Vec<2> c = o + 0.5 * f.app->viewSize();
+  f.input.alt = true;
+  f.drag(c.x(), c.y(), c.x(), o.y() + 2, 10);  // up to the top of the view
+  f.input.alt = false;
+  f.frame();
+  const double offset = f.app->document().scene().view.slice.offset;
+  CHECK(offset > 0.3);
+  CHECK(offset <= 3.0);
+  CHECK(f.app->document().scene().view.camera == facing.view.camera);  // no orbit
+}
+
+TEST_CASE("UI: every panel renders, with the explorer, the compare view and the help overlay") {
+  Harness h(scene3d("two-tori", 60), true, 1100, 760);
+  h.app->panels.compare = true;
+  h.app->panels.explore = true;
+  h.app->panels.help = true;
+  h.app->compare.enabled = true;
+  h.frames(3);
+  REQUIRE(h.app->shownFit());
+  CHECK(h.app->status().error == false);
+  h.app->explorer().start(h.app->document().scene(), logSpacedRadii(0.2, 2.0, 3));
+  h.app->explorer().wait();
+  h.frames(2);
+  CHECK(h.app->explorer().entries().size() == 3);
+  CHECK(h.app->viewResult().width == (1100 - int(kLeftPanelWidth)) / 2);
+}
+
+TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel keeps the previous result") {
+  Harness h(scene3d("sphere", 60), false, 640, 480);
+  // The first fit (small) arrives.
+  for (int k = 0; k < 200 && !h.app->shownFit(); ++k) {
+    h.frame();
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  REQUIRE(h.app->shownFit());
+  const std::uint64_t good = h.app->shownVersion();
+  // A large fit: 1500 samples (6000 unknowns, dense) takes about a second or more here.
+  Scene big = h.app->document().scene();
+  big.data.count = 1500;
+  h.app->document().apply(big, "count");
+  h.frame();
+  REQUIRE(h.app->worker().busy());
+  double slowest = 0;
+  int frames = 0;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (h.app->worker().runningMs() < 300 && frames < 1000) {
+    const auto f0 = std::chrono::steady_clock::now();
+    h.frame();
+    slowest = std::max(slowest, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - f0).count());
+    ++frames;
+  }
+  CHECK(frames >= 3);
+  CHECK(slowest < 250);  // the UI keeps drawing while the worker fits
+  (void)t0;
+  // Press Cancel in the diagnostics panel.
+  const auto cancel = h.app->widgetRect("diagnostics.cancel");
+  REQUIRE(cancel);
+  h.click(0.5 * ((*cancel)[0] + (*cancel)[2]), 0.5 * ((*cancel)[1] + (*cancel)[3]));
+  CHECK(h.app->status().message.find("cancelled") != std::string::npos);
+  h.app->worker().waitIdle(120);
+  h.frames(3);
+  CHECK(h.app->shownVersion() == good);  // the cancelled fit never replaces the shown one
+  CHECK(h.app->shownFit()->fit3->samples.size() < 1500);
+}
+
+TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier form shows the same edit") {
+  Scene s;
+  s.mode = SceneMode::Patch;
+  s.data.preset = "sphere6";
+  s.patch.splits = {2, 1};
+  s.view.camera.eye = {5, 3.5, 3.5};
+  s.view.camera.target = {2.2, 1.3, 0.4};
+  s.view.camera.up = {0, 0, 1};
+  Harness h(s, true, 1000, 700);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  REQUIRE(h.app->shownFit()->patch);
+  // The u-tangent handle of the middle knot (1, 0), shared by both patches.
+  const PatchHandle tangent{PatchHandle::TangentU, 1, 0, 0, 0};
+  const auto at = h.app->patchHandleScreenPosition(tangent);
+  REQUIRE(at);
+  const Vec<2> from = *at + h.app->viewOrigin(), to = from + Vec<2>(30, -20);
+  const auto before = patchKnotData(s.patch);
+  h.drag(from.x(), from.y(), to.x(), to.y());
+  const PatchSpec& edited = h.app->document().scene().patch;
+  REQUIRE(edited.knots.size() == before.size());
+  CHECK(edited.knots[2].X == before[2].X);                   // the point stays
+  CHECK((edited.knots[2].Xu - before[2].Xu).norm() > 0.05);  // the tangent moved
+  for (std::size_t k : {0u, 1u, 3u, 4u, 5u}) CHECK(edited.knots[k].Xu == before[k].Xu);
+  // The handle ended under the mouse (on the plane through it facing the camera).
+  const auto now = h.app->patchHandleScreenPosition(tangent);
+  REQUIRE(now);
+  CHECK((*now + h.app->viewOrigin() - to).norm() < 0.5);
+  // The other form: switching to Bézier does not change the surface, and patch (1, 0)'s control
+  // point b10 sits where the Hermite tip was dragged (uniform knots: the tip is b10).
+  Scene bezier = h.app->document().scene();
+  bezier.patch.form = PatchForm::Bezier;
+  h.app->document().apply(bezier, "form");
+  h.frames(2);
+  const PatchHandle b10{PatchHandle::Control, 1, 0, 1, 0};
+  const auto control = h.app->patchHandleScreenPosition(b10);
+  REQUIRE(control);
+  CHECK((*control + h.app->viewOrigin() - to).norm() < 0.5);
+  CHECK(h.app->shownFit()->patch->mesh.positions.isApprox(buildPatchDisplay(edited).mesh.positions, 1e-14));
+  // Undo twice: the form, then the drag — the original document.
+  h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
+
+TEST_CASE("UI: a partition-of-unity fit shows its boxes; Flip all normals is one undoable edit") {
+  Scene s = scene2d(120);
+  s.fit.partition.enabled = true;
+  s.fit.partition.maxPointsPerBox = 10;
+  Harness h(s, true, 1000, 700);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  REQUIRE(h.app->shownFit()->fit2);
+  REQUIRE(h.app->shownFit()->fit2->pu);
+  const ImageRgba8 without = h.target->read();
+  const auto box = h.app->widgetRect("view.partition_boxes");
+  REQUIRE(box);
+  h.click(0.5 * ((*box)[0] + (*box)[2]), 0.5 * ((*box)[1] + (*box)[3]));
+  h.frames(1);
+  const ImageRgba8 with = h.target->read();
+  int changed = 0;
+  for (int j = 0; j < with.height; ++j)
+    for (int i = int(kLeftPanelWidth) + 1; i < with.width; ++i) changed += std::memcmp(with.at(i, j), without.at(i, j), 3) != 0;
+  CHECK(changed > 500);  // the box lines over the view
+
+  const auto flip = h.app->widgetRect("data.flip_all");
+  REQUIRE(flip);
+  h.click(0.5 * ((*flip)[0] + (*flip)[2]), 0.5 * ((*flip)[1] + (*flip)[3]));
+  const Scene& flipped = h.app->document().scene();
+  REQUIRE(flipped.data.isInline());
+  std::vector<std::string> warnings;
+  const Scene original = withInlineSamples<2>(s, warnings);
+  for (std::size_t k = 0; k < flipped.data.normals.size(); ++k) CHECK(flipped.data.normals[k][0] == -original.data.normals[k][0]);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
+
+TEST_CASE("UI: the transform gizmo translates and rotates the fitted model by coefficient updates") {
+  Scene s = scene3d("sphere", 40);
+  s.view.camera.eye = {2.5, 2.0, 3.5};
+  Harness h(s, true, 1000, 700);
+  h.app->setGizmoVisible(true);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  const Vec<2> o = h.app->viewOrigin();
+  const Camera cam = sceneCamera(h.app->document().scene(), 1000 - int(kLeftPanelWidth), 700 - int(kStatusBarHeight));
+  const auto shownCentroid = [&] { return Vec<3>(h.app->shownFit()->fit3->data.points.rowwise().mean()); };
+  const Vec<3> c0 = shownCentroid();
+  // The x arrow starts at the pivot (the centroid) along +x: grab it 40 px out, pull along it.
+  const Vec<2> dir = (cam.project(Vec<3>(c0 + Vec<3>(0.3, 0, 0))) - cam.project(c0)).normalized();
+  const Vec<2> grab = cam.project(c0) + 40 * dir + o;
+  h.drag(grab.x(), grab.y(), grab.x() + 60 * dir.x(), grab.y() + 60 * dir.y());
+  const TransformSpec& t = h.app->document().scene().transform;
+  REQUIRE(t.translate.size() == 3);
+  CHECK(t.translate[0] > 0.05);
+  CHECK(std::abs(t.translate[1]) < 1e-12);
+  CHECK(std::abs(t.translate[2]) < 1e-12);
+  const FitOutcome* f = h.app->shownFit();
+  REQUIRE(f->fit3->transformed);
+  CHECK(f->fit3->transform.method == "coefficient-update");
+  CHECK(fitResiduals(*f->fit3).maxAbsF < 1e-9);  // the updated model interpolates the moved data
+  CHECK((shownCentroid() - c0 - Vec<3>(t.translate[0], 0, 0)).norm() < 1e-9);
+  // Switching the model to the re-solve keeps the transform and refits.
+  Scene resolve = h.app->document().scene();
+  resolve.transform.method = TransformMethod::Resolve;
+  h.app->document().apply(resolve, "model");
+  h.frames(2);
+  CHECK(h.app->shownFit()->fit3->transform.method == "re-solve");
+  CHECK(h.app->shownFit()->fit3->transform.maxAbsDf < 1e-8);  // exact conditions: update == re-solve
+  h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene() == s);
+}
+
+TEST_CASE("UI: right after a mode switch the previous mode's fit stays on screen and nothing reads it as the new one") {
+  Harness h(scene3d("sphere", 40), true, 900, 600);
+  h.frames(2);
+  REQUIRE(h.app->shownFit()->fit3);
+  // Switch to 2D outside the panels: the next frame draws the panels before the new fit runs.
+  h.app->document().apply(scene2d(), "to 2D");
+  h.frame();
+  REQUIRE(h.app->shownFit()->fit2);
+  h.key(GLFW_KEY_DELETE);  // no sample selected: nothing happens, nothing crashes
+  Scene patch = h.app->document().scene();
+  patch.mode = SceneMode::Patch;
+  h.app->document().apply(patch, "to patch");
+  CHECK(h.app->currentFit() == nullptr);  // the 2D fit is still shown but is not the patch's
+  h.frame();
+  REQUIRE(h.app->shownFit()->patch);
+  CHECK(h.app->currentFit() == h.app->shownFit());
+}

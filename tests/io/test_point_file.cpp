@@ -1,0 +1,275 @@
+#include <doctest/doctest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/base/errors.h"
+#include "io/point_file.h"
+
+using hermite::InputError;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kPoints = std::string(HERMITE_FIXTURES) + "/points";
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    std::random_device rd;
+    path = fs::temp_directory_path() /
+           ("hermite_io_test_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
+    fs::create_directories(path);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    const std::string p = (path / name).string();
+    std::ofstream out(p, std::ios::binary);
+    out << text;
+    return p;
+  }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  }
+};
+
+std::string load3dError(const std::string& path) {
+  std::vector<std::string> warnings;
+  try {
+    hermite::loadPointFile3d(path, warnings);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "<no error>";
+}
+
+}  // namespace
+
+TEST_CASE("io_points: dimension from the extension") {
+  CHECK(hermite::pointFileDimension("a.xyz") == 3);
+  CHECK(hermite::pointFileDimension("dir.v2/a.PWN") == 3);
+  CHECK(hermite::pointFileDimension("a.xyzn") == 3);
+  CHECK(hermite::pointFileDimension("a.xyn") == 2);
+  CHECK_THROWS_WITH_AS(hermite::pointFileDimension("a.txt"),
+                       "a.txt: unsupported point file extension '.txt' (supported: .xyz, .pwn, .xyzn with x y z "
+                       "nx ny nz per line; .xyn with x y nx ny; .ply, .obj, .gltf, .glb, .off with vertex normals)",
+                       InputError);
+  CHECK_THROWS_AS(hermite::pointFileDimension("noextension"), InputError);
+}
+
+TEST_CASE("io_points: loads a 3D file and normalises its normals") {
+  std::vector<std::string> warnings;
+  const auto s = hermite::loadPointFile3d(kPoints + "/tetra.xyzn", warnings);
+  CHECK(warnings.empty());
+  REQUIRE(s.size() == 4);
+  CHECK(s.points.col(1) == Eigen::Vector3d(1, -1, -1));
+  CHECK(s.points.col(3) == Eigen::Vector3d(-1, -1, 1));
+  CHECK(s.normals.col(0).isApprox(Eigen::Vector3d(1, 1, 1).normalized()));
+  for (int i = 0; i < 4; ++i) CHECK(std::abs(s.normals.col(i).norm() - 1) < 1e-15);
+}
+
+TEST_CASE("io_points: CRLF line ends, comments, blank lines, signs and exponents") {
+  std::vector<std::string> warnings;
+  const auto fixture = hermite::loadPointFile3d(kPoints + "/crlf.xyzn", warnings);
+  REQUIRE(fixture.size() == 2);
+  CHECK(fixture.points.col(1) == Eigen::Vector3d(1, 2, 3));
+  CHECK(fixture.normals.col(1) == Eigen::Vector3d(0, 0, -1));
+
+  TempDir dir;
+  const std::string path = dir.write("mixed.xyz",
+                                     "\xEF\xBB\xBF# header\r\n"
+                                     "\r\n"
+                                     "  +1.5e0\t-2.25  3e-1 0 0 1\r\n"
+                                     "\t# indented comment\r\n"
+                                     ".5 -.5 1E2 +0 1 0   \r\n"
+                                     "1e-400 0 0 1 0 0");  // no final newline; underflow reads as 0
+  const auto s = hermite::loadPointFile3d(path, warnings);
+  REQUIRE(s.size() == 3);
+  CHECK(s.points.col(0) == Eigen::Vector3d(1.5, -2.25, 0.3));
+  CHECK(s.points.col(1) == Eigen::Vector3d(0.5, -0.5, 100));
+  CHECK(s.normals.col(1) == Eigen::Vector3d(0, 1, 0));
+  CHECK(s.points.col(2) == Eigen::Vector3d(0, 0, 0));
+}
+
+TEST_CASE("io_points: 2D files") {
+  std::vector<std::string> warnings;
+  const auto s = hermite::loadPointFile2d(kPoints + "/circle.xyn", warnings);
+  REQUIRE(s.size() == 4);
+  CHECK(s.points.col(2) == Eigen::Vector2d(-1, 0));
+  CHECK(s.normals.col(3) == Eigen::Vector2d(0, -1));
+
+  TempDir dir;
+  const std::string bad = dir.write("bad.xyn", "0 0 1 0\n1 1 1\n");
+  CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(bad, warnings),
+                       (bad + ":2: expected 4 numbers (x y nx ny), got 3").c_str(), InputError);
+  // Positions only: normals are estimated, with a warning saying so.
+  std::string circle;
+  for (int i = 0; i < 40; ++i)
+    circle += std::to_string(std::cos(2 * M_PI * i / 40)) + " " + std::to_string(std::sin(2 * M_PI * i / 40)) + "\n";
+  const std::string positions = dir.write("pos.xyn", circle);
+  warnings.clear();
+  const auto est = hermite::loadPointFile2d(positions, warnings);
+  REQUIRE(est.size() == 40);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find("has no normals (2 columns): normals estimated") != std::string::npos);
+  for (int i = 0; i < est.size(); ++i) CHECK(est.normals.col(i).dot(est.points.col(i).normalized()) > 0.99);
+  // A file of the other dimension is refused by its extension.
+  CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(kPoints + "/tetra.xyzn", warnings),
+                       (kPoints + "/tetra.xyzn: a 3D point file (.xyzn) cannot be used in a 2D scene; use .xyn (x y "
+                                  "nx ny)")
+                           .c_str(),
+                       InputError);
+  CHECK_THROWS_WITH_AS(hermite::loadPointFile3d(kPoints + "/circle.xyn", warnings),
+                       (kPoints + "/circle.xyn: a 2D point file (.xyn) cannot be used in a 3D scene; use .xyz, .pwn "
+                                  "or .xyzn (x y z nx ny nz)")
+                           .c_str(),
+                       InputError);
+}
+
+TEST_CASE("io_points: malformed files name the file and line") {
+  const std::string p = kPoints;
+  CHECK(load3dError(p + "/short_line.xyz") == p + "/short_line.xyz:4: expected 6 numbers (x y z nx ny nz), got 5");
+  CHECK(load3dError(p + "/not_a_number.xyz") == p + "/not_a_number.xyz:2: 'abc' is not a number");
+  CHECK(load3dError(p + "/nan.xyz") == p + "/nan.xyz:2: 'nan' is not a finite number");
+  CHECK(load3dError(p + "/comments_only.xyz") == p + "/comments_only.xyz: no points");
+  CHECK(load3dError(p + "/zero_normal.xyz") == p + "/zero_normal.xyz: sample 1: normal is zero");
+  CHECK(load3dError(p + "/missing.xyz") == p + "/missing.xyz: cannot open (No such file or directory)");
+
+  TempDir dir;
+  const std::string four = dir.write("four.xyz", "0 0 0 0 0 1\r\n\r\n1 2 3 4\r\n");
+  CHECK(load3dError(four) == four + ":3: expected 6 numbers (x y z nx ny nz), got 4");
+  const std::string seven = dir.write("seven.xyz", "0 0 0 0 0 1 9\n");
+  CHECK(load3dError(seven) == seven + ":1: expected 6 numbers (x y z nx ny nz), got 7");
+  // Some lines with normals, some without: the first line decides, the first other line is reported.
+  const std::string mixed = dir.write("mixed.xyz", "0 0 0\n1 0 0 1 0 0\n");
+  CHECK(load3dError(mixed) == mixed + ":2: expected 3 numbers (x y z) like line 1, got 6");
+  const std::string mixed2 = dir.write("mixed2.xyz", "1 0 0 1 0 0\n0 0 0\n");
+  CHECK(load3dError(mixed2) == mixed2 + ":2: expected 6 numbers (x y z nx ny nz), got 3");
+  const std::string glued = dir.write("glued.xyz", "0 0 0 0 0 1.5abc\n");
+  CHECK(load3dError(glued) == glued + ":1: '1.5abc' is not a number");
+  const std::string commas = dir.write("commas.xyz", "0,0,0,0,0,1\n");
+  CHECK(load3dError(commas) == commas + ":1: '0,0,0,0,0,1' is not a number");
+  const std::string infinite = dir.write("inf.xyz", "0 0 0 0 0 1\n# c\n0 0 -inf 0 0 1\n");
+  CHECK(load3dError(infinite) == infinite + ":3: '-inf' is not a finite number");
+  const std::string huge = dir.write("huge.xyz", "0 0 1e400 0 0 1\n");
+  CHECK(load3dError(huge) == huge + ":1: '1e400' is not a finite number");
+  const std::string empty = dir.write("empty.xyz", "");
+  CHECK(load3dError(empty) == empty + ": no points");
+  fs::create_directory(dir.path / "folder.xyz");
+  CHECK(load3dError((dir.path / "folder.xyz").string()) ==
+        (dir.path / "folder.xyz").string() + ": cannot open (it is a directory)");
+}
+
+TEST_CASE("io_points: duplicates are merged with a warning naming the file") {
+  TempDir dir;
+  const std::string path = dir.write("dups.xyz", "0 0 0 0 0 1\n1 0 0 1 0 0\n0 0 0 0 0 2\n");
+  std::vector<std::string> warnings;
+  const auto s = hermite::loadPointFile3d(path, warnings);
+  CHECK(s.size() == 2);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].rfind(path + ": merged 1 exact duplicate sample", 0) == 0);
+  const std::string conflict = dir.write("conflict.xyz", "0 0 0 0 0 1\n1 0 0 1 0 0\n0 0 0 0 1 0\n");
+  CHECK(load3dError(conflict).rfind(conflict + ": samples 0 and 2 are at the same point", 0) == 0);
+}
+
+TEST_CASE("io_points: probe points") {
+  const auto P = hermite::loadProbePoints3d(kPoints + "/probes.txt");
+  REQUIRE(P.cols() == 2);
+  CHECK(P.col(1) == Eigen::Vector3d(0.5, 0.25, -1));
+
+  TempDir dir;
+  const std::string p2 = dir.write("probes2.txt", "# x y\r\n1 2\r\n3 4\r\n5 6\r\n");
+  const auto Q = hermite::loadProbePoints2d(p2);
+  REQUIRE(Q.cols() == 3);
+  CHECK(Q.col(2) == Eigen::Vector2d(5, 6));
+  const std::string extra = dir.write("extra.txt", "0 0 0\n0 0 0 0 0 1\n");
+  CHECK_THROWS_WITH_AS(hermite::loadProbePoints3d(extra), (extra + ":2: expected 3 numbers (x y z), got 6").c_str(),
+                       InputError);
+  CHECK_THROWS_WITH_AS(hermite::loadProbePoints2d(extra), (extra + ":1: expected 2 numbers (x y), got 3").c_str(),
+                       InputError);
+  const std::string none = dir.write("none.txt", "# nothing\n");
+  CHECK_THROWS_WITH_AS(hermite::loadProbePoints3d(none), (none + ": no points").c_str(), InputError);
+  const std::string word = dir.write("word.txt", "1 x 2\n");
+  CHECK_THROWS_WITH_AS(hermite::loadProbePoints3d(word), (word + ":1: 'x' is not a number").c_str(), InputError);
+  CHECK_THROWS_WITH_AS(hermite::loadProbePoints3d(dir.path.string() + "/absent.txt"),
+                       (dir.path.string() + "/absent.txt: cannot open (No such file or directory)").c_str(),
+                       InputError);
+}
+
+TEST_CASE("io_points: save and load round-trip every bit") {
+  TempDir dir;
+  std::mt19937 rng(11);
+  std::normal_distribution<double> g(0, 1);
+  hermite::HermiteSamples<3> s;
+  s.points.resize(3, 500);
+  s.normals.resize(3, 500);
+  for (int i = 0; i < 500; ++i) {
+    s.points.col(i) = Eigen::Vector3d(g(rng), 1e-7 * g(rng), 1e9 * g(rng));
+    s.normals.col(i) = Eigen::Vector3d(g(rng), g(rng), g(rng)).normalized();
+  }
+  const std::string path = (dir.path / "out.xyzn").string();
+  hermite::savePointFile(path, s);
+  CHECK(dir.entries() == std::vector<std::string>{"out.xyzn"});
+  std::vector<std::string> warnings;
+  const auto back = hermite::loadPointFile3d(path, warnings);
+  CHECK(warnings.empty());
+  CHECK(back.points == s.points);
+  // Re-normalising a unit normal may move it by an ulp, not more.
+  CHECK((back.normals - s.normals).cwiseAbs().maxCoeff() <= 4e-16);
+
+  hermite::HermiteSamples<2> s2;
+  s2.points.resize(2, 3);
+  s2.normals.resize(2, 3);
+  s2.points << 0.1, 0.2, 0.3,  // x of the three samples
+               -1e-300, 5, 6;  // y
+  s2.normals << 1, 0, -1,
+                0, 1, 0;
+  const std::string path2 = (dir.path / "out.xyn").string();
+  hermite::savePointFile(path2, s2);
+  const auto back2 = hermite::loadPointFile2d(path2, warnings);
+  CHECK(back2.points == s2.points);
+  CHECK(back2.normals == s2.normals);
+
+  // A failed save leaves the old file in place.
+  CHECK_THROWS_AS(hermite::savePointFile((dir.path / "missing_dir" / "x.xyzn").string(), s), hermite::EnvironmentError);
+  CHECK(dir.entries() == std::vector<std::string>{"out.xyn", "out.xyzn"});
+}
+
+TEST_CASE("io_points: large files load quickly") {
+  TempDir dir;
+  const std::string path = (dir.path / "big.xyz").string();
+  {
+    std::mt19937 rng(5);
+    std::normal_distribution<double> g(0, 1);
+    hermite::HermiteSamples<3> s;
+    const int n = 200000;
+    s.points.resize(3, n);
+    s.normals.resize(3, n);
+    for (int i = 0; i < n; ++i) {
+      s.points.col(i) = Eigen::Vector3d(g(rng), g(rng), g(rng));
+      s.normals.col(i) = s.points.col(i).normalized();
+    }
+    hermite::savePointFile(path, s);
+  }
+  std::vector<std::string> warnings;
+  const auto start = std::chrono::steady_clock::now();
+  const auto s = hermite::loadPointFile3d(path, warnings);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  CHECK(s.size() == 200000);
+  CHECK(seconds < 5.0);  // ~0.1 s with from_chars; streams would take several times longer
+}

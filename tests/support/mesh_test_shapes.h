@@ -1,0 +1,30 @@
+#pragma once
+// Test meshes for the mesh tests: the core shapes, and removal of chosen triangles.
+
+#include <cmath>
+#include <vector>
+
+#include "core/base/geometry.h"
+#include "core/mesh/tri_mesh.h"
+#include "core/shapes/mesh_shapes.h"
+
+namespace hermite::testing {
+
+// The closed torus and ball cutting come from core (core/mesh_shapes.h), shared with the
+// hole-filling presets and bench.
+inline TriMesh parametricTorus(int nu, int nv, double R = 0.7, double r = 0.3) { return parametricTorusMesh(nu, nv, R, r); }
+using hermite::cutBall;
+
+// The mesh without the triangles `drop` says yes to (vertices are kept, ids unchanged).
+template <class Pred>
+TriMesh removeTriangles(const TriMesh& mesh, Pred drop) {
+  std::vector<int> keep;
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    if (!drop(t)) keep.push_back(t);
+  TriMesh out = mesh;
+  out.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
+  for (size_t k = 0; k < keep.size(); ++k) out.triangles.col(static_cast<Eigen::Index>(k)) = mesh.triangles.col(keep[k]);
+  return out;
+}
+
+}  // namespace hermite::testing
