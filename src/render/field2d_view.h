@@ -1,5 +1,5 @@
 #pragma once
-// The 2D field view (DESIGN.md §4, issue 3 §3): a heat map of f in the diverging colour map
+// The 2D field view: a heat map of f in the diverging colour map
 // symmetric about 0, iso-lines at a regular spacing, the zero curve thick and anti-aliased in the
 // zero colour (outside the map), samples as dots and normals as arrows on top.
 //
@@ -13,8 +13,6 @@
 #include <vector>
 
 #include "core/base/implicit_field.h"
-#include "core/rbf/kernels.h"
-#include "core/rbf/polynomial.h"
 #include "core/trace/camera.h"
 #include "core/trace/field2d_reference.h"
 #include "core/trace/image.h"
@@ -83,26 +81,5 @@ class Field2dView {
 // (row 0 = top). Needs a current GL context.
 ImageRgba8 renderField2d(const ImplicitField<2>& field, const View2d& view, const Field2dViewOptions& options = {},
                          const Points<2>& points = Points<2>(2, 0), const Points<2>& normals = Points<2>(2, 0));
-
-// The bench figure of issue 3 §6: refit a `points`-sample "curve2d" HRBF and redraw its 2D view
-// at size × size (evaluation on the grid of `gridScale`, upload, draw, glFinish), in a context of
-// its own (`backend`). Times in ms, medians over `repetitions` after one warm-up round.
-struct Field2dBenchOptions {
-  int points = 200;
-  int size = 512;
-  int repetitions = 15;
-  double gridScale = 0.25;  // interactive redraws: f, ∇f every 4 px, bilinear in between
-  Kernel kernel{KernelType::Cubic, 1.0};  // the scene default; well conditioned at 200 points
-  Polynomial polynomial = Polynomial::Linear;
-  std::string backend = "osmesa";
-};
-struct Field2dBenchResult {
-  double medianMs = 0;    // refit + evaluate + upload + draw + finish
-  double fitMs = 0;       // medians of the parts
-  double evaluateMs = 0;
-  double drawMs = 0;      // upload + draw + glFinish
-  Field2dBenchOptions options;
-};
-Field2dBenchResult benchField2dRefitRedraw(const Field2dBenchOptions& options = {});
 
 }  // namespace hermite::render

@@ -1,6 +1,6 @@
 #pragma once
 // The hole-filling pipeline stopped at a chosen stage, for the GUI's `holefill` mode and its
-// headless renders (issue 8 §3: each stage visible on its own): the input mesh, its holes, and
+// headless renders (each stage visible on its own): the input mesh, its holes, and
 // per hole the patch as that stage leaves it, plus the ring samples the implicit was fitted to.
 // Built-in holed meshes (`holefill.preset`) let a class start without a file.
 

@@ -1,5 +1,5 @@
 #pragma once
-// The r-sensitivity sweep (issue 4 "Explore r", `hermite-lab sweep`): the scene's data and fit
+// The r-sensitivity sweep (the GUI's "Explore r" panel and `hermite-lab sweep`): the scene's data and fit
 // settings refitted at k radii spaced logarithmically between two bounds, with the diagnostics
 // a user compares across r — condition estimate, residuals, leave-one-out error — and the
 // radius with the smallest leave-one-out error as the suggestion.

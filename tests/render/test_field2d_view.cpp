@@ -156,18 +156,3 @@ TEST_CASE("2D field view: outside view.bounds the zero curve is not drawn and th
   const std::uint8_t* b = gpu.at(int(view.worldToPixel(Vec<2>(0.3, 0.1)).x()), int(view.worldToPixel(Vec<2>(0.3, 0.1)).y()));
   CHECK(int(a[0]) > int(b[0]));
 }
-
-// Not a timed test (DESIGN.md §8): skipped unless run with --no-skip; prints the figures.
-TEST_CASE("2D field view bench: refit + redraw of a 200-point curve at 512x512" * doctest::skip()) {
-  for (double scale : {1.0, 0.5, 0.25}) {
-    for (KernelType k : {KernelType::Cubic, KernelType::Gaussian}) {
-      Field2dBenchOptions o;
-      o.gridScale = scale;
-      o.kernel = Kernel{k, 0.2};
-      const Field2dBenchResult r = benchField2dRefitRedraw(o);
-      MESSAGE(kernelName(k) << " grid " << scale << ": total " << r.medianMs << " ms (fit " << r.fitMs << ", evaluate "
-                            << r.evaluateMs << ", upload + draw " << r.drawMs << ")");
-      CHECK(r.medianMs > 0);
-    }
-  }
-}

@@ -1,5 +1,5 @@
 #!/bin/bash
-# End-to-end smoke test of the real window (issue 4 §4): Xvfb + the GLFW window + xdotool.
+# End-to-end smoke test of the real window: Xvfb + the GLFW window + xdotool.
 # Opens a 2D scene, drags a sample with the mouse, saves with Ctrl+S, quits with Ctrl+Q, and
 # checks the saved scene (the sample moved to where the mouse went) and the screenshots taken
 # with ImageMagick's `import` (the view changed). Exit 77 = skipped (no Xvfb / xdotool / import)

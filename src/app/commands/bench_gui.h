@@ -1,5 +1,5 @@
 #pragma once
-// The GUI latency figures of issue 4 §5 for `hermite-lab bench`: a sample dragged with scripted
+// The GUI latency figures of `hermite-lab bench`: a sample dragged with scripted
 // mouse input in the real application (GuiApp on an OSMesa context, fits on the worker thread as
 // in the window), timed from the start of the frame whose input moved the sample to the end of
 // the frame that shows the view refitted to the new position ("within one 60 Hz frame": frames

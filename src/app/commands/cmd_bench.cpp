@@ -34,6 +34,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/commands/bench_field2d.h"
 #include "app/commands/bench_gui.h"
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
@@ -337,13 +338,13 @@ int runBench(const BenchArgs& args) {
             r.traceMs, "ms/frame"};
   });
   jobs.emplace_back("render/field2d-refit-redraw", [quick = args.quick]() -> Result {
-    render::Field2dBenchOptions o;
+    Field2dBenchOptions o;
     if (quick) {
       o.points = 40;
       o.size = 128;
       o.repetitions = 1;
     }
-    const render::Field2dBenchResult r = render::benchField2dRefitRedraw(o);
+    const Field2dBenchResult r = benchField2dRefitRedraw(o);
     return {"render/field2d-refit-redraw", {{"points", o.points}, {"size", o.size}, {"fit_ms", r.fitMs},
             {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
   });

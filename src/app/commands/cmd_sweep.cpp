@@ -1,4 +1,4 @@
-// `hermite-lab sweep SCENE --radii A:B:K -o DIR` (DESIGN.md §5, issue 4 "Explore r"): the scene
+// `hermite-lab sweep SCENE --radii A:B:K -o DIR` (docs/cli.md): the scene
 // refitted at K radii spaced logarithmically in [A, B], one PNG per radius (the view `render`
 // draws) and diagnostics.csv with the condition estimate, residuals and leave-one-out error per
 // radius, the suggested r (least leave-one-out error) marked — a teacher's figure in one command.

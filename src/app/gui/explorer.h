@@ -1,5 +1,5 @@
 #pragma once
-// The r-sensitivity explorer's background work (issue 4 "Explore r"): the document's data and
+// The r-sensitivity explorer's background work (the "Explore r" panel): the document's data and
 // fit settings refitted at k log-spaced radii on a thread of its own, each finished radius kept
 // with its model (for the thumbnail the main thread draws) and its diagnostics row (condition,
 // residuals, leave-one-out error). A new run cancels the previous one between radii.

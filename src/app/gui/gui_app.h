@@ -1,5 +1,5 @@
 #pragma once
-// The interactive application (issue 4): one object that runs a frame at a time on whatever GL
+// The interactive application: one object that runs a frame at a time on whatever GL
 // context is current — the GLFW window (gui_window.cpp) or an offscreen one (UI tests,
 // `render --ui`, the latency bench). Input arrives as a FrameInput (the window fills it from GLFW
 // callbacks, tests script it), so the same code is driven by a user and by a test.
@@ -158,7 +158,7 @@ class GuiApp {
   void drawHelpOverlay();
   void drawStatusBar();
   void drawSelectionOverlay();
-  // gui_transform.cpp: the Transform panel and gizmo (issue 7)
+  // panels/transform_panel.cpp: the Transform panel and gizmo
   struct GizmoHandle {
     enum Kind { Translate, Rotate, Scale } kind = Translate;
     int axis = 0;

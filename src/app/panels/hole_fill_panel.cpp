@@ -1,4 +1,4 @@
-// The hole-filling mode (issue 8 §3): the pipeline shown stage by stage — holes (red
+// The hole-filling mode: the pipeline shown stage by stage — holes (red
 // boundaries), the advancing-front patch, the faired patch, the implicit's ring samples (green
 // normals), the projection — with the mesh source, the implicit kind, the rings, the figures of
 // the run, and export of the filled mesh.

@@ -1,4 +1,4 @@
-// The panels of the window (issue 4 §1), in a fixed layout (ImGui 1.86 has no docking): the
+// The panels of the window, in a fixed layout (ImGui 1.86 has no docking): the
 // left column holds Data, Fit, Compare and View as collapsing sections; Diagnostics sits at the
 // top right; Explore r is a strip along the bottom; a status bar below everything. Panels edit
 // the Document (each change one undo step; sliders one step per drag) and never call the solver.

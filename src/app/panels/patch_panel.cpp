@@ -1,4 +1,4 @@
-// The patch editor (issue 5 §3): the Patch panel (preset, splits, domain, form switch, display,
+// The patch editor: the Patch panel (preset, splits, domain, form switch, display,
 // the torus error table) and the handles in the view — drawn with ImGui over the rasterised
 // grid, grabbed with the mouse and dragged on the plane through the handle facing the camera;
 // holding X, Y or Z constrains the drag to that axis. Every edit is an edit of the knot data in

@@ -1,4 +1,4 @@
-// Transforming the fitted implicit without re-solving (issue 7): the Transform panel (numeric
+// Transforming the fitted implicit without re-solving: the Transform panel (numeric
 // fields, the update / re-solve switch with both times and their difference, non-uniform scale
 // by composition) and the gizmo drawn with ImGui draw lists — translate arrows along the world
 // axes, rotation rings about them, a uniform-scale handle — acting about the pivot (the

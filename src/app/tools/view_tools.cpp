@@ -1,4 +1,4 @@
-// Direct manipulation in the view (issue 4 §3): camera (orbit, pan, zoom towards the cursor, fit
+// Direct manipulation in the view: camera (orbit, pan, zoom towards the cursor, fit
 // to view, reset) and samples (select, drag, rotate the normal by its tip, flip, add, delete),
 // plus the keyboard shortcuts. Nothing here reacts while ImGui wants the mouse / keyboard.
 

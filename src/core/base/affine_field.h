@@ -1,6 +1,6 @@
 #pragma once
 // The exact composition g(x) = f(A⁻¹(x − b)) of a field with an invertible affine map
-// T(x) = A·x + b (issue 7: transforms outside the similarity family — non-uniform scale, shear).
+// T(x) = A·x + b: the transforms outside the similarity family (non-uniform scale, shear).
 // ∇g(x) = A⁻ᵀ ∇f(y) and Hg(x) = A⁻ᵀ Hf(y) A⁻¹ at y = T⁻¹(x). This is a moved copy of f, not the
 // interpolant of the transformed data: the normals of the transformed samples are A⁻ᵀnᵢ (not unit)
 // and kernels are not invariant under such maps. The UI says so.

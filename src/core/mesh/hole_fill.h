@@ -1,5 +1,5 @@
 #pragma once
-// Hole filling of triangle meshes with RBF implicits (issue 8 §3). Each stage is a function of
+// Hole filling of triangle meshes with RBF implicits. Each stage is a function of
 // its own returning its intermediate result, so the GUI can show the pipeline step by step:
 //
 //   1. detectHoles      boundary edges chained into ordered loops (tri_mesh.h boundaryLoops);

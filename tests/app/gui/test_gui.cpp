@@ -1,4 +1,4 @@
-// Scripted headless UI tests (issue 4 §4, DESIGN.md §8): the application on an OSMesa context,
+// Scripted headless UI tests (docs/design.md, Testing): the application on an OSMesa context,
 // driven frame by frame with FrameInput (mouse position, buttons, keys), checking the document,
 // the fit and the undo history.
 
