@@ -27,7 +27,7 @@ run: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure --timeout 900 -j $(JOBS)
 
-# ASan + UBSan build of core (math, loaders, scene files) and its tests (DESIGN.md §8).
+# ASan + UBSan build of core (math, loaders, scene files) and its tests (docs/design.md, Testing).
 test-sanitize: setup
 	@mkdir -p build
 	@cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHERMITE_SANITIZE=ON \

@@ -1,8 +1,7 @@
-// The diverging colour map of core/color_map.h (kDivergingStops), for the 2D field view and the
+// The diverging colour map of core/trace/color_map.h (kDivergingStops), for the 2D field view and the
 // slice plane. The stops are compile-time constants, not uniforms: llvmpipe re-reads uniforms for
-// every fragment vector and cannot fold the divisions by the stop spacing, and the uniform version
-// cost ~7 ms of a 960×775 heat-map pass (field2d.frag: 15 → 8 ms). tests/render/test_color_map_glsl.cpp
-// checks these numbers against kDivergingStops.
+// every fragment vector and cannot fold the divisions by the stop spacing (docs/performance.md,
+// 2D view). tests/render/test_color_map_glsl.cpp checks these numbers against kDivergingStops.
 const vec4 kDivergingStops[5] = vec4[5](vec4(-1.0, 0.085, 0.250, 0.600),  // (t, r, g, b)
                                         vec4(-0.5, 0.420, 0.620, 0.860),
                                         vec4(0.0, 0.965, 0.965, 0.965),

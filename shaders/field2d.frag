@@ -1,8 +1,8 @@
 #version 450 core
-// The 2D field view (DESIGN.md §4): heat map of f in the diverging colour map, iso-lines and the
+// The 2D field view (docs/maths.md, Colour map): heat map of f in the diverging colour map, iso-lines and the
 // thick anti-aliased zero curve, from f and ∇f evaluated on the CPU (field2d_view.cpp).
 // Drawn with fullscreen.vert. Line widths use the distance estimate |f − level| / ‖∇f‖ in pixels,
-// with the same coverage ramp as the CPU reference (core/field2d_reference.cpp).
+// with the same coverage ramp as the CPU reference (core/trace/field2d_reference.cpp).
 
 uniform sampler2D u_field;      // RGB32F (f, ∂f/∂x, ∂f/∂y), world units; GL row order (row 0 = bottom)
 uniform vec2 u_viewport;        // W, H in pixels

@@ -1,4 +1,4 @@
-// Shading of core/shading.h: base × (ambient + Σ Iₖ max(0, ns·Lₖ)), ns facing the viewer; the
+// Shading of core/trace/shading.h: base × (ambient + Σ Iₖ max(0, ns·Lₖ)), ns facing the viewer; the
 // back side (seen against its normal) takes the back colour so inside-out regions stand out.
 
 in vec3 vPosition;

@@ -1,5 +1,5 @@
 // Triangle meshes (patches, meshed implicits, hole filling): world-space positions and normals,
-// a per-vertex base colour; lit in mesh.frag like the tracer's hits (core/shading.h).
+// a per-vertex base colour; lit in mesh.frag like the tracer's hits (core/trace/shading.h).
 
 layout(location = 0) in vec3 aPosition;
 layout(location = 1) in vec3 aNormal;

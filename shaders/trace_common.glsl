@@ -1,7 +1,7 @@
 // Shared ray marcher of trace_baked.frag and trace_exact.frag (included after the including file
 // defined fieldValue(p), fieldGradient(p), shadingDirection(p) — ∇f or a vector along it, 0 where
 // there is none — and brickInfo(b) = (L, may contain a zero)).
-// Rays follow DESIGN.md §4 exactly (Camera::ray); world units throughout.
+// Rays follow core/trace/camera.h exactly (Camera::ray); world units throughout.
 
 layout(location = 0) out vec4 outColor;  // final colour (surface, slice plane or background)
 layout(location = 1) out vec4 outHit;    // (t of the surface hit or -1, outward unit normal)
@@ -35,14 +35,14 @@ int gLoops = 0;
 uniform int uShowSurface;
 uniform vec3 uBackground;   // exact bytes / 255
 
-// core/shading.h
+// core/trace/shading.h
 uniform vec3 uFrontColor;
 uniform vec3 uBackColor;
 uniform float uAmbient;
 uniform vec3 uLightDir[2];  // world-space unit directions towards the lights
 uniform float uLightIntensity[2];
 
-// Slice plane and core/color_map.h (the stops: color_map.glsl)
+// Slice plane and core/trace/color_map.h (the stops: color_map.glsl)
 uniform int uSliceEnabled;
 uniform vec3 uSliceNormal;  // unit
 uniform float uSliceOffset;
@@ -122,8 +122,8 @@ vec2 brickAt(vec3 o, vec3 d, float t, float t1, float nudge, out ivec3 b) {
 //    |f|/L + ε: the Lipschitz bound proves [t, t + |f|/L) free of zeros, and the sign test alone
 //    covers the ε beyond it, so a zero pair closer together than ε may pass unseen there (as
 //    between any two samples ε apart) but a single zero never does. Plain |f|/L steps would
-//    creep towards a surface the ray meets at a shallow angle in steps of ε (two to three of
-//    the seven steps of an average pixel, measured). Then a secant on the first sign change,
+//    creep towards a surface the ray meets at a shallow angle in steps of ε. Then a secant on
+//    the first sign change,
 //    kept inside the unproven ε (the interpolant is nearly linear over ε; settled views are
 //    refined against the true field on the CPU anyway).
 // With TRACE_BRICK_DISTANCE, brickInfo(b) = (L, e) as leaveBricks takes it (a "brick distance

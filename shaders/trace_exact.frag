@@ -1,5 +1,5 @@
 // Exact mode of the implicit tracer: f(x) = Σ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x) summed per
-// evaluation from SSBOs (RadialSum<3>: HRBF or RBF-offset; DESIGN.md §3), with per-brick
+// evaluation from SSBOs (RadialSum<3>: HRBF or RBF-offset; docs/maths.md), with per-brick
 // Lipschitz bounds of the field. Coordinates are relative to uOrigin (the bounds centre) to keep
 // cancellation small; centres and polynomial coefficients are uploaded in that frame.
 //
@@ -97,7 +97,7 @@ double exactDoubleLog(double x) {
 #define realLog log
 #endif
 
-// φ(x), a = φ′(x)/x, e = (φ″ − φ′/x)/x² (0 at x = 0) of the kernel (core/kernels.cpp).
+// φ(x), a = φ′(x)/x, e = (φ″ − φ′/x)/x² (0 at x = 0) of the kernel (core/rbf/kernels.cpp).
 real3 kernelTerms(real x) {
   real r = uRadius;
   real r2 = r * r;

@@ -8,7 +8,7 @@ int main(int argc, char** argv) {
   // Keep large freed blocks in the heap instead of returning them to the kernel: the GUI and the
   // fits allocate the same multi-megabyte buffers again and again (tessellations, grids, kernel
   // matrices), and with glibc's defaults each one is a fresh mmap whose first touch page-faults
-  // (re-tessellating a 4×4 patch grid at 64²: ~1–2 ms of its ~3 ms were page faults).
+  // (docs/performance.md).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
   return hermite::app::runCli(argc, argv);

@@ -1,5 +1,5 @@
 #pragma once
-// Triangle mesh files (DESIGN.md §4, §7): read OFF, OBJ, PLY (ascii, binary little/big endian),
+// Triangle mesh files: read OFF, OBJ, PLY (ascii, binary little/big endian),
 // glTF / GLB; write GLB / glTF, PLY (binary), OBJ. The format is chosen by the extension.
 // Every malformed input is an InputError naming the file and what was wrong; saving never
 // destroys an existing file (temporary + rename, atomic_file.h) and an unwritable path is an

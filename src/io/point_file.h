@@ -1,5 +1,5 @@
 #pragma once
-// Oriented point files (DESIGN.md §4):
+// Oriented point files (docs/scene-format.md):
 //   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated,
 //                         normal_estimation.h, with a warning)
 //   .xyn                  2D: x y nx ny per line (2 columns = no normals: estimated too)

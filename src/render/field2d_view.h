@@ -5,7 +5,7 @@
 //
 // f and ∇f are evaluated on the CPU (the field's threaded batch evaluation) at every pixel centre
 // — or on a coarser grid, interpolated bilinearly — uploaded as an RGB32F texture and coloured in
-// field2d.frag with the line widths of the CPU reference (core/field2d_reference.h), which this
+// field2d.frag with the line widths of the CPU reference (core/trace/field2d_reference.h), which this
 // view is tested against. The colour legend is drawn with ImGui (render/legend.h).
 
 #include <optional>
@@ -31,7 +31,7 @@ struct Field2dViewOptions {
   bool showNormals = true;
   // Arrow heads on the normals: length of each barb in pixels (0 = plain lines, like the reference).
   double arrowHeadPx = 5.0;
-  // view.bounds: outside it iso-lines and the zero curve are not drawn (DESIGN.md §4) and the
+  // view.bounds: outside it iso-lines and the zero curve are not drawn (docs/scene-format.md) and the
   // heat map fades towards `outsideColor` by `outsideMix`. nullopt: the whole view is inside.
   std::optional<Box<2>> bounds;
   std::array<double, 3> outsideColor{1.0, 1.0, 1.0};

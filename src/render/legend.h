@@ -1,6 +1,6 @@
 #pragma once
 // The colour legend of the 2D field view and the slice plane: a vertical bar of the diverging
-// colour map (core/color_map.h) with its values, drawn into an ImGui draw list (so it renders
+// colour map (core/trace/color_map.h) with its values, drawn into an ImGui draw list (so it renders
 // through the ImGui renderer in a window and offscreen alike). Needs a current ImGui context
 // between NewFrame and Render.
 

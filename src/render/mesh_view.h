@@ -1,6 +1,6 @@
 #pragma once
 // Rasterised triangle meshes with lines on top (the patch editor's surface and iso-parameter
-// lines, meshed implicits, hole filling stages): lit like the tracer (core/shading.h), depth
+// lines, meshed implicits, hole filling stages): lit like the tracer (core/trace/shading.h), depth
 // tested, drawn into an own offscreen target of the camera's size and read back, like the
 // tracer's render(), so the application composes both the same way.
 

@@ -1,7 +1,7 @@
 #pragma once
 // The patch editor's document (scene key `patch` of a `"mode": "patch"` scene): a C¹
 // grid of bicubic Hermite patches over knots u₀ < … < uₙ, v₀ < … < vₘ, defined by data at the
-// knots (X, Xu, Xv, Xuv; DESIGN.md §3). Presets generate the data; edits change it; every patch
+// knots (X, Xu, Xv, Xuv; docs/maths.md, Patches). Presets generate the data; edits change it; every patch
 // that shares a knot sees the edit, so C¹ continuity holds by construction.
 //
 // Handles, in either form, are edits of the knot data:

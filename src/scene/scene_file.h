@@ -1,5 +1,5 @@
 #pragma once
-// The scene file (DESIGN.md §4): one JSON document drives the GUI, the CLI and the tests.
+// The scene file (docs/scene-format.md): one JSON document drives the GUI, the CLI and the tests.
 // Parsing is strict: an unknown key, a wrong type or an out-of-range value throws InputError
 // whose message starts with the file name and names the key path ("fit.radius: must be > 0").
 // Missing keys take the defaults written next to each field.
@@ -65,7 +65,7 @@ struct FitSpec {
 };
 
 // Which model a transformed similarity fit uses: auto = the coefficient update where it is the
-// re-solved interpolant (DESIGN.md §3 conditions), else the re-solve; update / re-solve force one
+// re-solved interpolant (docs/maths.md, Transforms), else the re-solve; update / re-solve force one
 // (the GUI's switch, to compare them live).
 enum class TransformMethod { Auto, Update, Resolve };
 std::string_view transformMethodName(TransformMethod m);  // auto, update, re-solve

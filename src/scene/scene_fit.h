@@ -1,9 +1,9 @@
 #pragma once
 // From a parsed Scene to a fitted field: the samples the scene names (preset, file or inline),
-// the fit it asks for (HRBF or RBF-offset), and its `transform` (DESIGN.md §4).
+// the fit it asks for (HRBF or RBF-offset), and its `transform` (docs/scene-format.md).
 //
 // The transformed model is the interpolant of the transformed data (points Tpᵢ, normals Rnᵢ,
-// radius q·r, shift q·δ), which equals q·f(T⁻¹x) (DESIGN.md §3): obtained by coefficient
+// radius q·r, shift q·δ), which equals q·f(T⁻¹x) (docs/maths.md, Transforms): obtained by coefficient
 // updates (transform.h) and checked against a re-solve; where the update is not exact (λ ≠ 0,
 // polynomial below the kernel's order) the re-solve is used, with a warning.
 
@@ -29,7 +29,7 @@ HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& w
 template <int Dim>
 Similarity<Dim> sceneSimilarity(const TransformSpec& spec);
 
-// The `transform` object of `fit --json` (DESIGN.md §5).
+// The `transform` object of `fit --json` (docs/cli.md).
 struct TransformReport {
   double updateMs = 0;     // coefficient update
   double resolveMs = 0;    // re-solve on the transformed data

@@ -1,5 +1,5 @@
 #pragma once
-// The region that is baked, traced, sliced and meshed (DESIGN.md §4 `view.bounds`).
+// The region that is baked, traced, sliced and meshed (`view.bounds`, docs/scene-format.md).
 
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
-// shaders/color_map.glsl holds the diverging map's stops as GLSL constants (uniforms were ~2×
-// slower on llvmpipe); this keeps them equal to core/color_map.h, the one definition the CPU
+// shaders/color_map.glsl holds the diverging map's stops as GLSL constants (uniforms are slower
+// on llvmpipe); this keeps them equal to core/trace/color_map.h, the one definition the CPU
 // reference, the legend and the tests use.
 #include <doctest/doctest.h>
 

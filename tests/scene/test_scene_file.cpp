@@ -150,7 +150,7 @@ TEST_CASE("scene: minimal scene takes the documented defaults") {
   CHECK(s2.transform.translate == std::vector<double>{0, 0});
 }
 
-TEST_CASE("scene: the commented example of DESIGN.md §4 equals the defaults") {
+TEST_CASE("scene: the commented example of docs/scene-format.md equals the defaults") {
   const Scene example = hermite::loadSceneFile(kFixtures + "/scenes/commented.json");
   Scene minimal = hermite::loadSceneFile(kFixtures + "/scenes/minimal.json");
   minimal.sourceName = example.sourceName;

@@ -10,7 +10,7 @@
 
 namespace hermite::testing {
 
-// The closed torus and ball cutting come from core (core/mesh_shapes.h), shared with the
+// The closed torus and ball cutting come from core (core/shapes/mesh_shapes.h), shared with the
 // hole-filling presets and bench.
 inline TriMesh parametricTorus(int nu, int nv, double R = 0.7, double r = 0.3) { return parametricTorusMesh(nu, nv, R, r); }
 using hermite::cutBall;

@@ -20,7 +20,8 @@ inline std::unique_ptr<RenderContext> makeTestContext(const std::string& name = 
   return createContext(name, options);
 }
 
-// EGL surfaceless works on this machine (llvmpipe); only an explicit opt-out skips it.
+// EGL surfaceless works with Mesa's llvmpipe, which every supported machine has; only an explicit
+// opt-out (HERMITE_SKIP_EGL) skips it.
 inline bool skipEgl() {
   const char* value = std::getenv("HERMITE_SKIP_EGL");
   return value != nullptr && std::strcmp(value, "1") == 0;

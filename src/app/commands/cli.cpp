@@ -35,7 +35,7 @@ constexpr const char* kUsage =
     "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
 
 void addSceneOptions(CLI::App& cmd, SceneArgs& scene, bool required) {
-  auto* opt = cmd.add_option("scene", scene.scenePath, "scene file (JSON, DESIGN.md §4)");
+  auto* opt = cmd.add_option("scene", scene.scenePath, "scene file (JSON, docs/scene-format.md)");
   if (required) opt->required();
   cmd.add_option("--set", scene.overrides, "override a scene key: KEY=VALUE (VALUE is JSON or a string)")
       ->take_all()
@@ -69,7 +69,7 @@ int dispatch(int argc, char** argv) {
     FitArgs a;
     CLI::App cmd("fit a scene and report residuals, solver and timing", "fit");
     addSceneOptions(cmd, a.scene, true);
-    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
     cmd.add_flag("--coefficients", a.coefficients, "also print the fitted model (centres, alpha, beta, poly)");
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
@@ -131,7 +131,7 @@ int dispatch(int argc, char** argv) {
     CLI::App cmd("fill the holes of a triangle mesh (advancing front, fairing, RBF projection)", "holefill");
     cmd.add_option("input", a.input, "triangle mesh (.off, .obj, .ply, .glb, .gltf)")->required();
     cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (written atomically)")->required();
-    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
     cmd.add_option("--rings", a.rings, "vertex rings around each hole fitted by the implicit (default 2)")
         ->check(CLI::Range(1, 10));
     cmd.add_option("--implicit", a.implicit, "rbf-offset (default: cubic, linear, ±d offsets) or hrbf")
@@ -147,7 +147,7 @@ int dispatch(int argc, char** argv) {
     cmd.add_option("--samples", a.samples, "N x N local parameters per patch (default 15)")->check(CLI::Range(2, 100000));
     cmd.add_option("--splits", a.splits, "comma-separated NxM splits, N along u (default 1x1,2x1,2x2,3x3)");
     cmd.add_option("--domain", a.domain, "U0,U1,V0,V1 (default 0,1,0,1)");
-    cmd.add_flag("--json", a.json, "machine-readable output (DESIGN.md §5)");
+    cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);

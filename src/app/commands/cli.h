@@ -1,5 +1,5 @@
 #pragma once
-// The hermite-lab command line (DESIGN.md §5). Returns the process exit code.
+// The hermite-lab command line (docs/cli.md). Returns the process exit code.
 
 namespace hermite::app {
 

@@ -1,4 +1,4 @@
-// `hermite-lab holefill IN -o OUT [--json]` (DESIGN.md §5): fills the holes of a triangle mesh
+// `hermite-lab holefill IN -o OUT [--json]` (docs/cli.md): fills the holes of a triangle mesh
 // (core/hole_fill.h) and reports holes found and filled, triangles added, the largest |f| after
 // projection, vertices that did not converge, and the time.
 

@@ -1,4 +1,4 @@
-// `hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set ...]` (DESIGN.md §5):
+// `hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set ...]` (docs/cli.md):
 // the fitted field's zero set over `view.bounds` by marching cubes (3D) or marching squares (2D:
 // closed polylines as OBJ `l` elements or SVG paths). One summary line on stdout.
 

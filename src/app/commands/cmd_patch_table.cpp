@@ -1,5 +1,5 @@
 // `hermite-lab patch-table [--samples N] [--splits 1x1,2x1,...] [--domain U0,U1,V0,V1] [--json]`:
-// the torus error study of core/torus_patch_study.h as a table or JSON (DESIGN.md §5).
+// the torus error study of core/patch/torus_patch_study.h as a table or JSON (docs/cli.md).
 
 #include <cstdio>
 #include <sstream>

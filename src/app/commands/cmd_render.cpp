@@ -1,5 +1,5 @@
 // `hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--set KEY=VALUE ...] [--backend osmesa|egl]`
-// (DESIGN.md §5, §6): headless rendering through OSMesa (default) or EGL surfaceless. 2D scenes
+// (docs/cli.md; docs/design.md, Rendering): headless rendering through OSMesa (default) or EGL surfaceless. 2D scenes
 // draw the field view with its legend, 3D scenes the implicit tracer (with slice plane and
 // overlays as the view says); --ui draws the application's panels on top with ImGui, laid out
 // as in the window. Same input → same bytes. Nothing is printed on success.

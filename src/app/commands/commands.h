@@ -1,5 +1,5 @@
 #pragma once
-// The subcommands of hermite-lab (DESIGN.md §5). Each returns the process exit code and
+// The subcommands of hermite-lab (docs/cli.md). Each returns the process exit code and
 // throws hermite errors (errors.h) that runCli maps to exit codes.
 
 #include <array>
@@ -82,8 +82,8 @@ struct HoleFillArgs {
 };
 int runHoleFill(const HoleFillArgs& args);
 
-// The program's main job without a subcommand: the GUI when one exists and a display is
-// there; in this version the fit report of the scene (or of the demo scene).
+// The program's main job without a subcommand (gui/gui_window.cpp): the GUI window on the scene
+// (or the demo scene); without a display, the fit report of the scene and a note saying why.
 int runDefault(const SceneArgs& args);
 
 }  // namespace hermite::app

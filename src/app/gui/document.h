@@ -1,5 +1,5 @@
 #pragma once
-// The document the GUI edits (DESIGN.md §2): a Scene, a version counter that every change bumps
+// The document the GUI edits (docs/design.md, Data flow): a Scene, a version counter that every change bumps
 // (the fitter and the renderer compare versions and recompute only what is stale), undo / redo
 // of whole-scene snapshots (exact: undo restores the previous document bit for bit), the path it
 // was loaded from or saved to, and whether it has unsaved changes.

@@ -1,8 +1,7 @@
 #pragma once
 // Fits of successive scenes that differ in one sample only — the GUI dragging a sample or
-// turning its normal — through a kept factorisation (core/hrbf_sample_drag.h): O(n²) per refit
-// instead of the O(n³) fit from scratch (N = 200 in 2D: ≈ 1.2 ms instead of 5–7 ms; N = 250 in
-// 3D: ≈ 3.7 ms instead of ≈ 15 ms).
+// turning its normal — through a kept factorisation (core/rbf/hrbf_bordered_refit.h): O(n²) per
+// refit instead of the O(n³) fit from scratch (docs/performance.md, Drag refit).
 //
 // It applies to global HRBF fits of inline data without a transform; any other scene, a change
 // of the fit settings, of the sample count or of two samples at once is fitted from scratch,

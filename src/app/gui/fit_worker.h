@@ -1,5 +1,5 @@
 #pragma once
-// Fits the document's scene on a worker thread (DESIGN.md §2: long work off the main thread,
+// Fits the document's scene on a worker thread (docs/design.md, Threads: long work off the main thread,
 // GL calls on it). The main thread submits (scene, version) and polls each frame:
 //   - a newer submission supersedes the pending one (only the latest waits);
 //   - a fit already running cannot be interrupted inside LAPACK, so cancel() and superseding
@@ -44,7 +44,7 @@ struct FitOutcome {
   const std::vector<std::string>& warnings() const;  // the fit's warnings (empty on error)
 };
 
-// The fitted model as `fit --coefficients` prints it (DESIGN.md §5 model export).
+// The fitted model as `fit --coefficients` prints it (docs/cli.md).
 std::string fittedModelJson(const FitOutcome& fit);
 
 // Fits `scene` (any mode with a fit); exceptions become FitOutcome::error.

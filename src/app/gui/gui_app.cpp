@@ -212,7 +212,7 @@ void GuiApp::drawViewImage() {
       bg->AddImage(textureId(uploaded), ImVec2(left, y0), ImVec2(left + w, y1));
   };
   // The view images are opaque: drawn without blending (a blended full-view quad reads the
-  // framebuffer back, ~1 ms more per frame on llvmpipe), then ImGui's state again.
+  // framebuffer back, which software rasterisers pay for every frame), then ImGui's state again.
   bg->AddCallback([](const ImDrawList*, const ImDrawCmd*) { glDisable(GL_BLEND); }, nullptr);
   addView(view_, viewTexture_, x0);
   const bool compareShown = drawn_->compareOn && (compareView_.gpuImage || compareTexture_.valid());
@@ -318,8 +318,8 @@ void GuiApp::screenshotNow(const std::string& path, bool withUi, const FrameInpu
 }
 
 // The window's pixels: the background colour by a clear, then ImGui's draw lists (the view image,
-// overlays, panels). The background is not an ImGui rectangle: a full-window blended quad cost
-// ~4 ms of an 11 ms frame on llvmpipe at 1280×800; a clear is nearly free. The clear colour is
+// overlays, panels). The background is not an ImGui rectangle: a full-window blended quad is a
+// large share of a frame on llvmpipe, a clear is nearly free. The clear colour is
 // ImGui's own 8-bit rounding of the colour (IM_F32_TO_INT8_SAT) over 255, so the bytes are those
 // the rectangle gave.
 void GuiApp::renderFrame() {

@@ -132,7 +132,7 @@ class GuiApp {
   void renderFrame();
   void setStatus(std::string message, bool error = false);
   std::optional<Scene> compareScene(const Scene& scene) const;
-  // gui_tools.cpp: camera and sample manipulation
+  // tools/view_tools.cpp: camera and sample manipulation
   void handleShortcuts(const FrameInput& in);
   void handleViewInput(const FrameInput& in);
   void handleDroppedFiles(const FrameInput& in);
@@ -146,7 +146,7 @@ class GuiApp {
   void zoom(double notches, const Vec<2>& mouse);
   void fitToView();
   void resetView();
-  // gui_panels.cpp
+  // panels/panels.cpp
   void recordWidget(const std::string& name);  // the last item's rectangle
   void drawPanels();
   void drawDataPanel();
@@ -175,14 +175,14 @@ class GuiApp {
   bool showGizmo_ = false;
   GizmoHandle gizmo_;
   Vec<2> lastGizmoMouse_ = Vec<2>::Zero();
-  // gui_holefill.cpp: hole filling (mode "holefill")
+  // panels/hole_fill_panel.cpp: hole filling (mode "holefill")
   void drawHoleFillPanel();
-  // gui_patch.cpp: the patch editor (mode "patch")
+  // panels/patch_panel.cpp: the patch editor (mode "patch")
   void drawPatchPanel();
   void drawPatchHandles();
   bool pressPatchHandle(const Vec<2>& mouse);  // true when a handle was grabbed
   void dragPatchHandle(const Vec<2>& mouse, const FrameInput& in);
-  // gui_tools.cpp: the slice plane, dragged along its normal in the 3D view
+  // tools/view_tools.cpp: the slice plane, dragged along its normal in the 3D view
   bool pressSlicePlane(const Vec<2>& mouse);
   void dragSlicePlane(const Vec<2>& mouse);
   std::optional<double> sliceLineParameter(const Vec<2>& mouse) const;

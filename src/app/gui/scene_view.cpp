@@ -52,8 +52,8 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
     o.showNormals = v.showNormals;
     o.bounds = viewBounds<2>(v, f.data.points);
     o.outsideColor = v.background;
-    // While dragging: f and ∇f every 6 px, bilinear between (a drag frame at N = 200 fits in
-    // 16.7 ms; tests/render/test_field2d_view.cpp keeps the zero curve within a pixel at 1/8).
+    // While dragging: f and ∇f every 6 px, bilinear between, so a drag frame fits in one 60 Hz
+    // frame (tests/render/test_field2d_view.cpp keeps the zero curve within a pixel at 1/8).
     o.gridScale = quality == ViewQuality::Interactive ? 1.0 / 6 : 1.0;
     o.style.range = colourRange;
     const View2d view = sceneView2d(viewScene, width, height);

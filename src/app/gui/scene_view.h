@@ -21,7 +21,7 @@
 namespace hermite::app {
 
 enum class ViewQuality {
-  Interactive,  // while dragging: coarse 3D bake (64³), no exact refinement; 2D f every 4 px
+  Interactive,  // while dragging: coarse 3D bake (64³), no exact refinement; 2D f every 6 px
   Settled,      // the view at rest: 128³ bake + exact refinement of every hit; 2D f at every pixel
 };
 

@@ -2,7 +2,7 @@
 // the torus error table) and the handles in the view — drawn with ImGui over the rasterised
 // grid, grabbed with the mouse and dragged on the plane through the handle facing the camera;
 // holding X, Y or Z constrains the drag to that axis. Every edit is an edit of the knot data in
-// the scene (core/patch_document.h), so undo, save and `render` see it.
+// the scene (scene/patch_document.h), so undo, save and `render` see it.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>

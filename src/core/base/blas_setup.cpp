@@ -38,17 +38,15 @@ void reexecWithTunedBlas(char** argv) {
   if (std::getenv("HERMITE_REEXECUTED") != nullptr) return;  // once only
   bool reexec = false;
   // libgomp threads spin after each parallel region by default and then fight OpenBLAS's
-  // threads for the cores: measured here, a whole `fit` at N = 250 takes 54 ms with spinning
-  // and 27 ms with passive waiting (N = 1000: unchanged). libgomp reads this at load time.
+  // threads for the cores, which roughly doubles a small fit (docs/performance.md). libgomp
+  // reads this at load time.
   if (std::getenv("OMP_WAIT_POLICY") == nullptr) {
     setenv("OMP_WAIT_POLICY", "PASSIVE", 1);
     reexec = true;
   }
   // OpenBLAS's worker threads spin in sched_yield for 2^28 cycles (~0.1 s) after each threaded
-  // call before they sleep, taking a core from the renderer's threads on a 2-core machine: with
-  // the GUI dragging a 2D sample, 22 % of all CPU samples were that spinning (perf), 8 % with
-  // 2^16 cycles (~25 µs, still enough to bridge the calls inside one factorisation; the N = 1000
-  // fit takes as long).
+  // call before they sleep, taking a core from the renderer's threads on a small machine while
+  // the GUI drags a sample; 2^16 cycles (~25 µs) still bridge the calls inside one factorisation.
   if (std::getenv("OPENBLAS_THREAD_TIMEOUT") == nullptr) {
     setenv("OPENBLAS_THREAD_TIMEOUT", "16", 1);
     reexec = true;

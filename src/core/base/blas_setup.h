@@ -1,8 +1,8 @@
 #pragma once
 // OpenBLAS chooses its compute kernels from the CPU model when the library loads. Under
 // hypervisors that hide the model (this project's machines report "Intel(R) Xeon(R)
-// Processor") it falls back to the generic "Prescott" SSE3 kernels: measured here, dpotrf at
-// n = 2000 takes 179 ms instead of 66 ms with the SkylakeX kernels the CPU supports.
+// Processor") it falls back to the generic "Prescott" SSE3 kernels, several times slower than the
+// AVX2/AVX-512 kernels the CPU supports (docs/performance.md, Fitting and solvers).
 //
 // The choice cannot be changed after loading, so a program that wants the fast kernels calls
 // this first thing in main(): when OpenBLAS picked a generic core but the CPU has AVX2/AVX-512,

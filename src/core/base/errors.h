@@ -1,6 +1,6 @@
 #pragma once
 // Error types shared by the whole program. Each maps to one exit code of the command line
-// (DESIGN.md §5): InputError 1, UsageError 2, NumericalError 3, EnvironmentError 4.
+// (docs/cli.md, Exit codes): InputError 1, UsageError 2, NumericalError 3, EnvironmentError 4.
 // Messages carry their context: file and line, JSON key path, sample index, solver reason.
 
 #include <stdexcept>

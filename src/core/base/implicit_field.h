@@ -1,6 +1,6 @@
 #pragma once
 // The interface render/ and meshing consume: any scalar field f with gradient and Hessian.
-// Convention (DESIGN.md §3): f < 0 inside, f > 0 outside, ∇f points outward.
+// Convention (docs/maths.md, Conventions): f < 0 inside, f > 0 outside, ∇f points outward.
 
 #include "core/base/geometry.h"
 

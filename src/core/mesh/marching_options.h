@@ -1,5 +1,5 @@
 #pragma once
-// Contouring an implicit field's zero set over a box (DESIGN.md §2 meshing and export):
+// Contouring an implicit field's zero set over a box (docs/maths.md, Contouring):
 // marching squares (2D → polylines) and marching cubes (3D → a triangle mesh).
 //
 // Both sample f on a regular grid (evaluateBatch, threaded), place one vertex on every grid edge
@@ -12,7 +12,7 @@
 // triangulated by a fan that never puts a diagonal on a cube face (so no edge can repeat in the
 // neighbouring cube), or around a centre vertex where no such fan exists.
 //
-// Orientation (DESIGN.md §3): triangles are counter-clockwise seen from outside (face normals
+// Orientation (docs/maths.md, Conventions): triangles are counter-clockwise seen from outside (face normals
 // along +∇f); 2D polylines run counter-clockwise around the inside (outside on the right).
 // Vertices are refined by Newton's iteration restricted to their grid edge,
 // t ← t − f / (∇f · (b − a)), safeguarded by the sign bracket (Illinois false position when a

@@ -1,8 +1,8 @@
 #pragma once
-// Triangle meshes (DESIGN.md §2): vertices, triangles, per-vertex normals, and the topology
+// Triangle meshes: vertices, triangles, per-vertex normals, and the topology
 // queries hole filling and the loaders need (boundary loops, connected components).
 // Orientation: triangles are counter-clockwise seen from outside, so the face normal
-// (v1 − v0) × (v2 − v0) points outward (the same side as ∇f of an implicit, DESIGN.md §3).
+// (v1 − v0) × (v2 − v0) points outward (the same side as ∇f of an implicit, docs/maths.md, Conventions).
 
 #include <Eigen/Core>
 #include <cstdint>

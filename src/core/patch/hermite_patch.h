@@ -1,5 +1,5 @@
 #pragma once
-// Bicubic Hermite patch (DESIGN.md §3): X(s,t) = H(s)ᵀ C H(t), s, t ∈ [0, 1], with
+// Bicubic Hermite patch (docs/maths.md, Patches): X(s,t) = H(s)ᵀ C H(t), s, t ∈ [0, 1], with
 // H(t) = (1 − 3t² + 2t³, t − 2t² + t³, t³ − t², 3t² − 2t³) and, per coordinate,
 //   C = [[X00,  Xt00,  Xt01,  X01 ],
 //        [Xs00, Xst00, Xst01, Xs01],

@@ -87,8 +87,8 @@ PatchGrid::Tessellation PatchGrid::tessellate(int samples) const {
   out.triangles.resize(3, 2 * (S - 1) * (S - 1) * nPatches);
   // The basis at the S sample parameters, once: rows H(a/(S−1)) and H′(a/(S−1)) (S × 4). Then
   // per patch and coordinate X = Hs·C·Htᵀ, Xs = H′s·C·Htᵀ, Xt = Hs·C·H′tᵀ as small matrix
-  // products (the same sums as HermitePatch::evaluate, vectorised), normals as array expressions:
-  // a 4 × 4 grid at 64² samples per patch went from ~7 ms of per-point evaluation to ~1.1 ms.
+  // products (the same sums as HermitePatch::evaluate, vectorised), normals as array expressions,
+  // several times faster than evaluating point by point.
   Eigen::MatrixXd H(S, 4), D(S, 4);
   for (int a = 0; a < S; ++a) {
     H.row(a) = hermiteBasis(double(a) / (S - 1)).transpose();

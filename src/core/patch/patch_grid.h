@@ -2,7 +2,7 @@
 // A C¹ spline of bicubic Hermite patches over knots u₀ < … < uₙ (s direction) and
 // v₀ < … < vₘ (t direction), built from data at the knots: points X, partials Xu, Xv and twists
 // Xuv. Patch (i, j) on [uᵢ, uᵢ₊₁] × [vⱼ, vⱼ₊₁] has local s = (u − uᵢ)/Δuᵢ, t = (v − vⱼ)/Δvⱼ, so
-// its s-tangents are Δuᵢ·Xu, t-tangents Δvⱼ·Xv and twists ΔuᵢΔvⱼ·Xuv (DESIGN.md §3). Shared
+// its s-tangents are Δuᵢ·Xu, t-tangents Δvⱼ·Xv and twists ΔuᵢΔvⱼ·Xuv (docs/maths.md, Patches). Shared
 // knot data make neighbouring patches join with C¹ continuity.
 
 #include <functional>

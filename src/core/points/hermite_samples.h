@@ -1,5 +1,5 @@
 #pragma once
-// Hermite data: points with unit outward normals, validated (DESIGN.md §3 sign convention).
+// Hermite data: points with unit outward normals, validated (docs/maths.md, Conventions).
 
 #include <string>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Normals for raw clouds (DESIGN.md §1 "normals for raw clouds"): PCA over the k nearest
+// Normals for raw clouds (docs/maths.md, Normal estimation): PCA over the k nearest
 // neighbours (the normal is the eigenvector of the smallest eigenvalue of the neighbourhood's
 // covariance), then consistent orientation by propagation over a minimum spanning tree of the
 // k-nearest-neighbour graph with edge cost 1 − |nᵢ·nⱼ| (Hoppe et al. 1992), and per connected

@@ -74,7 +74,7 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
     }
     return first;
   };
-  // Pass 1: the DESIGN.md §4 rules.
+  // Pass 1: the `fit.partition` rules (docs/scene-format.md).
   std::vector<int> stack{0};
   while (!stack.empty()) {
     const int id = stack.back();

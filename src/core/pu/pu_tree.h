@@ -1,5 +1,5 @@
 #pragma once
-// The box tree of a partition-of-unity fit (DESIGN.md §4 `fit.partition`): a quadtree (2D) or
+// The box tree of a partition-of-unity fit (scene key `fit.partition`; docs/maths.md, Partition of unity): a quadtree (2D) or
 // octree (3D) over the samples' bounding box (grown by a small margin so no sample sits on the
 // root's faces). A box holding samples is split into 2^Dim equal children while it holds more
 // than `maxPointsPerBox` samples or, when `boxSize` > 0, while its longest edge exceeds

@@ -346,7 +346,7 @@ DenseLu::DenseLu(Eigen::MatrixXd K) : lu_(std::move(K)) {
 // The solves run in Eigen, not dgetrs: a drag calls them every frame with a few columns, where
 // LAPACKE's NaN scan of the whole factor (n² per call) and OpenBLAS's worker threads — which
 // then spin in sched_yield for a while, taking a core from the renderer — cost more than the
-// solve (2D drag at N = 200: 27 % of all CPU samples in the scheduler, measured with perf).
+// solve itself.
 template <class Rhs>
 void solveWithFactors(const Eigen::MatrixXd& lu, const std::vector<int>& pivots, Rhs& rhs) {
   if (rhs.rows() != lu.rows()) throw NumericalError("LU solve: right-hand side of the wrong size");

@@ -1,5 +1,5 @@
 #pragma once
-// Dense symmetric saddle-point solves through LAPACKE (OpenBLAS), DESIGN.md §3:
+// Dense symmetric saddle-point solves through LAPACKE (OpenBLAS), docs/maths.md, Solvers and conditioning:
 //
 //   [ A   P ] [x]   [b]      A: n × n symmetric (kernel block, smoothing already on its diagonal)
 //   [ Pᵀ  0 ] [c] = [0]      P: n × m polynomial block (m may be 0)

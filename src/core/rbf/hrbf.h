@@ -1,5 +1,5 @@
 #pragma once
-// Hermite RBF implicit (DESIGN.md §3):
+// Hermite RBF implicit (docs/maths.md, HRBF system):
 //   f(x) = Σⱼ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x),   cⱼ = pⱼ,
 // with f(pᵢ) = 0, ∇f(pᵢ) = nᵢ and Σⱼ αⱼ q(pⱼ) + βⱼ·∇q(pⱼ) = 0 for every monomial q.
 
@@ -72,7 +72,7 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
 SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Kernel& kernel, Polynomial polynomial,
                               int nSamples, std::chrono::steady_clock::time_point start, FitReport* report);
 
-// Warnings every fit shares: polynomial below the kernel's order (DESIGN.md §3).
+// Warnings every fit shares: polynomial below the kernel's order (docs/maths.md, Kernels).
 std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomial polynomial);
 
 // Definiteness of the kernel block on null(Pᵀ) for the solver, or 0 when unknown

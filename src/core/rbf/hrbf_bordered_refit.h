@@ -15,10 +15,8 @@
 // one step of iterative refinement on the whole system. The result is checked: a residual
 // above 1e-9 of the system's scale is a NumericalError (the caller then fits from scratch).
 //
-// Measured on this 2-core machine, cubic + linear: N = 200 in 2D (603 unknowns) factorisation
-// ≈ 14 ms once, each refit ≈ 1.2 ms (a third of it the condition estimate), against 5–7 ms for
-// fitHrbf; N = 250 in 3D: 38 ms once, 3.7 ms per refit, against 15 ms. The GUI factorises when
-// a sample is grabbed (app/drag_refit.h); `hermite-lab bench --only gui/drag-latency`.
+// The GUI factorises when a sample is grabbed (app/gui/drag_refit.h); docs/performance.md has the
+// factorisation and per-refit times against fitHrbf (`hermite-lab bench --only gui/drag-latency`).
 
 #include <chrono>
 #include <optional>

@@ -1,5 +1,5 @@
 #pragma once
-// Radial kernels φ(x), x = distance, and the factors of their gradient and Hessian (DESIGN.md §3).
+// Radial kernels φ(x), x = distance, and the factors of their gradient and Hessian (docs/maths.md, Kernels).
 //
 // For φ(‖d‖) with x = ‖d‖:
 //   ∇φ  = a(x)·d                      a = φ′(x)/x

@@ -1,5 +1,5 @@
 #pragma once
-// The polynomial term p(x) of an RBF/HRBF fit (DESIGN.md §3).
+// The polynomial term p(x) of an RBF/HRBF fit (docs/maths.md, Polynomial term).
 // Monomial order: none; linear = 1, x, y(, z); quadratic adds xᵢxⱼ for i ≤ j:
 // 2D: 1, x, y, xx, xy, yy;  3D: 1, x, y, z, xx, xy, xz, yy, yz, zz.
 

@@ -1,12 +1,12 @@
 #pragma once
-// AVX-512 fused evaluation loop of RadialSum (internal to radial_sum.cpp).
+// AVX-512 fused evaluation loop of RadialSum, shared by RadialSum::evaluateBatch (radial_sum.cpp)
+// and the volume bake (core/trace/volume_bake.cpp); compiled only where __AVX512F__ is defined.
 //
 // One pass over the centres, 8 at a time, computes d, ‖d‖², the radial factors and the sums,
 // with nothing stored in between. Square roots and divisions are the bottleneck of the generic
 // path (vsqrtpd + vdivpd ≈ 32 cycles per 8 pairs); here 1/‖d‖ comes from vrsqrt14pd refined by
 // two Newton steps (14 → 28 → ~53 bits; a few ulp, no division), and exp / log from Eigen's
-// packet functions. Measured on this 2-core machine, value + gradient per (point, centre) pair
-// and core: cubic 2.58 → 1.02 ns, gaussian 2.56 → 2.19 ns (`hermite-lab bench --only eval`).
+// packet functions. docs/performance.md has the per-pair timings against the generic path.
 
 #if defined(__AVX512F__)
 

@@ -1,5 +1,5 @@
 #pragma once
-// The plain RBF method with offset points (DESIGN.md §3): centres pᵢ, pᵢ + δnᵢ, pᵢ − δnᵢ with
+// The plain RBF method with offset points (docs/maths.md, RBF-offset): centres pᵢ, pᵢ + δnᵢ, pᵢ − δnᵢ with
 // values 0, +δ, −δ (δ = shift), f = Σⱼ wⱼ φ(‖x − cⱼ‖) + p(x).
 
 #include "core/rbf/hrbf.h"

@@ -1,6 +1,6 @@
 #pragma once
 // Similarity transforms T(x) = q·R·x + t of fitted implicits by coefficient updates
-// (DESIGN.md §3). The transformed fit — the interpolant of points Tpᵢ, normals Rnᵢ, radius q·r,
+// (docs/maths.md, Transforms). The transformed fit — the interpolant of points Tpᵢ, normals Rnᵢ, radius q·r,
 // shift q·δ — equals g(x) = q·f(T⁻¹x). With y = T⁻¹x, ‖y − c‖ = ‖x − c′‖/q for c′ = Tc, and
 // for a kernel homogeneous of degree k under the radius change (φ(s/q) = q⁻ᵏφ(s)):
 //
@@ -45,7 +45,9 @@ template <int Dim>
 Eigen::VectorXd transformPolynomial(Polynomial p, const Eigen::VectorXd& coefficients, const Similarity<Dim>& T);
 
 // g = q·f(T⁻¹x) by coefficient updates (kernel radius scaled for radius kernels; RBF-offset
-// shift scaled by q). Always equals q·f(T⁻¹x); equals the re-solve when the update is exact.
+// shift scaled by q). Equals q·f(T⁻¹x), except for polyharmonic with a polynomial below quadratic
+// and q ≠ 1: there the ln q·s⁴ term of the scaling is not a polynomial the update can absorb, and
+// g is not q·f(T⁻¹x). Equals the re-solve when coefficientUpdateIsExact.
 template <int Dim>
 HrbfModel<Dim> transformModel(const HrbfModel<Dim>& model, const Similarity<Dim>& T);
 template <int Dim>

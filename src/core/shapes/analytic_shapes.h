@@ -1,5 +1,5 @@
 #pragma once
-// Analytic signed distance fields with exact gradients and Hessians (DESIGN.md §3 convention:
+// Analytic signed distance fields with exact gradients and Hessians (docs/maths.md, Conventions:
 // f < 0 inside, ∇f points outward). References for tests, the tracers and the patch editor.
 // Each is an exact distance field, so |f(x) − f(y)| ≤ ‖x − y‖ everywhere: Lipschitz bound 1.
 // Where f is not differentiable (a sphere's centre, a torus's core circle and axis) evaluate

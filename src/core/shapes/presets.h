@@ -1,6 +1,6 @@
 #pragma once
 // Built-in data sets, generated exactly (points and exact unit normals). Centred at the origin
-// and scaled so the samples fit the unit ball / disc (DESIGN.md §4), unless said otherwise.
+// and scaled so the samples fit the unit ball / disc (docs/scene-format.md), unless said otherwise.
 
 #include <string>
 #include <string_view>

@@ -1,5 +1,5 @@
 #pragma once
-// Cameras of DESIGN.md §4: the 3D look-at camera (perspective or orthographic) whose pixel rays
+// Cameras (docs/maths.md, Conventions): the 3D look-at camera (perspective or orthographic) whose pixel rays
 // every tracer shares, its OpenGL view/projection matrices, and the 2D view mapping.
 //
 // Pixels: column i ∈ [0, W), row j ∈ [0, H), row 0 = top. Continuous pixel coordinates (px, py)
@@ -82,7 +82,7 @@ class Camera {
   double halfHeight_;
 };
 
-// The 2D field view (DESIGN.md §4): centre ± halfHeight vertically, square pixels, row 0 = the
+// The 2D field view: centre ± halfHeight vertically, square pixels, row 0 = the
 // largest y. Pixel size s = 2·halfHeight/H world units.
 class View2d {
  public:

@@ -1,5 +1,5 @@
 #pragma once
-// The diverging colour map of the 2D field view and the slice plane (DESIGN.md §4): symmetric
+// The diverging colour map of the 2D field view and the slice plane (docs/maths.md, Colour map): symmetric
 // about f = 0 (blue inside, f < 0; near-white at 0; orange-red outside, f > 0: the colour at −t
 // is the colour at t with red and blue swapped), and the zero-curve
 // colour, which is not a colour of the map. The stops are public so shaders get the same numbers.

@@ -1,5 +1,5 @@
 #pragma once
-// CPU reference rendering of a 2D field (DESIGN.md §4 2D conventions): the heat map of f in the
+// CPU reference rendering of a 2D field (docs/maths.md, Conventions): the heat map of f in the
 // diverging colour map, iso-lines at a regular spacing, the zero curve thick and anti-aliased in
 // a colour outside the map, optional samples (dots) and normals (short lines). The GPU 2D view
 // is tested against it. Line widths use the distance estimate |f − level| / ‖∇f‖ in pixels.

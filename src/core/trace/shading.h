@@ -18,7 +18,7 @@ inline constexpr std::array<double, 3> kBackColor{0.35, 0.55, 0.85};
 inline constexpr double kAmbient = 0.15;
 
 // A directional light given in camera space: the direction towards the light is
-// normalize(r·right + u·up + f·forward) with the camera's axes (r, u, f of DESIGN.md §4).
+// normalize(r·right + u·up + f·forward) with the camera's axes (r, u, f of camera.h).
 struct Light {
   double r, u, f;
   double intensity;

@@ -1,5 +1,5 @@
 #pragma once
-// Baking f of a 3D field into a grid for the GPU tracer (DESIGN.md §6), with per-brick
+// Baking f of a 3D field into a grid for the GPU tracer (docs/maths.md, Volume bake and sphere tracing), with per-brick
 // Lipschitz bounds that make sphere-tracing steps safe and cull bricks without a zero crossing.
 //
 // Units: values are f in the field's own units; Lipschitz bounds in f-units per world unit.

@@ -2,8 +2,8 @@
 // it only hands OSMesaGetProcAddress to the loader.
 //
 // libOSMesa is loaded with dlopen on first use rather than linked: it pulls in libLLVM, whose
-// static initialisers cost ~13 ms at every process start (measured), which every command paid
-// twice (blas_setup re-executes once) although only `render` needs GL.
+// static initialisers cost every process start time (docs/performance.md), twice where
+// blas_setup re-executes, although only the commands that draw need GL.
 #include <GL/osmesa.h>
 #include <dlfcn.h>
 

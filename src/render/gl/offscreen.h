@@ -1,5 +1,5 @@
 #pragma once
-// Drawing into an offscreen framebuffer and reading it back with row 0 = top (DESIGN.md §4).
+// Drawing into an offscreen framebuffer and reading it back with row 0 = top (docs/maths.md, Conventions).
 
 #include "core/trace/image.h"
 #include "render/gl/gl_objects.h"

@@ -18,7 +18,7 @@ using json = nlohmann::json;
 
 namespace {
 
-// An independent evaluation of DESIGN.md §3 from the exported coefficients: scalar code written
+// An independent evaluation of docs/maths.md (HRBF system) from the exported coefficients: scalar code written
 // from the formulas, sharing nothing with src/core.
 struct IndependentModel {
   std::string kernel;
@@ -97,7 +97,7 @@ std::string sceneJson(int dim, const std::string& kernel, double radius, const s
 
 }  // namespace
 
-TEST_CASE("fit --json reports the DESIGN.md §5 keys with interpolation residuals ≤ 1e-9") {
+TEST_CASE("fit --json reports the docs/cli.md keys with interpolation residuals ≤ 1e-9") {
   const std::string scene = writeTemp("torus_cubic.json", sceneJson(3, "cubic", 1.0, "linear"));
   const auto r = runCli("fit " + scene + " --json");
   REQUIRE(r.rc == 0);
@@ -113,7 +113,7 @@ TEST_CASE("fit --json reports the DESIGN.md §5 keys with interpolation residual
   CHECK(j["transform"].is_null());
 }
 
-TEST_CASE("eval and --coefficients agree with an independent implementation of DESIGN.md §3") {
+TEST_CASE("eval and --coefficients agree with an independent implementation of docs/maths.md") {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-1.1, 1.1);
   struct Case {

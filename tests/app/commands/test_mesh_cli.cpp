@@ -105,7 +105,7 @@ TEST_CASE("mesh: unknown extension is a usage error, an unwritable output exit 4
   CHECK(r.rc == 2);
 }
 
-TEST_CASE("holefill: fills the holes of a mesh file and reports the DESIGN.md §5 keys") {
+TEST_CASE("holefill: fills the holes of a mesh file and reports the docs/cli.md keys") {
   const hermite::SphereField sphere;
   hermite::Box<3> box;
   box.lo = hermite::Vec<3>::Constant(-1.3);

@@ -1,5 +1,5 @@
 // `hermite-lab render` through the real executable: PNG output, determinism, --ui, the EGL
-// backend, golden images and exit codes (DESIGN.md §5, §8).
+// backend, golden images and exit codes (docs/cli.md; docs/design.md, Testing).
 //
 // Golden PNGs live in tests/golden/render_*.png. They are compared by tolerance (≤ 2/255 per
 // channel on ≤ 0.1 % of the pixels; exact bytes vary with the CPU's code generation); on a

@@ -1,4 +1,4 @@
-// The GUI's drag refits (app/drag_refit.h): which scenes take the bordered solve, and that its
+// The GUI's drag refits (app/gui/drag_refit.h): which scenes take the bordered solve, and that its
 // field is the field of the fit from scratch.
 #include <doctest/doctest.h>
 

@@ -275,7 +275,7 @@ TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel kee
   }
   REQUIRE(h.app->shownFit());
   const std::uint64_t good = h.app->shownVersion();
-  // A large fit: 1500 samples (6000 unknowns, dense) takes about a second or more here.
+  // A large fit: 1500 samples (6000 unknowns, dense) outlasts many frames, so the test sees it running.
   Scene big = h.app->document().scene();
   big.data.count = 1500;
   h.app->document().apply(big, "count");

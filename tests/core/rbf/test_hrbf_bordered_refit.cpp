@@ -1,4 +1,4 @@
-// The bordered refit of a dragged sample (core/hrbf_sample_drag.h) against fitting from scratch.
+// The bordered refit of a dragged sample (core/rbf/hrbf_bordered_refit.h) against fitting from scratch.
 #include <doctest/doctest.h>
 
 #include <vector>

@@ -48,7 +48,7 @@ TEST_CASE("kernel factors match finite differences, including next to a centre")
   }
 }
 
-TEST_CASE("kernel factors have the exact limits of DESIGN.md §3 at a centre") {
+TEST_CASE("kernel factors have the exact limits of docs/maths.md at a centre") {
   for (double r : {0.5, 2.0}) {
     const double r2 = r * r;
     CHECK(Kernel{KernelType::Gaussian, r}.terms(0).a == doctest::Approx(-2 / r2));

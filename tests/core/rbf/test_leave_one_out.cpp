@@ -55,7 +55,7 @@ TEST_CASE("leave-one-out closed form equals N refits (2D, with smoothing)") {
 }
 
 TEST_CASE("leave-one-out is zero where the data are reproduced exactly") {
-  // Quadratic + polyharmonic reproduces a sphere (DESIGN.md §8): every reduced fit still does.
+  // Quadratic + polyharmonic reproduces a sphere: every reduced fit still does.
   const HermiteSamples<3> s = testing::goldenSphere(30);
   HrbfOptions o;
   o.kernel = Kernel{KernelType::Polyharmonic, 1.0};

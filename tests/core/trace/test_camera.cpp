@@ -17,7 +17,7 @@ CameraSpec spec(Vec<3> eye, Vec<3> target, Vec<3> up, double fov) {
   return s;
 }
 
-// The DESIGN.md §4 formula, written out independently.
+// The camera.h ray formula, written out independently.
 Vec<3> formulaDirection(const CameraSpec& s, int W, int H, int i, int j) {
   const Vec<3> eye(s.eye[0], s.eye[1], s.eye[2]), target(s.target[0], s.target[1], s.target[2]),
       up(s.up[0], s.up[1], s.up[2]);
@@ -39,7 +39,7 @@ Vec<2> throughMatrices(const Camera& cam, const Vec<3>& x, double n, double fa) 
 
 }  // namespace
 
-TEST_CASE("camera: perspective rays follow the DESIGN.md §4 formula") {
+TEST_CASE("camera: perspective rays follow the look-at formula") {
   const CameraSpec s = spec(Vec<3>(1, 2, 4), Vec<3>(0.2, -0.1, 0.3), Vec<3>(0.1, 1, 0.2), 37);
   const int W = 9, H = 5;
   const Camera cam(s, Projection::Perspective, W, H, 1.5);
