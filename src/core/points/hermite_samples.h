@@ -1,5 +1,5 @@
 #pragma once
-// Hermite data: points with unit outward normals, validated (docs/maths.md, Conventions).
+// Hermite data: points with unit outward normals (the side where an implicit fit is f > 0), validated.
 
 #include <string>
 #include <vector>

@@ -73,9 +73,9 @@ double bump(const Box<Dim>& support, const Vec<Dim>& y, const bool* frozen, Vec<
 }
 
 // Local systems up to this many unknowns are solved in-process with Eigen (LLT for the SPD case,
-// else partial-pivot LU on the whole saddle matrix): measured on the two-tori benchmark (typical
-// local systems of 30–200 unknowns) the LAPACK path of fitHrbf spent most of its time in
-// per-call overhead (NaN checks, condition estimation, workspace queries), 4–5× the solve.
+// else partial-pivot LU on the whole saddle matrix): for local systems of typical size (30–200
+// unknowns) the LAPACK path of fitHrbf spends most of its time in per-call overhead (NaN checks,
+// condition estimation, workspace queries), not in the solve.
 constexpr int kInProcessUnknowns = 800;
 
 // The local HRBF fit: fitHrbf for large supports, the same system solved in-process for small
@@ -105,8 +105,8 @@ HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& optio
     }
   }
   if (!solved) {
-    // One saddle-matrix buffer per thread, reused: fresh allocations of these sizes went to mmap
-    // and page faults (measured: ~15 % of the fit).
+    // One saddle-matrix buffer per thread, reused: fresh allocations of these sizes go to mmap
+    // and cost page faults on every local fit.
     thread_local Eigen::MatrixXd buffer;
     if (buffer.rows() < n + m) buffer.resize(n + m, n + m);
     Eigen::Ref<Eigen::MatrixXd> K = buffer.topLeftCorner(n + m, n + m);

@@ -1,6 +1,6 @@
 #pragma once
-// Partition-of-unity HRBF (docs/maths.md, Partition of unity; scene key `fit.partition`): local HRBF fits on the boxes of a
-// quadtree/octree (pu_tree.h), blended by Shepard weights
+// Partition-of-unity HRBF (scene key `fit.partition`; docs/maths.md, "Partition of unity"):
+// local HRBF fits on the boxes of a quadtree/octree (pu_tree.h), blended by Shepard weights
 //
 //   f(x) = Σᵢ wᵢ(y) fᵢ(x) / Σᵢ wᵢ(y),   y = T⁻¹x  (T: the model's frame, identity until transformed)
 //
@@ -22,7 +22,7 @@ namespace hermite {
 
 struct PuOptions {
   HrbfOptions local;            // kernel, polynomial, smoothing, solver of every local fit
-  int maxPointsPerBox = 20;     // ≥ 1; the scene default
+  int maxPointsPerBox = 20;     // ≥ 1: the default of `fit.partition.max_points_per_box`
   double boxSize = 0.0;         // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;         // ≥ 1: support = box scaled about its centre (1.5: 25 % margin per side)
   PuBlend blend = PuBlend::Smooth;
