@@ -145,6 +145,206 @@ HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& optio
   return HrbfModel<Dim>(options.kernel, options.polynomial, sub.points, std::move(alpha), std::move(beta), std::move(c));
 }
 
+// How many samples a local fit's support holds: at least `min` (enough for the polynomial, and
+// several even for an empty box), at most `max` (beyond it the tree splits, or the support shrinks).
+struct SupportLimits {
+  int min = 1, max = 1;
+};
+
+template <int Dim>
+SupportLimits supportLimits(const PuOptions& options) {
+  const int m = monomialCount<Dim>(options.local.polynomial);
+  SupportLimits limits;
+  limits.min = options.minSamples > 0 ? options.minSamples
+                                      : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
+  limits.max = std::max(limits.min, options.maxSupportSamples > 0 ? options.maxSupportSamples
+                                                                  : 6 * options.maxPointsPerBox);
+  return limits;
+}
+
+// Per-thread scratch of the local fits, reused from box to box.
+template <int Dim>
+struct LeafScratch {
+  std::vector<int> idx;      // the support's samples
+  std::vector<double> dist;  // their reach (the support factor that just holds each)
+  HermiteSamples<Dim> sub;   // the local fit's data
+};
+
+// The local fit of each leaf box: chooses its support (scaled box) and fits the samples in it,
+// growing the support while the local system is singular.
+template <int Dim>
+class LeafFitter {
+ public:
+  using Leaf = typename PuModel<Dim>::Leaf;
+
+  LeafFitter(const HermiteSamples<Dim>& samples, const Points<Dim>& frameY, const PuTree<Dim>& tree,
+             const PuOptions& options, const HrbfOptions& local, SupportLimits limits)
+      : samples_(samples), frameY_(frameY), tree_(tree), options_(options), local_(local), limits_(limits) {}
+
+  // Fits leaf i; throws NumericalError when its system stays singular after growing.
+  void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
+    const Box<Dim>& box = tree_.leafBox(i);
+    const int n = samples_.size();
+    std::vector<int>& idx = scratch.idx;
+    double s = initialFactor(box, scratch);
+    // A singular local system (e.g. collinear samples under a quadratic term) grows too.
+    for (int attempt = 0;; ++attempt) {
+      std::sort(idx.begin(), idx.end());
+      const int k = static_cast<int>(idx.size());
+      gatherSamples(idx, scratch.sub);
+      try {
+        leaf.model = fitLocal<Dim>(scratch.sub, local_, report);
+        leaf.support = scaledBox<Dim>(box, s);
+        leaf.factor = s;
+        leaf.samples = k;
+        return;
+      } catch (const NumericalError& e) {
+        if (attempt >= 4 || k >= n)
+          throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
+                               " samples) failed: " + e.what());
+        s *= options_.growth;
+        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+        report = FitReport{};
+      }
+    }
+  }
+
+ private:
+  // The support factor of a box, its samples in scratch.idx: the overlap, grown until the
+  // support holds limits.min samples, or shrunk (not below the floor) to hold at most limits.max.
+  double initialFactor(const Box<Dim>& box, LeafScratch<Dim>& scratch) const {
+    std::vector<int>& idx = scratch.idx;
+    double s = options_.overlap;
+    tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+    const int want = std::min(limits_.min, samples_.size());
+    if (static_cast<int>(idx.size()) < want) {
+      while (static_cast<int>(idx.size()) < want) {
+        s *= options_.growth;
+        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+      }
+      s = factorReaching(box, want, options_.overlap, scratch);
+      tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+    } else if (static_cast<int>(idx.size()) > limits_.max) {
+      s = factorReaching(box, limits_.max, 0.5 * (1.0 + options_.overlap), scratch);
+      tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+    }
+    return s;
+  }
+
+  // The support factor just large enough for the `rank`-th nearest of the samples in
+  // scratch.idx (normalised L∞ distance about the box centre), but at least `floor`.
+  double factorReaching(const Box<Dim>& box, int rank, double floor, LeafScratch<Dim>& scratch) const {
+    const Vec<Dim> c = box.center();
+    const Vec<Dim> invH = (0.5 * box.extent()).cwiseInverse();
+    std::vector<double>& dist = scratch.dist;
+    dist.resize(scratch.idx.size());
+    for (std::size_t j = 0; j < scratch.idx.size(); ++j)
+      dist[j] = ((frameY_.col(scratch.idx[j]) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
+    std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
+    // A relative 1e-9 beyond the sample: rounding of the scaled box cannot drop it (its weight
+    // there, ~1e-26, is negligible).
+    return std::max(floor, dist[rank - 1] * (1.0 + 1e-9));
+  }
+
+  // The samples idx (points and normals, in that order) as the local fit's data.
+  void gatherSamples(const std::vector<int>& idx, HermiteSamples<Dim>& sub) const {
+    const int k = static_cast<int>(idx.size());
+    sub.points.resize(Dim, k);
+    sub.normals.resize(Dim, k);
+    for (int j = 0; j < k; ++j) {
+      sub.points.col(j) = samples_.points.col(idx[j]);
+      sub.normals.col(j) = samples_.normals.col(idx[j]);
+    }
+  }
+
+  const HermiteSamples<Dim>& samples_;
+  const Points<Dim>& frameY_;
+  const PuTree<Dim>& tree_;
+  const PuOptions& options_;
+  const HrbfOptions& local_;
+  SupportLimits limits_;
+};
+
+// Fits every leaf, in parallel over boxes with one BLAS thread each (the local systems are
+// small); rethrows the first failure after all threads are done.
+template <int Dim>
+void fitLeaves(const LeafFitter<Dim>& fitter, std::vector<typename PuModel<Dim>::Leaf>& leaves,
+               std::vector<FitReport>& reports) {
+  const int leafCount = static_cast<int>(leaves.size());
+  std::exception_ptr failure;
+  std::mutex failureMutex;
+  const int blasThreads = openblas_get_num_threads();
+  openblas_set_num_threads(1);
+#pragma omp parallel
+  {
+    LeafScratch<Dim> scratch;
+#pragma omp for schedule(dynamic, 8)
+    for (int i = 0; i < leafCount; ++i) {
+      try {
+        fitter.fit(i, leaves[i], reports[i], scratch);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(failureMutex);
+        if (!failure) failure = std::current_exception();
+      }
+    }
+  }
+  openblas_set_num_threads(blasThreads);
+  if (failure) std::rethrow_exception(failure);
+}
+
+// The local fits' warnings other than `skip`, grouped by kind (the text with its numbers
+// blanked), as one line per kind: its count and its first example.
+std::vector<std::string> groupLocalWarnings(const std::vector<FitReport>& reports,
+                                            const std::vector<std::string>& skip) {
+  std::vector<std::pair<std::string, std::pair<int, std::string>>> kinds;
+  for (std::size_t i = 0; i < reports.size(); ++i) {
+    for (const std::string& w : reports[i].warnings) {
+      if (std::find(skip.begin(), skip.end(), w) != skip.end()) continue;
+      std::string kind;
+      for (char ch : w)
+        if (!(ch >= '0' && ch <= '9') && ch != '.' && ch != '+' && ch != 'e') kind += ch;
+      auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == kind; });
+      if (it == kinds.end())
+        kinds.push_back({kind, {1, "box " + std::to_string(i) + ": " + w}});
+      else
+        ++it->second.first;
+    }
+  }
+  std::vector<std::string> lines;
+  for (const auto& [kind, info] : kinds)
+    lines.push_back("partition: " + std::to_string(info.first) + " of " + std::to_string(reports.size()) +
+                    " local fits warned like " + info.second);
+  return lines;
+}
+
+// The fit's report from its tree and local fits (all but the timings).
+template <int Dim>
+PuReport summariseFits(const PuTree<Dim>& tree, const std::vector<typename PuModel<Dim>::Leaf>& leaves,
+                       const std::vector<FitReport>& reports, const PuOptions& options, const HrbfOptions& local) {
+  const int leafCount = static_cast<int>(leaves.size());
+  PuReport r;
+  r.boxes = leafCount;
+  r.warnings = polynomialOrderWarnings(local.kernel, local.polynomial);
+  std::map<std::string, int> solvers;
+  for (int i = 0; i < leafCount; ++i) {
+    r.maxBoxSamples = std::max(r.maxBoxSamples, tree.leafSampleCount(i));
+    r.maxSupportSamples = std::max(r.maxSupportSamples, leaves[i].samples);
+    r.meanSupportSamples += leaves[i].samples / double(leafCount);
+    if (leaves[i].factor > options.overlap) ++r.grownSupports;
+    r.unknowns += reports[i].nUnknowns;
+    r.maxConditionEstimate = std::max(r.maxConditionEstimate, reports[i].conditionEstimate);
+    ++solvers[reports[i].solver];
+  }
+  int best = -1;
+  for (const auto& [name, count] : solvers)
+    if (count > best) {
+      best = count;
+      r.solver = name;
+    }
+  for (std::string& line : groupLocalWarnings(reports, r.warnings)) r.warnings.push_back(std::move(line));
+  return r;
+}
+
 }  // namespace
 
 template <int Dim>
@@ -385,142 +585,25 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
     for (int i = 0; i < n; ++i) Y.col(i) = frame.applyInverse(samples.points.col(i));
   }
   const Points<Dim>& frameY = identity ? samples.points : Y;
-  const int m = monomialCount<Dim>(options.local.polynomial);
-  const int minSamples =
-      options.minSamples > 0 ? options.minSamples
-                             : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
-  const int maxSupport = std::max(minSamples, options.maxSupportSamples > 0 ? options.maxSupportSamples
-                                                                          : 6 * options.maxPointsPerBox);
+  const SupportLimits limits = supportLimits<Dim>(options);
   PuTreeOptions treeOptions;
   treeOptions.maxPointsPerBox = options.maxPointsPerBox;
   treeOptions.boxSize = options.boxSize;
-  treeOptions.maxSupportSamples = maxSupport;
+  treeOptions.maxSupportSamples = limits.max;
   treeOptions.overlap = options.overlap;
   PuTree<Dim> tree(frameY, treeOptions);
   const double treeMs = msSince(t0);
 
-  const double supportFloor = 0.5 * (1.0 + options.overlap);
-  const int leafCount = tree.leafCount();
-  std::vector<typename PuModel<Dim>::Leaf> leaves(static_cast<std::size_t>(leafCount));
-  std::vector<FitReport> reports(static_cast<std::size_t>(leafCount));
+  const auto leafCount = static_cast<std::size_t>(tree.leafCount());
+  std::vector<typename PuModel<Dim>::Leaf> leaves(leafCount);
+  std::vector<FitReport> reports(leafCount);
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;
-  std::exception_ptr failure;
-  std::mutex failureMutex;
-  // The local systems are small: one BLAS thread each, parallel over boxes.
-  const int blasThreads = openblas_get_num_threads();
-  openblas_set_num_threads(1);
-#pragma omp parallel
-  {
-    std::vector<int> idx;
-    std::vector<double> dist;
-    HermiteSamples<Dim> sub;
-#pragma omp for schedule(dynamic, 8)
-    for (int i = 0; i < leafCount; ++i) {
-      try {
-        const Box<Dim>& box = tree.leafBox(i);
-        const Vec<Dim> c = box.center();
-        const Vec<Dim> invH = (0.5 * box.extent()).cwiseInverse();
-        // The factor s at which the support scaledBox(box, s) reaches sample j.
-        auto reachOf = [&](int j) { return ((frameY.col(j) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff(); };
-        // The support just large enough for the `rank`-th nearest sample (normalised L∞ about the
-        // box centre) among idx, but at least `floor`.
-        auto fitTo = [&](int rank, double floor) {
-          dist.resize(idx.size());
-          for (std::size_t j = 0; j < idx.size(); ++j) dist[j] = reachOf(idx[j]);
-          std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
-          // A relative 1e-9 beyond the sample: rounding of the scaled box cannot drop it (its
-          // weight there, ~1e-26, is negligible).
-          return std::max(floor, dist[rank - 1] * (1.0 + 1e-9));
-        };
-        double s = options.overlap;
-        tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
-        const int want = std::min(minSamples, n);
-        if (static_cast<int>(idx.size()) < want) {
-          while (static_cast<int>(idx.size()) < want) {
-            s *= options.growth;
-            tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
-          }
-          s = fitTo(want, options.overlap);
-          tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
-        } else if (static_cast<int>(idx.size()) > maxSupport) {
-          s = fitTo(maxSupport, supportFloor);
-          tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
-        }
-        // A singular local system (e.g. collinear samples under a quadratic term) grows too.
-        for (int attempt = 0;; ++attempt) {
-          std::sort(idx.begin(), idx.end());
-          const int k = static_cast<int>(idx.size());
-          sub.points.resize(Dim, k);
-          sub.normals.resize(Dim, k);
-          for (int j = 0; j < k; ++j) {
-            sub.points.col(j) = samples.points.col(idx[j]);
-            sub.normals.col(j) = samples.normals.col(idx[j]);
-          }
-          try {
-            leaves[i].model = fitLocal<Dim>(sub, local, reports[i]);
-            leaves[i].support = scaledBox<Dim>(box, s);
-            leaves[i].factor = s;
-            leaves[i].samples = k;
-            break;
-          } catch (const NumericalError& e) {
-            if (attempt >= 4 || k >= n)
-              throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
-                                   " samples) failed: " + e.what());
-            s *= options.growth;
-            tree.samplesInBox(frameY, scaledBox<Dim>(box, s), idx);
-            reports[i] = FitReport{};
-          }
-        }
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(failureMutex);
-        if (!failure) failure = std::current_exception();
-      }
-    }
-  }
-  openblas_set_num_threads(blasThreads);
-  if (failure) std::rethrow_exception(failure);
-
+  fitLeaves<Dim>(LeafFitter<Dim>(samples, frameY, tree, options, local, limits), leaves, reports);
   if (report) {
-    PuReport& r = *report;
-    r = PuReport{};
-    r.boxes = leafCount;
-    r.treeMs = treeMs;
-    const std::vector<std::string> orderWarnings = polynomialOrderWarnings(local.kernel, local.polynomial);
-    r.warnings = orderWarnings;
-    std::map<std::string, int> solvers;
-    // Local warnings grouped by kind (the text with its numbers blanked): count + first example.
-    std::vector<std::pair<std::string, std::pair<int, std::string>>> kinds;
-    for (int i = 0; i < leafCount; ++i) {
-      r.maxBoxSamples = std::max(r.maxBoxSamples, tree.leafSampleCount(i));
-      r.maxSupportSamples = std::max(r.maxSupportSamples, leaves[i].samples);
-      r.meanSupportSamples += leaves[i].samples / double(leafCount);
-      if (leaves[i].factor > options.overlap) ++r.grownSupports;
-      r.unknowns += reports[i].nUnknowns;
-      r.maxConditionEstimate = std::max(r.maxConditionEstimate, reports[i].conditionEstimate);
-      ++solvers[reports[i].solver];
-      for (const std::string& w : reports[i].warnings) {
-        if (std::find(orderWarnings.begin(), orderWarnings.end(), w) != orderWarnings.end()) continue;
-        std::string kind;
-        for (char ch : w)
-          if (!(ch >= '0' && ch <= '9') && ch != '.' && ch != '+' && ch != 'e') kind += ch;
-        auto it = std::find_if(kinds.begin(), kinds.end(), [&](const auto& k) { return k.first == kind; });
-        if (it == kinds.end())
-          kinds.push_back({kind, {1, "box " + std::to_string(i) + ": " + w}});
-        else
-          ++it->second.first;
-      }
-    }
-    int best = -1;
-    for (const auto& [name, count] : solvers)
-      if (count > best) {
-        best = count;
-        r.solver = name;
-      }
-    for (const auto& [kind, info] : kinds)
-      r.warnings.push_back("partition: " + std::to_string(info.first) + " of " + std::to_string(leafCount) +
-                           " local fits warned like " + info.second);
-    r.fitMs = msSince(t0);
+    *report = summariseFits<Dim>(tree, leaves, reports, options, local);
+    report->treeMs = treeMs;
+    report->fitMs = msSince(t0);
   }
   return PuModel<Dim>(std::move(tree), std::move(leaves), options, frame);
 }
