@@ -69,6 +69,157 @@ void radialBlock(const Kernel& k, const double* x2p, int n, double* phip, double
   }
 }
 
+// What the batch loops read: the kernel, the polynomial part and the SoA arrays (radial_sum.h)
+// of centre coordinates c, α and β (bc null without β), padded to `padded` with zero coefficients.
+template <int Dim>
+struct BatchTerms {
+  Kernel kernel;
+  Polynomial polynomial;
+  const Eigen::VectorXd* poly;
+  const double* c[Dim];
+  const double* bc[Dim];
+  const double* al;
+  int padded;
+  bool beta;
+};
+
+#if defined(__AVX512F__)
+// f (and G when WG) at every column of X by the fused AVX-512 loop (radial_sum_avx512.h), one
+// instantiation per kernel T and β (B) / gradient (WG) flags.
+template <int Dim, KernelType T, bool B, bool WG>
+void fusedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
+  const Eigen::Index m = X.cols();
+  const double r = t.kernel.radius;
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Eigen::Index i = 0; i < m; ++i) {
+    Vec<Dim> gp;
+    const Vec<Dim> xi = X.col(i);
+    double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, xi, WG ? &gp : nullptr, nullptr);
+    double g[Dim] = {};
+    fv += detail::fusedSum<Dim, T, B, WG>(xi.data(), r, t.c, t.al, t.bc, t.padded, g);
+    f(i) = fv;
+    if constexpr (WG)
+      for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + g[k];
+  }
+}
+
+// The fused loop of kernel T for the β and gradient flags at hand.
+template <int Dim, KernelType T>
+void fusedBatchFlags(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
+  if (t.beta) {
+    if (G) fusedBatch<Dim, T, true, true>(t, X, f, G); else fusedBatch<Dim, T, true, false>(t, X, f, G);
+  } else {
+    if (G) fusedBatch<Dim, T, false, true>(t, X, f, G); else fusedBatch<Dim, T, false, false>(t, X, f, G);
+  }
+}
+
+// The fused loop of the terms' kernel; false for a kernel type it lacks.
+template <int Dim>
+bool fusedBatchKernel(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
+  using K = KernelType;
+  switch (t.kernel.type) {
+    case K::Cubic: fusedBatchFlags<Dim, K::Cubic>(t, X, f, G); return true;
+    case K::Gaussian: fusedBatchFlags<Dim, K::Gaussian>(t, X, f, G); return true;
+    case K::Wendland: fusedBatchFlags<Dim, K::Wendland>(t, X, f, G); return true;
+    case K::Multiquadric: fusedBatchFlags<Dim, K::Multiquadric>(t, X, f, G); return true;
+    case K::InverseMultiquadric: fusedBatchFlags<Dim, K::InverseMultiquadric>(t, X, f, G); return true;
+    case K::Polyharmonic: fusedBatchFlags<Dim, K::Polyharmonic>(t, X, f, G); return true;
+  }
+  return false;
+}
+#endif
+
+// Adds the terms of centres start … start + n − 1 at point xi of X to the value fv and the
+// gradient gacc (when wantG): α φ and a α d without β; with β the HRBF terms
+// f += α φ − a (β·d), ∇f += a (α d − β) − e (β·d) d. The buffers receive d = x − c per axis,
+// ‖d‖² and the radial factors φ, a, e (radialBlock).
+template <int Dim>
+void addBlock(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::Index xi, int start, int n, bool wantG,
+              double (&d)[Dim][kBlock], double (&x2)[kBlock], double (&phi)[kBlock], double (&a)[kBlock],
+              double (&e)[kBlock], double& fv, double* gacc) {
+  for (int j = 0; j < n; ++j) x2[j] = 0.0;
+  for (int k = 0; k < Dim; ++k) {
+    const double xk = X(k, xi);
+    const double* ck = t.c[k] + start;
+#pragma omp simd
+    for (int j = 0; j < n; ++j) {
+      d[k][j] = xk - ck[j];
+      x2[j] += d[k][j] * d[k][j];
+    }
+  }
+  radialBlock(t.kernel, x2, n, phi, a, e, wantG && t.beta);
+  const double* alj = t.al + start;
+  // β through a local array of pointers: read through `t`, GCC vectorises the β sums below
+  // differently and they round differently in the last bit.
+  const double* bc[Dim];
+  for (int k = 0; k < Dim; ++k) bc[k] = t.bc[k];
+  double s = 0.0;
+  if (!t.beta) {
+#pragma omp simd reduction(+ : s)
+    for (int j = 0; j < n; ++j) s += alj[j] * phi[j];
+    fv += s;
+    if (wantG) {
+      for (int k = 0; k < Dim; ++k) {
+        double sk = 0.0;
+#pragma omp simd reduction(+ : sk)
+        for (int j = 0; j < n; ++j) sk += alj[j] * a[j] * d[k][j];
+        gacc[k] += sk;
+      }
+    }
+    return;
+  }
+  if (!wantG) {
+#pragma omp simd reduction(+ : s)
+    for (int j = 0; j < n; ++j) {
+      double db = 0.0;
+      for (int k = 0; k < Dim; ++k) db += bc[k][start + j] * d[k][j];
+      s += alj[j] * phi[j] - a[j] * db;
+    }
+    fv += s;
+    return;
+  }
+  double g0 = 0.0, g1 = 0.0, g2 = 0.0;
+#pragma omp simd reduction(+ : s, g0, g1, g2)
+  for (int j = 0; j < n; ++j) {
+    double db = 0.0;
+    for (int k = 0; k < Dim; ++k) db += bc[k][start + j] * d[k][j];
+    s += alj[j] * phi[j] - a[j] * db;
+    const double ed = e[j] * db;
+    g0 += a[j] * (alj[j] * d[0][j] - bc[0][start + j]) - ed * d[0][j];
+    g1 += a[j] * (alj[j] * d[1][j] - bc[1][start + j]) - ed * d[1][j];
+    if constexpr (Dim == 3) g2 += a[j] * (alj[j] * d[2][j] - bc[2][start + j]) - ed * d[2][j];
+  }
+  fv += s;
+  gacc[0] += g0;
+  gacc[1] += g1;
+  if constexpr (Dim == 3) gacc[2] += g2;
+}
+
+// f (and G) at every column of X, kBlock centres at a time through the buffers: the portable
+// loop, for builds without AVX-512.
+template <int Dim>
+void blockedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
+  const Eigen::Index m = X.cols();
+  const bool wantG = G != nullptr;
+#pragma omp parallel
+  {
+    // Separate arrays rather than members of one struct: GCC's vector loops over them are faster.
+    alignas(64) double d[Dim][kBlock];
+    alignas(64) double x2[kBlock], phi[kBlock], a[kBlock], e[kBlock];
+#pragma omp for schedule(dynamic, 16)
+    for (Eigen::Index i = 0; i < m; ++i) {
+      Vec<Dim> gp;
+      double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, X.col(i), wantG ? &gp : nullptr, nullptr);
+      double gacc[Dim] = {};
+      for (int start = 0; start < t.padded; start += kBlock)
+        addBlock<Dim>(t, X, i, start, std::min(kBlock, t.padded - start), wantG, d, x2, phi, a, e, fv, gacc);
+      f(i) = fv;
+      if (wantG)
+        for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + gacc[k];
+    }
+  }
+}
+
 }  // namespace
 
 template <int Dim>
@@ -130,129 +281,17 @@ double RadialSum<Dim>::evaluate(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H) con
 
 template <int Dim>
 void RadialSum<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
-  const Eigen::Index m = X.cols();
-  f.resize(m);
-  if (G) G->resize(Dim, m);
-  const bool wantG = G != nullptr;
-  const bool beta = hasBeta();
-  const double* c[Dim];
-  const double* bc[Dim];
+  f.resize(X.cols());
+  if (G) G->resize(Dim, X.cols());
+  BatchTerms<Dim> t{kernel_, polynomial_, &poly_, {}, {}, soa_[Dim].data(), padded_, hasBeta()};
   for (int k = 0; k < Dim; ++k) {
-    c[k] = soa_[k].data();
-    bc[k] = beta ? soa_[Dim + 1 + k].data() : nullptr;
+    t.c[k] = soa_[k].data();
+    t.bc[k] = t.beta ? soa_[Dim + 1 + k].data() : nullptr;
   }
-  const double* al = soa_[Dim].data();
-
 #if defined(__AVX512F__)
-  // Fused AVX-512 path: one templated loop per (kernel, β?, gradient?) combination.
-  auto run = [&](auto kernelTag, auto betaTag, auto gradTag) {
-    constexpr KernelType T = decltype(kernelTag)::value;
-    constexpr bool B = decltype(betaTag)::value, WG = decltype(gradTag)::value;
-    const double r = kernel_.radius;
-#pragma omp parallel for schedule(dynamic, 64)
-    for (Eigen::Index i = 0; i < m; ++i) {
-      Vec<Dim> gp;
-      const Vec<Dim> xi = X.col(i);
-      double fv = evaluatePolynomial<Dim>(polynomial_, poly_, xi, WG ? &gp : nullptr, nullptr);
-      double g[Dim] = {};
-      fv += detail::fusedSum<Dim, T, B, WG>(xi.data(), r, c, al, bc, padded_, g);
-      f(i) = fv;
-      if constexpr (WG)
-        for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + g[k];
-    }
-  };
-  auto withFlags = [&](auto kernelTag) {
-    using TT = std::true_type;
-    using FT = std::false_type;
-    if (beta) {
-      if (wantG) run(kernelTag, TT{}, TT{}); else run(kernelTag, TT{}, FT{});
-    } else {
-      if (wantG) run(kernelTag, FT{}, TT{}); else run(kernelTag, FT{}, FT{});
-    }
-  };
-  switch (kernel_.type) {
-    case KernelType::Cubic: withFlags(std::integral_constant<KernelType, KernelType::Cubic>{}); return;
-    case KernelType::Gaussian: withFlags(std::integral_constant<KernelType, KernelType::Gaussian>{}); return;
-    case KernelType::Wendland: withFlags(std::integral_constant<KernelType, KernelType::Wendland>{}); return;
-    case KernelType::Multiquadric: withFlags(std::integral_constant<KernelType, KernelType::Multiquadric>{}); return;
-    case KernelType::InverseMultiquadric:
-      withFlags(std::integral_constant<KernelType, KernelType::InverseMultiquadric>{});
-      return;
-    case KernelType::Polyharmonic: withFlags(std::integral_constant<KernelType, KernelType::Polyharmonic>{}); return;
-  }
+  if (fusedBatchKernel<Dim>(t, X, f, G)) return;
 #endif
-
-#pragma omp parallel
-  {
-    alignas(64) double d[Dim][kBlock];
-    alignas(64) double x2[kBlock], phi[kBlock], a[kBlock], e[kBlock];
-#pragma omp for schedule(dynamic, 16)
-    for (Eigen::Index i = 0; i < m; ++i) {
-      Vec<Dim> gp;
-      double fv = evaluatePolynomial<Dim>(polynomial_, poly_, X.col(i), wantG ? &gp : nullptr, nullptr);
-      double gacc[Dim] = {};
-      for (int start = 0; start < padded_; start += kBlock) {
-        const int n = std::min(kBlock, padded_ - start);
-        for (int j = 0; j < n; ++j) x2[j] = 0.0;
-        for (int k = 0; k < Dim; ++k) {
-          const double xk = X(k, i);
-          const double* ck = c[k] + start;
-#pragma omp simd
-          for (int j = 0; j < n; ++j) {
-            d[k][j] = xk - ck[j];
-            x2[j] += d[k][j] * d[k][j];
-          }
-        }
-        radialBlock(kernel_, x2, n, phi, a, e, wantG && beta);
-        const double* alj = al + start;
-        if (!beta) {
-          double s = 0.0;
-#pragma omp simd reduction(+ : s)
-          for (int j = 0; j < n; ++j) s += alj[j] * phi[j];
-          fv += s;
-          if (wantG) {
-            for (int k = 0; k < Dim; ++k) {
-              double sk = 0.0;
-#pragma omp simd reduction(+ : sk)
-              for (int j = 0; j < n; ++j) sk += alj[j] * a[j] * d[k][j];
-              gacc[k] += sk;
-            }
-          }
-          continue;
-        }
-        // HRBF: f += α φ − a (β·d);  ∇f += a (α d − β) − e (β·d) d
-        double s = 0.0;
-        if (!wantG) {
-#pragma omp simd reduction(+ : s)
-          for (int j = 0; j < n; ++j) {
-            double db = 0.0;
-            for (int k = 0; k < Dim; ++k) db += bc[k][start + j] * d[k][j];
-            s += alj[j] * phi[j] - a[j] * db;
-          }
-          fv += s;
-          continue;
-        }
-        double g0 = 0.0, g1 = 0.0, g2 = 0.0;
-#pragma omp simd reduction(+ : s, g0, g1, g2)
-        for (int j = 0; j < n; ++j) {
-          double db = 0.0;
-          for (int k = 0; k < Dim; ++k) db += bc[k][start + j] * d[k][j];
-          s += alj[j] * phi[j] - a[j] * db;
-          const double ed = e[j] * db;
-          g0 += a[j] * (alj[j] * d[0][j] - bc[0][start + j]) - ed * d[0][j];
-          g1 += a[j] * (alj[j] * d[1][j] - bc[1][start + j]) - ed * d[1][j];
-          if constexpr (Dim == 3) g2 += a[j] * (alj[j] * d[2][j] - bc[2][start + j]) - ed * d[2][j];
-        }
-        fv += s;
-        gacc[0] += g0;
-        gacc[1] += g1;
-        if constexpr (Dim == 3) gacc[2] += g2;
-      }
-      f(i) = fv;
-      if (wantG)
-        for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + gacc[k];
-    }
-  }
+  blockedBatch<Dim>(t, X, f, G);
 }
 
 template <int Dim>
