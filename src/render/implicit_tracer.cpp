@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 
 #include <Eigen/Geometry>
 
@@ -17,6 +18,7 @@
 #include "core/trace/color_map.h"
 #include "core/trace/cpu_tracer.h"
 #include "core/trace/default_view_bounds.h"
+#include "core/trace/ray_root.h"
 #include "core/trace/shading.h"
 #include "render/baked_normals.h"
 #include "render/gl/context.h"
@@ -785,37 +787,18 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
       }
       active.swap(next);
     }
-    // Bracket search with the true field near the GPU depth, then bisection. Used for hits Newton
-    // could not settle and for the silhouette ring (misses next to a hit).
-    auto bracketSearch = [&](const Ray& ray, double lo, double hi, int samplesCount, double& tHit, Vec<3>& g) {
-      double ta = lo, fa = field.evaluate(ray.at(lo));
-      if (fa == 0) {
-        tHit = lo;
-        field.evaluate(ray.at(tHit), &g);
-        return true;
-      }
-      for (int s = 1; s <= samplesCount; ++s) {
-        const double tb = lo + (hi - lo) * s / samplesCount;
-        const double fb = field.evaluate(ray.at(tb));
-        if (fb == 0 || (fa < 0) != (fb < 0)) {
-          double a = ta, b = tb;
-          const bool negA = fa < 0;
-          while (b - a > tol) {
-            const double m = 0.5 * (a + b);
-            const double fm = field.evaluate(ray.at(m));
-            if (fm != 0 && (fm < 0) == negA)
-              a = m;
-            else
-              b = m;
-          }
-          tHit = 0.5 * (a + b);
-          field.evaluate(ray.at(tHit), &g);
-          return true;
-        }
-        ta = tb;
-        fa = fb;
-      }
-      return false;
+    // Bracket search with the true field near the GPU depth, then bisection (ray_root.h). Used
+    // for hits Newton could not settle and for the silhouette ring (misses next to a hit).
+    RayRootOptions search;
+    search.samples = 16;
+    search.tolerance = tol;
+    search.rule = ZeroRule::ZeroIsPast;
+    auto bracketSearch = [&](const Ray& ray, double lo, double hi, double& tHit, Vec<3>& g) {
+      const std::optional<double> t = refineRayRoot(field, ray, lo, hi, search);
+      if (!t) return false;
+      tHit = *t;
+      field.evaluate(ray.at(tHit), &g);
+      return true;
     };
     int dropped = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : dropped)
@@ -824,7 +807,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
       const double t = surfaceT[w.pixel];
       double tHit;
       Vec<3> g;
-      if (bracketSearch(w.ray, std::max(w.tLo, t - 2 * cell), std::min(w.tHi, t + 2 * cell), 16, tHit, g)) {
+      if (bracketSearch(w.ray, std::max(w.tLo, t - 2 * cell), std::min(w.tHi, t + 2 * cell), tHit, g)) {
         refinedT[w.pixel] = tHit;
         refinedG[w.pixel] = g;
       } else {
@@ -874,7 +857,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
       if (!(lo < hi)) continue;
       double tHit;
       Vec<3> g;
-      if (bracketSearch(ray, lo, hi, 16, tHit, g)) {
+      if (bracketSearch(ray, lo, hi, tHit, g)) {
         refinedT[p] = tHit;
         refinedG[p] = g;
         ++ringHits;
