@@ -149,23 +149,4 @@ class ImplicitTracer {
   double bakeMs_ = 0, uploadMs_ = 0;
 };
 
-// Timings of issue 3 §6 on this machine (for `hermite-lab bench`), in milliseconds.
-struct TracerBenchResult {
-  double bakeMs = 0;         // bake at bakeResolution³ of an HRBF with bakeCentres centres
-  double traceMs = 0;        // median baked trace (no refinement) at width×height, N = traceCentres
-  double refineMs = 0;       // median CPU exact refinement of that settled view, N = traceCentres
-  double traceAllPixelsMs = 0;  // the same trace with skipEmptyTiles off (every pixel traced)
-  long long tracedPixels = 0;   // pixels the trace pass ran on (the others are in empty tiles)
-  int bakeCentres = 250;
-  int traceCentres = 1000;
-  int bakeResolution = 128;
-  int width = 1024, height = 768;
-  int hitPixels = 0;
-};
-
-// Fits cubic HRBFs to the torus preset with the given sample counts and times bake, trace and
-// refinement in a fresh OSMesa context (`backend` names the context). `repeats` ≥ 1 frames each.
-TracerBenchResult benchTracer(int bakeCentres = 250, int traceCentres = 1000, int bakeResolution = 128,
-                              int width = 1024, int height = 768, int repeats = 3, const char* backend = "osmesa");
-
 }  // namespace hermite::render
