@@ -20,9 +20,10 @@ struct PixelRay {
   double tLo, tHi;
 };
 
-// A miss next to hits, with the range of its hit neighbours' ray parameters.
-struct RingPixel {
+// A stretch [lo, hi] of a pixel's ray where the bracket search looks for the surface.
+struct SearchWindow {
   int pixel;
+  Ray ray;
   double lo, hi;
 };
 
@@ -37,31 +38,13 @@ struct Refiner {
   HitRefinement& out;
 
   Ray pixelRay(int p) const { return camera.pixelRay(p % camera.width(), p / camera.width()); }
-  // The first zero of the true field along the ray in [lo, hi], bisected to tol.
-  bool bracketSearch(const Ray& ray, double lo, double hi, int p);
   std::vector<PixelRay> seedHits();
   std::vector<PixelRay> newton(std::vector<PixelRay> active);
+  int searchWindows(const std::vector<SearchWindow>& windows);
   int searchUnsettled(const std::vector<PixelRay>& unsettled);
   void traceUndecided();
-  std::vector<RingPixel> silhouetteRing() const;
-  int searchRing(const std::vector<RingPixel>& ring);
+  std::vector<SearchWindow> silhouetteRing() const;
 };
-
-// Searches the ray with the true field (16 probes over [lo, hi], then bisection) and, on a find,
-// stores the hit and its gradient for pixel p.
-bool Refiner::bracketSearch(const Ray& ray, double lo, double hi, int p) {
-  RayRootOptions search;
-  search.samples = 16;
-  search.tolerance = tol;
-  search.rule = ZeroRule::ZeroIsPast;
-  const std::optional<double> t = refineRayRoot(field, ray, lo, hi, search);
-  if (!t) return false;
-  Vec<3> g;
-  field.evaluate(ray.at(*t), &g);
-  out.t[p] = *t;
-  out.gradient[p] = g;
-  return true;
-}
 
 // Marks the GPU's hits. With refinement off they stand as they are (the refinement then runs only
 // for the undecided pixels); else each becomes a ray for Newton, starting at the GPU's t.
@@ -123,18 +106,38 @@ std::vector<PixelRay> Refiner::newton(std::vector<PixelRay> active) {
   return unsettled;
 }
 
+// Searches every window with the true field (16 probes over [lo, hi], then bisection to tol,
+// ray_root.h) and stores each hit found with its gradient; returns how many it found.
+int Refiner::searchWindows(const std::vector<SearchWindow>& windows) {
+  RayRootOptions search;
+  search.samples = 16;
+  search.tolerance = tol;
+  search.rule = ZeroRule::ZeroIsPast;
+  int found = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : found)
+  for (std::size_t q = 0; q < windows.size(); ++q) {
+    const SearchWindow& w = windows[q];
+    const std::optional<double> t = refineRayRoot(field, w.ray, w.lo, w.hi, search);
+    if (!t) continue;
+    Vec<3> g;
+    field.evaluate(w.ray.at(*t), &g);
+    out.t[w.pixel] = *t;
+    out.gradient[w.pixel] = g;
+    ++found;
+  }
+  return found;
+}
+
 // Looks for the surface within 2 cells of the GPU's t where Newton did not settle; returns how
 // many GPU hits the true field does not confirm there (they stay misses).
 int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
-  const double cell = options.cell;
-  int dropped = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : dropped)
-  for (std::size_t q = 0; q < unsettled.size(); ++q) {
-    const PixelRay& w = unsettled[q];
+  std::vector<SearchWindow> windows;
+  windows.reserve(unsettled.size());
+  for (const PixelRay& w : unsettled) {
     const double t = gpu.t[w.pixel];
-    if (!bracketSearch(w.ray, std::max(w.tLo, t - 2 * cell), std::min(w.tHi, t + 2 * cell), w.pixel)) ++dropped;
+    windows.push_back({w.pixel, w.ray, std::max(w.tLo, t - 2 * options.cell), std::min(w.tHi, t + 2 * options.cell)});
   }
-  return dropped;
+  return int(unsettled.size()) - searchWindows(windows);
 }
 
 // Traces the pixels the GPU march left undecided with the CPU reference tracer, whose ε matches
@@ -155,11 +158,11 @@ void Refiner::traceUndecided() {
   }
 }
 
-// The silhouette ring: pixels without a GPU hit that have one among their 8 neighbours, each with
-// the range of those neighbours' ray parameters.
-std::vector<RingPixel> Refiner::silhouetteRing() const {
+// The silhouette ring: pixels without a GPU hit that have one among their 8 neighbours, each
+// searched within 2 cells of those neighbours' ray parameters (inside the bounds).
+std::vector<SearchWindow> Refiner::silhouetteRing() const {
   const int W = camera.width(), H = camera.height();
-  std::vector<RingPixel> ring;
+  std::vector<SearchWindow> ring;
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < W; ++i) {
       const std::size_t p = std::size_t(j) * W + i;
@@ -174,25 +177,14 @@ std::vector<RingPixel> Refiner::silhouetteRing() const {
           lo = std::min(lo, double(t));
           hi = std::max(hi, double(t));
         }
-      if (lo <= hi) ring.push_back({int(p), lo, hi});
+      if (!(lo <= hi)) continue;
+      const Ray ray = camera.pixelRay(i, j);
+      double a, b;
+      if (!clipRayToBox(ray, bounds, a, b)) continue;
+      const double from = std::max(a, lo - 2 * options.cell), to = std::min(b, hi + 2 * options.cell);
+      if (from < to) ring.push_back({int(p), ray, from, to});
     }
   return ring;
-}
-
-// Searches each ring pixel's ray within 2 cells of its neighbours' depths; returns the hits found.
-int Refiner::searchRing(const std::vector<RingPixel>& ring) {
-  const double cell = options.cell;
-  int ringHits = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : ringHits)
-  for (std::size_t q = 0; q < ring.size(); ++q) {
-    const Ray ray = pixelRay(ring[q].pixel);
-    double a, b;
-    if (!clipRayToBox(ray, bounds, a, b)) continue;
-    const double lo = std::max(a, ring[q].lo - 2 * cell), hi = std::min(b, ring[q].hi + 2 * cell);
-    if (!(lo < hi)) continue;
-    if (bracketSearch(ray, lo, hi, ring[q].pixel)) ++ringHits;
-  }
-  return ringHits;
 }
 
 }  // namespace
@@ -209,7 +201,7 @@ HitRefinement refineHits(const ImplicitField<3>& field, const Box<3>& bounds, co
   out.droppedHits = refiner.searchUnsettled(unsettled);
   // The CPU-traced undecided pixels come before the ring, which may overwrite those next to a hit.
   refiner.traceUndecided();
-  if (options.refine) out.ringHits = refiner.searchRing(refiner.silhouetteRing());
+  if (options.refine) out.ringHits = refiner.searchWindows(refiner.silhouetteRing());
   return out;
 }
 
