@@ -98,6 +98,27 @@ struct BakedBricks {
 // Cells per brick edge of the baked mode's brick grid.
 constexpr int kBakedBrickCells = 4;
 
+// Chebyshev distance transform of a perAxis³ grid (x fastest), in place and separable: pass k
+// sets d(x) = min_y max(|x_k − y_k|, d(y)) along the lines of axis k.
+void chebyshevDistance(std::vector<int>& dist, int perAxis) {
+  std::vector<int> line(perAxis), result(perAxis);
+  const int stride[3] = {1, perAxis, perAxis * perAxis};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    for (int u = 0; u < perAxis; ++u)
+      for (int w = 0; w < perAxis; ++w) {
+        const int base = u * stride[a1] + w * stride[a2];
+        for (int q = 0; q < perAxis; ++q) line[q] = dist[base + q * stride[axis]];
+        for (int q = 0; q < perAxis; ++q) {
+          int best = line[q];
+          for (int r = 0; r < perAxis; ++r) best = std::min(best, std::max(std::abs(q - r), line[r]));
+          result[q] = best;
+        }
+        for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
+      }
+  }
+}
+
 BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
   const int R = bake.resolution;
   const int perAxis = (R - 1 + C - 1) / C;
@@ -149,24 +170,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
           L = std::max(L, lipschitz[(z * perAxis + y) * perAxis + x]);
     out.texels[4 * std::size_t(b) + 2] = L;
   }
-  // Chebyshev distance transform, separable: pass k sets d(x) = min_y max(|x_k − y_k|, d(y))
-  // along the lines of axis k.
-  std::vector<int> line(perAxis), result(perAxis);
-  const int stride[3] = {1, perAxis, perAxis * perAxis};
-  for (int axis = 0; axis < 3; ++axis) {
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    for (int u = 0; u < perAxis; ++u)
-      for (int w = 0; w < perAxis; ++w) {
-        const int base = u * stride[a1] + w * stride[a2];
-        for (int q = 0; q < perAxis; ++q) line[q] = dist[base + q * stride[axis]];
-        for (int q = 0; q < perAxis; ++q) {
-          int best = line[q];
-          for (int r = 0; r < perAxis; ++r) best = std::min(best, std::max(std::abs(q - r), line[r]));
-          result[q] = best;
-        }
-        for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
-      }
-  }
+  chebyshevDistance(dist, perAxis);
   for (int b = 0; b < n; ++b) out.texels[4 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
   return out;
 }
@@ -620,6 +624,7 @@ struct ImplicitTracer::Gpu {
       target = std::make_unique<TraceTarget>(width, height);
     return *target;
   }
+  void uploadModel(const RadialSum<3>& model, const Vec<3>& centre);
   long long trace(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model, bool exactDouble);
   void runTilePass(const TraceFrame& frame, const VolumeBake& bake);
   void bindBaked(const Program& p, const TraceFrame& frame, const VolumeBake& bake);
@@ -693,33 +698,37 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
   bounds_ = bounds;
   exactNeedsDouble_.reset();
-  if (radialSum_) {
-    // Centres relative to the bounds centre, in float and in double (both programs may run).
-    gpu_->origin = bounds.center();
-    const int n = int(radialSum_->centres().cols());
-    gpu_->paddedCentres = std::max(4, (n + 3) / 4 * 4);  // the shader takes 4 centres per loop iteration
-    const std::size_t slots = 4 * std::size_t(gpu_->paddedCentres);
-    std::vector<double> ca(slots, 0.0), beta(slots, 0.0);
-    for (int j = 0; j < n; ++j) {
-      const Vec<3> c = radialSum_->centres().col(j) - gpu_->origin;
-      for (int k = 0; k < 3; ++k) ca[4 * j + k] = c(k);
-      ca[4 * j + 3] = radialSum_->alpha()(j);
-      if (radialSum_->hasBeta())
-        for (int k = 0; k < 3; ++k) beta[4 * j + k] = radialSum_->beta()(k, j);
-    }
-    const std::vector<float> caFloat(ca.begin(), ca.end()), betaFloat(beta.begin(), beta.end());
-    gpu_->centres.setData(caFloat.data(), caFloat.size() * sizeof(float), GL_STATIC_DRAW);
-    gpu_->betas.setData(betaFloat.data(), betaFloat.size() * sizeof(float), GL_STATIC_DRAW);
-    gpu_->centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
-    gpu_->betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
-    gpu_->shiftedPoly = shiftPolynomial(radialSum_->polynomial(), radialSum_->poly(), gpu_->origin);
-  }
+  if (radialSum_) gpu_->uploadModel(*radialSum_, bounds.center());
   hasSamples_ = samples != nullptr && samples->size() > 0;
   if (hasSamples_) samples_ = *samples;
   bake_ = std::move(bake);
   glFinish();
   checkGl("implicit tracer upload");
   uploadMs_ = msSince(t1);
+}
+
+// Uploads a RadialSum's centres (relative to `centre`, which keeps float sums accurate) with α
+// and β to the exact mode's SSBOs in float and in double (both programs may run), and its
+// polynomial re-expressed about that centre.
+void ImplicitTracer::Gpu::uploadModel(const RadialSum<3>& model, const Vec<3>& centre) {
+  origin = centre;
+  const int n = int(model.centres().cols());
+  paddedCentres = std::max(4, (n + 3) / 4 * 4);  // the shader takes 4 centres per loop iteration
+  const std::size_t slots = 4 * std::size_t(paddedCentres);
+  std::vector<double> ca(slots, 0.0), beta(slots, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const Vec<3> c = model.centres().col(j) - origin;
+    for (int k = 0; k < 3; ++k) ca[4 * j + k] = c(k);
+    ca[4 * j + 3] = model.alpha()(j);
+    if (model.hasBeta())
+      for (int k = 0; k < 3; ++k) beta[4 * j + k] = model.beta()(k, j);
+  }
+  const std::vector<float> caFloat(ca.begin(), ca.end()), betaFloat(beta.begin(), beta.end());
+  centres.setData(caFloat.data(), caFloat.size() * sizeof(float), GL_STATIC_DRAW);
+  betas.setData(betaFloat.data(), betaFloat.size() * sizeof(float), GL_STATIC_DRAW);
+  centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
+  betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
+  shiftedPoly = shiftPolynomial(model.polynomial(), model.poly(), origin);
 }
 
 // The GPU trace pass: marches every pixel's ray (the bake in baked mode, the model's sum in exact
