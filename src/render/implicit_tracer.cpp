@@ -91,7 +91,7 @@ struct BakedBricks {
   Eigen::Array3i count = Eigen::Array3i::Zero();
   Vec<3> size = Vec<3>::Zero();
   // RGBA per brick, x fastest; A unused: llvmpipe fetches 3-channel float textures through a
-  // slow generic path (as field2d_view.cpp found)
+  // slow generic path (field2d_view.cpp avoids them for the same reason)
   std::vector<float> texels;
 };
 
@@ -310,7 +310,7 @@ Program buildTraceProgram(TraceProgramKind kind, bool slice) {
 // terms' own rounding is of the same order). HRBF and RBF-offset fits have |∇f| ≈ 1 at the data,
 // so that error moves the surface by about as much in world units: above 1e-4 of the diagonal
 // (the exact march's ε) use double. RBF-offset dipoles and polyharmonic kernels over wide
-// bounds get there (Σ|terms| of 10⁵–10⁶ against f ≈ 1: float drew false surfaces).
+// bounds get there (Σ|terms| of 10⁵–10⁶ against f ≈ 1, where float draws false surfaces).
 bool floatEvaluationTooCoarse(const RadialSum<3>& model, const Box<3>& bounds) {
   constexpr int kProbes = 6;
   double terms = 0.0;

@@ -12,8 +12,8 @@
 
 namespace hermite {
 
-// How a probe reads a value of exactly 0 or NaN. The two tracers have always differed here, and
-// each keeps its rule so that its images stay byte for byte what they were.
+// How a probe reads a value of exactly 0 or NaN. The two tracers read such probes differently;
+// each keeps its own reading, so that sharing the routine changes none of their images.
 enum class ZeroRule {
   // The CPU reference tracer: f = 0 at a probe is the root. A sign change needs two non-zero
   // values of opposite sign (a NaN opens no bracket); inside a bracket a NaN counts as past the root.
@@ -49,7 +49,7 @@ class RootBracket {
     return hi_ - lo_ <= tolerance || m == lo_ || m == hi_;
   }
   // Narrows the bracket with f at probe(). True when the rule takes probe() as the root
-  // (StopAtZero and f = 0); the bracket is left as it was then.
+  // (StopAtZero and f = 0); the bracket then stays as it is.
   bool narrow(double f);
 
   double lo() const { return lo_; }
