@@ -7,21 +7,19 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
+#include <string>
 
 #include <Eigen/Geometry>
 
 #include "core/base/errors.h"
-#include "core/rbf/hrbf.h"
 #include "core/rbf/similarity_transform.h"
-#include "core/shapes/presets.h"
 #include "core/trace/color_map.h"
-#include "core/trace/cpu_tracer.h"
-#include "core/trace/default_view_bounds.h"
 #include "core/trace/shading.h"
 #include "render/baked_normals.h"
-#include "render/gl/context.h"
 #include "render/gl/gl_objects.h"
 #include "render/gl/shader_library.h"
+#include "render/hit_refinement.h"
 #include "render/overlay.h"
 #include "render/tile_spans.h"
 
@@ -93,12 +91,33 @@ struct BakedBricks {
   Eigen::Array3i count = Eigen::Array3i::Zero();
   Vec<3> size = Vec<3>::Zero();
   // RGBA per brick, x fastest; A unused: llvmpipe fetches 3-channel float textures through a
-  // slow generic path (as field2d_view.cpp found), ≈ 1–2 ms of a 1024×768 trace here
+  // slow generic path (field2d_view.cpp avoids them for the same reason)
   std::vector<float> texels;
 };
 
 // Cells per brick edge of the baked mode's brick grid.
 constexpr int kBakedBrickCells = 4;
+
+// Chebyshev distance transform of a perAxis³ grid (x fastest), in place and separable: pass k
+// sets d(x) = min_y max(|x_k − y_k|, d(y)) along the lines of axis k.
+void chebyshevDistance(std::vector<int>& dist, int perAxis) {
+  std::vector<int> line(perAxis), result(perAxis);
+  const int stride[3] = {1, perAxis, perAxis * perAxis};
+  for (int axis = 0; axis < 3; ++axis) {
+    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+    for (int u = 0; u < perAxis; ++u)
+      for (int w = 0; w < perAxis; ++w) {
+        const int base = u * stride[a1] + w * stride[a2];
+        for (int q = 0; q < perAxis; ++q) line[q] = dist[base + q * stride[axis]];
+        for (int q = 0; q < perAxis; ++q) {
+          int best = line[q];
+          for (int r = 0; r < perAxis; ++r) best = std::min(best, std::max(std::abs(q - r), line[r]));
+          result[q] = best;
+        }
+        for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
+      }
+  }
+}
 
 BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
   const int R = bake.resolution;
@@ -151,24 +170,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
           L = std::max(L, lipschitz[(z * perAxis + y) * perAxis + x]);
     out.texels[4 * std::size_t(b) + 2] = L;
   }
-  // Chebyshev distance transform, separable: pass k sets d(x) = min_y max(|x_k − y_k|, d(y))
-  // along the lines of axis k.
-  std::vector<int> line(perAxis), result(perAxis);
-  const int stride[3] = {1, perAxis, perAxis * perAxis};
-  for (int axis = 0; axis < 3; ++axis) {
-    const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-    for (int u = 0; u < perAxis; ++u)
-      for (int w = 0; w < perAxis; ++w) {
-        const int base = u * stride[a1] + w * stride[a2];
-        for (int q = 0; q < perAxis; ++q) line[q] = dist[base + q * stride[axis]];
-        for (int q = 0; q < perAxis; ++q) {
-          int best = line[q];
-          for (int r = 0; r < perAxis; ++r) best = std::min(best, std::max(std::abs(q - r), line[r]));
-          result[q] = best;
-        }
-        for (int q = 0; q < perAxis; ++q) dist[base + q * stride[axis]] = result[q];
-      }
-  }
+  chebyshevDistance(dist, perAxis);
   for (int b = 0; b < n; ++b) out.texels[4 * std::size_t(b) + 1] = float(std::min(dist[b], 4 * perAxis));
   return out;
 }
@@ -308,7 +310,7 @@ Program buildTraceProgram(TraceProgramKind kind, bool slice) {
 // terms' own rounding is of the same order). HRBF and RBF-offset fits have |∇f| ≈ 1 at the data,
 // so that error moves the surface by about as much in world units: above 1e-4 of the diagonal
 // (the exact march's ε) use double. RBF-offset dipoles and polyharmonic kernels over wide
-// bounds get there (Σ|terms| of 10⁵–10⁶ against f ≈ 1: float drew false surfaces).
+// bounds get there (Σ|terms| of 10⁵–10⁶ against f ≈ 1, where float draws false surfaces).
 bool floatEvaluationTooCoarse(const RadialSum<3>& model, const Box<3>& bounds) {
   constexpr int kProbes = 6;
   double terms = 0.0;
@@ -321,6 +323,271 @@ bool floatEvaluationTooCoarse(const RadialSum<3>& model, const Box<3>& bounds) {
   const double n = double(std::max<Eigen::Index>(model.centres().cols(), 1));
   const double floatError = std::ldexp(1.0, -24) * std::sqrt(n) * terms;
   return floatError > 1e-4 * bounds.extent().norm();
+}
+
+// max |f| of the baked interpolant on the slice plane inside the bounds (64² probes).
+double sliceRangeFromBake(const VolumeBake& bake, const Vec<3>& n, double offset) {
+  Vec<3> u, v;
+  planeBasis(n, u, v);
+  const Vec<3> c = bake.bounds.center();
+  const Vec<3> c0 = c + (offset - n.dot(c)) * n;
+  const double half = 0.5 * bake.bounds.extent().norm();
+  double range = 0;
+  const int m = 64;
+  for (int a = 0; a <= m; ++a)
+    for (int b = 0; b <= m; ++b) {
+      const Vec<3> x = c0 + (-half + 2 * half * a / m) * u + (-half + 2 * half * b / m) * v;
+      if (!bake.bounds.contains(x)) continue;
+      range = std::max(range, std::abs(bake.interpolate(x)));
+    }
+  return range > 0 && std::isfinite(range) ? range : 1.0;
+}
+
+// The cone about a tile's centre ray that holds all of the tile's pixel rays: radius
+// radius0 + slope·a at axial distance a (trace_tile_pass.glsl), and reach ≥ that radius anywhere
+// inside the bounds. Pixel centres lie within (tile − 1)/2 pixels of the tile's centre per axis.
+struct TileCone {
+  double slope = 0, radius0 = 0, reach = 0;
+};
+
+TileCone tileCone(const Camera& camera, const Box<3>& bounds, int tile) {
+  const double offsetPixels = 0.5 * (tile - 1) * std::sqrt(2.0);
+  TileCone cone;
+  if (camera.projection() == Projection::Orthographic) {
+    cone.radius0 = offsetPixels * 2.0 * camera.halfHeight() / camera.height();
+  } else {
+    // Directions c + e with |c| ≥ 1 (the forward axis has length 1) and |e| ≤ δ at unit distance:
+    // the angle φ between them has tan φ ≤ δ / (1 − δ).
+    const double delta = offsetPixels * 2.0 * camera.tanHalfFov() / camera.height();
+    cone.slope = delta / (1.0 - delta);
+  }
+  // 1 % slack for the shader's float arithmetic.
+  cone.slope *= 1.01;
+  cone.radius0 *= 1.01;
+  cone.reach = 1.01 * (cone.radius0 + cone.slope * bounds.farthestDistance(camera.eye())) + 1e-6 * bounds.extent().norm();
+  return cone;
+}
+
+// One render's view of the scene, shared by its passes.
+struct TraceFrame {
+  const Camera& camera;
+  const TraceSettings& settings;
+  Box<3> bounds;
+  int width = 0, height = 0;
+  Eigen::Matrix4d viewProjection;  // projection · view, with the tracer's depth range as [near, far]
+  glm::mat4 viewProj;              // the same in float, for the shaders
+  Vec<3> sliceNormal;              // unit when the slice is enabled
+  double sliceRange = 1;           // |f| at the ends of the slice's heat map
+  double minStep = 0;              // ε of the march in world units
+  std::array<std::uint8_t, 3> background{};  // round(255·c) of settings.background
+
+  // Throws InputError for a zero or non-finite slice normal.
+  TraceFrame(const Camera& view, const TraceSettings& traceSettings, const Box<3>& box, const VolumeBake& bake,
+             const Eigen::Vector2d& depthRange);
+
+  std::size_t pixels() const { return std::size_t(width) * height; }
+  // Where the ray meets the slice plane inside the bounds; +inf where it does not, or without a slice.
+  double planeT(const Ray& ray) const;
+  // The window depth of a world point, as the trace pass writes it.
+  float windowDepth(const Vec<3>& x) const {
+    const Eigen::Vector4d clip = viewProjection * Eigen::Vector4d(x.x(), x.y(), x.z(), 1.0);
+    return float(std::clamp(0.5 * clip.z() / clip.w() + 0.5, 0.0, 1.0));
+  }
+};
+
+TraceFrame::TraceFrame(const Camera& view, const TraceSettings& traceSettings, const Box<3>& box,
+                       const VolumeBake& bake, const Eigen::Vector2d& depthRange)
+    : camera(view), settings(traceSettings), bounds(box), width(view.width()), height(view.height()) {
+  const SliceSettings& slice = settings.slice;
+  sliceNormal = Vec<3>(slice.normal[0], slice.normal[1], slice.normal[2]);
+  if (slice.enabled) {
+    if (!(sliceNormal.norm() > 0) || !sliceNormal.allFinite())
+      throw InputError("view.slice.normal: must be a non-zero vector");
+    sliceNormal.normalize();
+    sliceRange = slice.range > 0 ? slice.range : sliceRangeFromBake(bake, sliceNormal, slice.offset);
+  }
+  viewProjection = view.projectionMatrix(depthRange(0), depthRange(1)) * view.viewMatrix();
+  viewProj = toGlm(viewProjection);
+  minStep = settings.mode == TracerMode::Baked ? settings.minStepCells * bake.spacing().minCoeff()
+                                               : settings.minStepCells * 1e-3 * bounds.extent().norm();
+  for (int k = 0; k < 3; ++k) background[k] = shading::toByte(settings.background[k]);
+}
+
+double TraceFrame::planeT(const Ray& ray) const {
+  if (!settings.slice.enabled) return std::numeric_limits<double>::infinity();
+  const double dn = ray.direction.dot(sliceNormal);
+  double a, b;
+  if (dn == 0 || !clipRayToBox(ray, bounds, a, b)) return std::numeric_limits<double>::infinity();
+  const double tp = (settings.slice.offset - sliceNormal.dot(ray.origin)) / dn;
+  return (tp >= a && tp <= b) ? tp : std::numeric_limits<double>::infinity();
+}
+
+// The uniforms every trace program takes: camera, bounds and bricks, the march, shading and the
+// slice plane.
+void setTraceUniforms(const Program& p, const TraceFrame& frame, const VolumeBake& bake) {
+  const Camera& camera = frame.camera;
+  const TraceSettings& settings = frame.settings;
+  p.setUniform("uViewport", glm::vec2(float(camera.width()), float(camera.height())));
+  p.setUniform("uEye", toGlm(camera.eye()));
+  p.setUniform("uRight", toGlm(camera.right()));
+  p.setUniform("uUp", toGlm(camera.up()));
+  p.setUniform("uForward", toGlm(camera.forward()));
+  p.setUniform("uTileSize", 1.0f);
+  p.setUniform("uTanHalf", float(camera.tanHalfFov()));
+  p.setUniform("uAspect", float(camera.aspect()));
+  p.setUniform("uHalfHeight", float(camera.halfHeight()));
+  p.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
+  p.setUniform("uViewProj", frame.viewProj);
+  p.setUniform("uBoundsLo", toGlm(frame.bounds.lo));
+  p.setUniform("uBoundsHi", toGlm(frame.bounds.hi));
+  p.setUniform("uBrickCount", glm::ivec3(bake.bricks.count.x(), bake.bricks.count.y(), bake.bricks.count.z()));
+  p.setUniform("uBrickSize", toGlm(bake.bricks.size));
+  p.setUniform("uMinStep", float(frame.minStep));
+  p.setUniform("uMaxSteps", 4096);
+  p.setUniform("uLoopBudget", 1 << 30);  // exact mode on a software renderer sets its own
+  p.setUniform("uShowSurface", settings.showSurface ? 1 : 0);
+  p.setUniform("uBackground", glm::vec3(frame.background[0] / 255.0f, frame.background[1] / 255.0f,
+                                        frame.background[2] / 255.0f));
+  p.setUniform("uFrontColor", toGlm(shading::kFrontColor));
+  p.setUniform("uBackColor", toGlm(shading::kBackColor));
+  p.setUniform("uAmbient", float(shading::kAmbient));
+  for (int k = 0; k < 2; ++k) {
+    const shading::Light& l = shading::kLights[k];
+    const Vec<3> dir = shading::lightDirection(l, camera.right(), camera.up(), camera.forward());
+    p.setUniform("uLightDir[" + std::to_string(k) + "]", toGlm(dir));
+    p.setUniform("uLightIntensity[" + std::to_string(k) + "]", float(l.intensity));
+  }
+  const SliceSettings& s = settings.slice;
+  p.setUniform("uSliceEnabled", s.enabled ? 1 : 0);
+  if (s.enabled) {
+    p.setUniform("uSliceNormal", toGlm(frame.sliceNormal));
+    p.setUniform("uSliceOffset", float(s.offset));
+    p.setUniform("uSliceRange", float(frame.sliceRange));
+    p.setUniform("uIsoSpacing", float(niceIsoSpacing(frame.sliceRange)));
+    p.setUniform("uZeroColor", glm::vec3(float(kZeroCurveColor[0]), float(kZeroCurveColor[1]), float(kZeroCurveColor[2])));
+    p.setUniform("uIsoDarken", float(kIsoLineDarken));
+  }
+}
+
+// The loop budget of the exact march on a software rasteriser (uLoopBudget in trace_common.glsl):
+// Mesa's loop limit less the evaluations after the march (∇f at the hit, the slice's f and ∇f)
+// and the small fixed loops. Pixels that run out are traced on the CPU; a model too big for even
+// one step is refused (InputError).
+int exactLoopBudget(int paddedCentres, Eigen::Index centres) {
+  const int perEvaluation = paddedCentres / 4;
+  const int budget = kMesaSoftwareLoopLimit - 3 * perEvaluation - 256;
+  if (budget < 4 * perEvaluation)
+    throw InputError("implicit tracer: exact mode on this software renderer (Mesa llvmpipe) handles at most " +
+                     std::to_string((kMesaSoftwareLoopLimit - 256) / 7 * 4) + " centres (the model has " +
+                     std::to_string(centres) + "); use the baked mode");
+  return budget;
+}
+
+// Reads the trace pass's hits back (GL rows bottom-up; row 0 = top from here on): the result
+// gets each hit's depth and the GPU's normal. Returns the surface's ray parameter per pixel:
+// ≥ 0 a hit, −1 a miss, −2 where the march ran out of steps or loop budget (undecided).
+std::vector<float> readSurfaceHits(const TraceTarget& target, TraceResult& result) {
+  const int W = target.width, H = target.height;
+  const std::size_t npx = std::size_t(W) * H;
+  const std::vector<float> hitData = readTexture<float>(target.hit, GL_RGBA, GL_FLOAT, 4);
+  result.hit.assign(npx, 0);
+  result.depth.assign(npx, std::numeric_limits<float>::infinity());
+  result.normal.assign(3 * npx, 0.0f);
+  std::vector<float> surfaceT(npx, -1.0f);
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const float* h = &hitData[4 * (std::size_t(H - 1 - j) * W + i)];
+      const std::size_t p = std::size_t(j) * W + i;
+      surfaceT[p] = h[0];
+      if (h[0] >= 0) {
+        result.depth[p] = h[0];
+        for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = h[1 + k];
+      }
+    }
+  return surfaceT;
+}
+
+std::vector<int> undecidedPixels(const std::vector<float>& surfaceT) {
+  std::vector<int> undecided;
+  for (std::size_t p = 0; p < surfaceT.size(); ++p)
+    if (surfaceT[p] < -1.5f) undecided.push_back(int(p));
+  return undecided;
+}
+
+// Without refinement the GPU's surface hit is the visible one unless the slice plane is nearer;
+// where the plane wins, the result records no surface there.
+void keepVisibleSurface(const TraceFrame& frame, const std::vector<float>& surfaceT, TraceResult& result) {
+  for (int j = 0; j < frame.height; ++j)
+    for (int i = 0; i < frame.width; ++i) {
+      const std::size_t p = std::size_t(j) * frame.width + i;
+      if (surfaceT[p] < 0) continue;
+      const double tp = frame.planeT(frame.camera.pixelRay(i, j));
+      if (double(surfaceT[p]) < tp) {
+        result.hit[p] = 1;
+      } else {
+        result.depth[p] = std::numeric_limits<float>::infinity();
+        for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = 0.0f;
+      }
+    }
+}
+
+// Shades a visible refined hit exactly like core/trace/shading.h, with the true field's normal,
+// into the pixel's colour bytes and the result; returns its window depth.
+float shadeRefinedHit(const TraceFrame& frame, const Ray& ray, double t, const Vec<3>& g, std::uint8_t* px,
+                      TraceResult& result, std::size_t p) {
+  const Camera& camera = frame.camera;
+  const double gn = g.norm();
+  const Vec<3> n = (gn > 0 && std::isfinite(gn)) ? Vec<3>(g / gn) : Vec<3>(-ray.direction);
+  const Vec<3> c = shading::shadeHit(n, ray.direction, camera.right(), camera.up(), camera.forward());
+  for (int k = 0; k < 3; ++k) px[k] = shading::toByte(c(k));
+  px[3] = 255;
+  result.hit[p] = 1;
+  result.depth[p] = float(t);
+  for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = float(n(k));
+  return frame.windowDepth(ray.at(t));
+}
+
+// Composites the refined surface with the slice plane and the background on the CPU (the nearer
+// of surface and plane wins) wherever the GPU or the refinement found a surface, and writes
+// colour and depth back to the target, so that the overlays are depth-tested against the refined
+// surface. Returns the pixels that show a refined hit.
+int compositeRefined(const TraceTarget& target, const TraceFrame& frame, const HitRefinement& hits,
+                     TraceResult& result) {
+  const int W = frame.width, H = frame.height;
+  std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+  const std::vector<std::uint8_t> planeColor = readTexture<std::uint8_t>(target.plane, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+  std::vector<float> depth = readTexture<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
+  int refined = 0;
+#pragma omp parallel for schedule(static) reduction(+ : refined)
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const std::size_t p = std::size_t(j) * W + i;
+      const std::size_t glIndex = std::size_t(H - 1 - j) * W + i;
+      if (!hits.gpuHit[p] && hits.t[p] < 0) continue;  // GPU colour (background or plane) stands
+      const Ray ray = frame.camera.pixelRay(i, j);
+      const double tp = frame.planeT(ray);
+      std::uint8_t* px = &color[4 * glIndex];
+      result.hit[p] = 0;
+      result.depth[p] = std::numeric_limits<float>::infinity();
+      for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = 0.0f;
+      if (hits.t[p] >= 0 && hits.t[p] < tp) {
+        ++refined;
+        depth[glIndex] = shadeRefinedHit(frame, ray, hits.t[p], hits.gradient[p], px, result, p);
+      } else if (std::isfinite(tp) && planeColor[4 * glIndex + 3] > 0) {
+        std::memcpy(px, &planeColor[4 * glIndex], 3);
+        px[3] = 255;
+        depth[glIndex] = frame.windowDepth(ray.at(tp));
+      } else {
+        std::memcpy(px, frame.background.data(), 3);
+        px[3] = 255;
+        depth[glIndex] = 1.0f;
+      }
+    }
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(target.color.id(), 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+  glTextureSubImage2D(target.depth.id(), 0, 0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  checkGl("implicit tracer refinement upload");
+  return refined;
 }
 
 }  // namespace
@@ -352,6 +619,18 @@ struct ImplicitTracer::Gpu {
     if (!slot) slot = std::make_unique<Program>(buildTraceProgram(kind, slice));
     return *slot;
   }
+  TraceTarget& targetFor(int width, int height) {
+    if (!target || target->width != width || target->height != height)
+      target = std::make_unique<TraceTarget>(width, height);
+    return *target;
+  }
+  void uploadModel(const RadialSum<3>& model, const Vec<3>& centre);
+  long long trace(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model, bool exactDouble);
+  void runTilePass(const TraceFrame& frame, const VolumeBake& bake);
+  void bindBaked(const Program& p, const TraceFrame& frame, const VolumeBake& bake);
+  void bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget);
+  long long drawTracePass(const TraceFrame& frame);
+  ImageRgba8 drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples);
 };
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
@@ -419,27 +698,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
   bounds_ = bounds;
   exactNeedsDouble_.reset();
-  if (radialSum_) {
-    // Centres relative to the bounds centre, in float and in double (both programs may run).
-    gpu_->origin = bounds.center();
-    const int n = int(radialSum_->centres().cols());
-    gpu_->paddedCentres = std::max(4, (n + 3) / 4 * 4);  // the shader takes 4 centres per loop iteration
-    const std::size_t slots = 4 * std::size_t(gpu_->paddedCentres);
-    std::vector<double> ca(slots, 0.0), beta(slots, 0.0);
-    for (int j = 0; j < n; ++j) {
-      const Vec<3> c = radialSum_->centres().col(j) - gpu_->origin;
-      for (int k = 0; k < 3; ++k) ca[4 * j + k] = c(k);
-      ca[4 * j + 3] = radialSum_->alpha()(j);
-      if (radialSum_->hasBeta())
-        for (int k = 0; k < 3; ++k) beta[4 * j + k] = radialSum_->beta()(k, j);
-    }
-    const std::vector<float> caFloat(ca.begin(), ca.end()), betaFloat(beta.begin(), beta.end());
-    gpu_->centres.setData(caFloat.data(), caFloat.size() * sizeof(float), GL_STATIC_DRAW);
-    gpu_->betas.setData(betaFloat.data(), betaFloat.size() * sizeof(float), GL_STATIC_DRAW);
-    gpu_->centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
-    gpu_->betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
-    gpu_->shiftedPoly = shiftPolynomial(radialSum_->polynomial(), radialSum_->poly(), gpu_->origin);
-  }
+  if (radialSum_) gpu_->uploadModel(*radialSum_, bounds.center());
   hasSamples_ = samples != nullptr && samples->size() > 0;
   if (hasSamples_) samples_ = *samples;
   bake_ = std::move(bake);
@@ -448,607 +707,211 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   uploadMs_ = msSince(t1);
 }
 
-namespace {
-
-// Uniforms shared by both trace programs.
-void setTraceUniforms(const Program& p, const Camera& camera, const Box<3>& bounds, const VolumeBake& bake,
-                      const TraceSettings& settings, const glm::mat4& viewProj, double minStep, double sliceRange) {
-  p.setUniform("uViewport", glm::vec2(float(camera.width()), float(camera.height())));
-  p.setUniform("uEye", toGlm(camera.eye()));
-  p.setUniform("uRight", toGlm(camera.right()));
-  p.setUniform("uUp", toGlm(camera.up()));
-  p.setUniform("uForward", toGlm(camera.forward()));
-  p.setUniform("uTileSize", 1.0f);
-  p.setUniform("uTanHalf", float(camera.tanHalfFov()));
-  p.setUniform("uAspect", float(camera.aspect()));
-  p.setUniform("uHalfHeight", float(camera.halfHeight()));
-  p.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
-  p.setUniform("uViewProj", viewProj);
-  p.setUniform("uBoundsLo", toGlm(bounds.lo));
-  p.setUniform("uBoundsHi", toGlm(bounds.hi));
-  p.setUniform("uBrickCount", glm::ivec3(bake.bricks.count.x(), bake.bricks.count.y(), bake.bricks.count.z()));
-  p.setUniform("uBrickSize", toGlm(bake.bricks.size));
-  p.setUniform("uMinStep", float(minStep));
-  p.setUniform("uMaxSteps", 4096);
-  p.setUniform("uLoopBudget", 1 << 30);  // exact mode on a software renderer sets its own
-  p.setUniform("uShowSurface", settings.showSurface ? 1 : 0);
-  p.setUniform("uBackground", glm::vec3(shading::toByte(settings.background[0]) / 255.0f,
-                                        shading::toByte(settings.background[1]) / 255.0f,
-                                        shading::toByte(settings.background[2]) / 255.0f));
-  const auto& fc = shading::kFrontColor;
-  const auto& bc = shading::kBackColor;
-  p.setUniform("uFrontColor", toGlm(fc));
-  p.setUniform("uBackColor", toGlm(bc));
-  p.setUniform("uAmbient", float(shading::kAmbient));
-  for (int k = 0; k < 2; ++k) {
-    const shading::Light& l = shading::kLights[k];
-    const Vec<3> dir = shading::lightDirection(l, camera.right(), camera.up(), camera.forward());
-    p.setUniform("uLightDir[" + std::to_string(k) + "]", toGlm(dir));
-    p.setUniform("uLightIntensity[" + std::to_string(k) + "]", float(l.intensity));
+// Uploads a RadialSum's centres (relative to `centre`, which keeps float sums accurate) with α
+// and β to the exact mode's SSBOs in float and in double (both programs may run), and its
+// polynomial re-expressed about that centre.
+void ImplicitTracer::Gpu::uploadModel(const RadialSum<3>& model, const Vec<3>& centre) {
+  origin = centre;
+  const int n = int(model.centres().cols());
+  paddedCentres = std::max(4, (n + 3) / 4 * 4);  // the shader takes 4 centres per loop iteration
+  const std::size_t slots = 4 * std::size_t(paddedCentres);
+  std::vector<double> ca(slots, 0.0), beta(slots, 0.0);
+  for (int j = 0; j < n; ++j) {
+    const Vec<3> c = model.centres().col(j) - origin;
+    for (int k = 0; k < 3; ++k) ca[4 * j + k] = c(k);
+    ca[4 * j + 3] = model.alpha()(j);
+    if (model.hasBeta())
+      for (int k = 0; k < 3; ++k) beta[4 * j + k] = model.beta()(k, j);
   }
-  const SliceSettings& s = settings.slice;
-  Vec<3> n(s.normal[0], s.normal[1], s.normal[2]);
-  p.setUniform("uSliceEnabled", s.enabled ? 1 : 0);
-  if (s.enabled) {
-    n.normalize();
-    p.setUniform("uSliceNormal", toGlm(n));
-    p.setUniform("uSliceOffset", float(s.offset));
-    p.setUniform("uSliceRange", float(sliceRange));
-    p.setUniform("uIsoSpacing", float(niceIsoSpacing(sliceRange)));
-    p.setUniform("uZeroColor", glm::vec3(float(kZeroCurveColor[0]), float(kZeroCurveColor[1]), float(kZeroCurveColor[2])));
-    p.setUniform("uIsoDarken", float(kIsoLineDarken));
-  }
+  const std::vector<float> caFloat(ca.begin(), ca.end()), betaFloat(beta.begin(), beta.end());
+  centres.setData(caFloat.data(), caFloat.size() * sizeof(float), GL_STATIC_DRAW);
+  betas.setData(betaFloat.data(), betaFloat.size() * sizeof(float), GL_STATIC_DRAW);
+  centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
+  betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
+  shiftedPoly = shiftPolynomial(model.polynomial(), model.poly(), origin);
 }
 
-// max |f| of the baked interpolant on the slice plane inside the bounds (64² probes).
-double sliceRangeFromBake(const VolumeBake& bake, const Vec<3>& n, double offset) {
-  Vec<3> u, v;
-  planeBasis(n, u, v);
-  const Vec<3> c = bake.bounds.center();
-  const Vec<3> c0 = c + (offset - n.dot(c)) * n;
-  const double half = 0.5 * bake.bounds.extent().norm();
-  double range = 0;
-  const int m = 64;
-  for (int a = 0; a <= m; ++a)
-    for (int b = 0; b <= m; ++b) {
-      const Vec<3> x = c0 + (-half + 2 * half * a / m) * u + (-half + 2 * half * b / m) * v;
-      if (!bake.bounds.contains(x)) continue;
-      range = std::max(range, std::abs(bake.interpolate(x)));
-    }
-  return range > 0 && std::isfinite(range) ? range : 1.0;
-}
-
-// The cone about a tile's centre ray that holds all of the tile's pixel rays: radius
-// radius0 + slope·a at axial distance a (trace_tile_pass.glsl), and reach ≥ that radius anywhere
-// inside the bounds. Pixel centres lie within (tile − 1)/2 pixels of the tile's centre per axis.
-struct TileCone {
-  double slope = 0, radius0 = 0, reach = 0;
-};
-
-TileCone tileCone(const Camera& camera, const Box<3>& bounds, int tile) {
-  const double offsetPixels = 0.5 * (tile - 1) * std::sqrt(2.0);
-  TileCone cone;
-  if (camera.projection() == Projection::Orthographic) {
-    cone.radius0 = offsetPixels * 2.0 * camera.halfHeight() / camera.height();
-  } else {
-    // Directions c + e with |c| ≥ 1 (the forward axis has length 1) and |e| ≤ δ at unit distance:
-    // the angle φ between them has tan φ ≤ δ / (1 − δ).
-    const double delta = offsetPixels * 2.0 * camera.tanHalfFov() / camera.height();
-    cone.slope = delta / (1.0 - delta);
-  }
-  // 1 % slack for the shader's float arithmetic.
-  cone.slope *= 1.01;
-  cone.radius0 *= 1.01;
-  cone.reach = 1.01 * (cone.radius0 + cone.slope * bounds.farthestDistance(camera.eye())) + 1e-6 * bounds.extent().norm();
-  return cone;
-}
-
-struct PixelRefine {
-  int pixel;
-  Ray ray;
-  double t;
-  double tLo, tHi;  // clip of the ray to the bounds
-};
-
-}  // namespace
-
-TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& settings) {
-  if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
-  if (settings.mode == TracerMode::Exact && !radialSum_)
-    throw InputError("implicit tracer: exact mode needs an HRBF or RBF-offset model");
-  if (settings.slice.enabled) {
-    const Vec<3> n(settings.slice.normal[0], settings.slice.normal[1], settings.slice.normal[2]);
-    if (!(n.norm() > 0) || !n.allFinite()) throw InputError("view.slice.normal: must be a non-zero vector");
-  }
-  const int W = camera.width(), H = camera.height();
-  const std::size_t npx = std::size_t(W) * H;
-  if (!gpu_->target || gpu_->target->width != W || gpu_->target->height != H)
-    gpu_->target = std::make_unique<TraceTarget>(W, H);
-  TraceTarget& target = *gpu_->target;
-  const VolumeBake& bake = *bake_;
-
-  const Eigen::Vector2d range = depthRange(camera);
-  const Eigen::Matrix4d viewProjD = camera.projectionMatrix(range(0), range(1)) * camera.viewMatrix();
-  const glm::mat4 viewProj = toGlm(viewProjD);
-  const double diagonal = bounds_.extent().norm();
-  Vec<3> sliceNormal(settings.slice.normal[0], settings.slice.normal[1], settings.slice.normal[2]);
-  if (settings.slice.enabled) sliceNormal.normalize();
-  const double sliceRange = !settings.slice.enabled ? 1.0
-                            : settings.slice.range > 0
-                                ? settings.slice.range
-                                : sliceRangeFromBake(bake, sliceNormal, settings.slice.offset);
-
-  // ---- GPU trace pass ------------------------------------------------------------------------
-  TraceResult result;
-  auto t0 = Clock::now();
-  target.bind();
-  target.setAllBuffers();
+// The GPU trace pass: marches every pixel's ray (the bake in baked mode, the model's sum in exact
+// mode) and writes colour, hit data (t and normal), the slice plane's colour and depth to the
+// target. Returns the pixels it ran on.
+long long ImplicitTracer::Gpu::trace(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model,
+                                     bool exactDouble) {
+  const TraceSettings& settings = frame.settings;
+  const bool baked = settings.mode == TracerMode::Baked;
+  target->bind();
+  target->setAllBuffers();
   glDisable(GL_BLEND);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
   glDepthMask(GL_TRUE);
-  // Loop budget of the exact march (uLoopBudget in trace_common.glsl): the software rasterisers'
-  // limit less the evaluations after the march (∇f at the hit, the slice's f and ∇f) and the small
-  // fixed loops; pixels that run out are traced on the CPU below.
-  int exactLoopBudget = 1 << 30;
-  if (settings.mode == TracerMode::Exact && gpu_->softwareLoopLimit) {
-    const int perEvaluation = gpu_->paddedCentres / 4;
-    exactLoopBudget = kMesaSoftwareLoopLimit - 3 * perEvaluation - 256;
-    if (exactLoopBudget < 4 * perEvaluation)
-      throw InputError("implicit tracer: exact mode on this software renderer (Mesa llvmpipe) handles at most " +
-                       std::to_string((kMesaSoftwareLoopLimit - 256) / 7 * 4) + " centres (the model has " +
-                       std::to_string(radialSum_->centres().cols()) + "); use the baked mode");
-  }
-  const bool exactDouble =
-      settings.mode == TracerMode::Exact && (settings.exactPrecision == ExactPrecision::Double ||
-                                              (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
-  const TraceProgramKind kind = settings.mode == TracerMode::Baked ? kBakedProgram
-                                : exactDouble                      ? kExactDoubleProgram
-                                                                   : kExactFloatProgram;
-  result.exactDouble = exactDouble;
-  const Program* program = &gpu_->program(kind, settings.slice.enabled);
-  const double minStep = settings.mode == TracerMode::Baked ? settings.minStepCells * bake.spacing().minCoeff()
-                                                            : settings.minStepCells * 1e-3 * diagonal;
-  auto setBakedUniforms = [&](const Program& p) {
-    gpu_->volume.bind(0);
-    p.setUniform("uVolume", 0);
-    const Vec<3> scale = Vec<3>::Constant(bake.resolution - 1).cwiseQuotient(bounds_.extent());
-    p.setUniform("uVolumeScale", toGlm(scale));
-    p.setUniform("uVolumeResolution", float(bake.resolution));
-    p.setUniform("uCell", toGlm(bake.spacing()));
-    // The baked mode marches over its own, finer brick grid.
-    p.setUniform("uBrickCount", glm::ivec3(gpu_->bakedBrickCount.x(), gpu_->bakedBrickCount.y(),
-                                           gpu_->bakedBrickCount.z()));
-    p.setUniform("uBrickSize", toGlm(gpu_->bakedBrickSize));
-    gpu_->bakedBricks.bind(2);
-    p.setUniform("uBakedBricks", 2);
-    gpu_->normals.bind(4);
-    p.setUniform("uNormals", 4);
-  };
-  if (settings.mode == TracerMode::Baked && settings.showSurface) {
-    // Tile pass: per tile of kTraceTile² pixels, how far its rays may skip (trace_tile_pass.glsl).
-    const Program& tiles = gpu_->program(kBakedTileProgram, false);
-    tiles.use();
-    setTraceUniforms(tiles, camera, bounds_, bake, settings, viewProj, minStep, sliceRange);
-    setBakedUniforms(tiles);
-    const TileCone cone = tileCone(camera, bounds_, kTraceTile);
-    tiles.setUniform("uTileSize", float(kTraceTile));
-    tiles.setUniform("uConeSlope", float(cone.slope));
-    tiles.setUniform("uConeRadius0", float(cone.radius0));
-    tiles.setUniform("uConeReach", float(cone.reach));
-    target.bindTiles();
-    gpu_->empty.bind();
-    glDisable(GL_DEPTH_TEST);
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    glEnable(GL_DEPTH_TEST);
-    target.bind();
-  }
-  program->use();
-  setTraceUniforms(*program, camera, bounds_, bake, settings, viewProj, minStep, sliceRange);
-  if (settings.mode == TracerMode::Baked) {
-    setBakedUniforms(*program);
-    target.tileStart.bind(3);
-    program->setUniform("uTileStart", 3);
+  const int loopBudget =
+      !baked && softwareLoopLimit ? exactLoopBudget(paddedCentres, model->centres().cols()) : 1 << 30;
+  const TraceProgramKind kind = baked ? kBakedProgram : exactDouble ? kExactDoubleProgram : kExactFloatProgram;
+  const Program& p = program(kind, settings.slice.enabled);
+  if (baked && settings.showSurface) runTilePass(frame, bake);
+  p.use();
+  setTraceUniforms(p, frame, bake);
+  if (baked) {
+    bindBaked(p, frame, bake);
+    target->tileStart.bind(3);
+    p.setUniform("uTileStart", 3);
   } else {
-    const RadialSum<3>& m = *radialSum_;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, (exactDouble ? gpu_->centresDouble : gpu_->centres).id());
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, (exactDouble ? gpu_->betasDouble : gpu_->betas).id());
-    program->setUniform("uCount", gpu_->paddedCentres);
-    program->setUniform("uLoopBudget", exactLoopBudget);
-    program->setUniform("uHasBeta", m.hasBeta() ? 1 : 0);
-    program->setUniform("uKernel", kernelIndex(m.kernel().type));
-    program->setUniform("uPolyCount", monomialCount<3>(m.polynomial()));
-    // `real` uniforms: double or float to match the program.
-    auto setReal = [&](const std::string& name, double v) {
-      if (exactDouble)
-        program->setUniform(name, v);
-      else
-        program->setUniform(name, float(v));
-    };
-    setReal("uRadius", m.kernel().radius);
-    for (int k = 0; k < 10; ++k) setReal("uPoly[" + std::to_string(k) + "]", gpu_->shiftedPoly[k]);
-    program->setUniform("uOrigin", toGlm(gpu_->origin));
+    bindExact(p, *model, exactDouble, loopBudget);
   }
-  gpu_->bricks.bind(1);
-  program->setUniform("uBricks", 1);
-  if (settings.mode == TracerMode::Baked) {
-    // Only the pixels of tiles the tile pass did not prove empty (tile_spans.h); the others are
-    // cleared to what a miss writes. The slice plane can cover any pixel: then all of them.
-    std::vector<PixelRect> rects{PixelRect{0, 0, W, H}};
-    if (settings.showSurface && !settings.slice.enabled && settings.skipEmptyTiles) {
-      const std::vector<float> tiles = readTexture<float>(target.tileStart, GL_RED, GL_FLOAT, 1);
-      rects = occupiedTileRects(tiles, target.tileWidth, target.tileHeight, kTraceTile, W, H);
-    }
-    result.tracedPixels = rectPixels(rects);
-    if (result.tracedPixels < (long long)npx) target.clearToMiss(settings.background);
-    const std::vector<float> corners = rectTriangles(rects);
-    gpu_->rectVertices.setData(std::span<const float>(corners));  // same buffer id: the binding stands
-    gpu_->rects.bind();
-    if (!corners.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(corners.size() / 2));
-  } else {
-    result.tracedPixels = (long long)npx;
-    gpu_->empty.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
+  bricks.bind(1);
+  p.setUniform("uBricks", 1);
+  const long long traced = drawTracePass(frame);
   glFinish();
   checkGl("implicit tracer trace pass");
-  result.traceMs = msSince(t0);
+  return traced;
+}
 
-  // ---- read back the hits (GL rows bottom-up → row 0 = top) -----------------------------------
-  const std::vector<float> hitData = readTexture<float>(target.hit, GL_RGBA, GL_FLOAT, 4);
-  result.hit.assign(npx, 0);
-  result.depth.assign(npx, std::numeric_limits<float>::infinity());
-  result.normal.assign(3 * npx, 0.0f);
-  std::vector<float> surfaceT(npx, -1.0f);  // GPU surface hits, row 0 = top
-  for (int j = 0; j < H; ++j)
-    for (int i = 0; i < W; ++i) {
-      const float* h = &hitData[4 * (std::size_t(H - 1 - j) * W + i)];
-      const std::size_t p = std::size_t(j) * W + i;
-      surfaceT[p] = h[0];
-      if (h[0] >= 0) {
-        result.depth[p] = h[0];
-        for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = h[1 + k];
-      }
-    }
-  auto planeT = [&](const Ray& ray) {
-    if (!settings.slice.enabled) return std::numeric_limits<double>::infinity();
-    const double dn = ray.direction.dot(sliceNormal);
-    double a, b;
-    if (dn == 0 || !clipRayToBox(ray, bounds_, a, b)) return std::numeric_limits<double>::infinity();
-    const double tp = (settings.slice.offset - sliceNormal.dot(ray.origin)) / dn;
-    return (tp >= a && tp <= b) ? tp : std::numeric_limits<double>::infinity();
+// The baked mode's tile pass: per tile of kTraceTile² pixels, how far along its rays the trace
+// pass may skip (trace_tile_pass.glsl), from the march of a cone that holds all the tile's rays.
+void ImplicitTracer::Gpu::runTilePass(const TraceFrame& frame, const VolumeBake& bake) {
+  const Program& tiles = program(kBakedTileProgram, false);
+  tiles.use();
+  setTraceUniforms(tiles, frame, bake);
+  bindBaked(tiles, frame, bake);
+  const TileCone cone = tileCone(frame.camera, frame.bounds, kTraceTile);
+  tiles.setUniform("uTileSize", float(kTraceTile));
+  tiles.setUniform("uConeSlope", float(cone.slope));
+  tiles.setUniform("uConeRadius0", float(cone.radius0));
+  tiles.setUniform("uConeReach", float(cone.reach));
+  target->bindTiles();
+  empty.bind();
+  glDisable(GL_DEPTH_TEST);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glEnable(GL_DEPTH_TEST);
+  target->bind();
+}
+
+// Binds the baked mode's textures: the bake, its normals and the baked mode's own, finer brick
+// grid, which the baked march steps over.
+void ImplicitTracer::Gpu::bindBaked(const Program& p, const TraceFrame& frame, const VolumeBake& bake) {
+  volume.bind(0);
+  p.setUniform("uVolume", 0);
+  const Vec<3> scale = Vec<3>::Constant(bake.resolution - 1).cwiseQuotient(frame.bounds.extent());
+  p.setUniform("uVolumeScale", toGlm(scale));
+  p.setUniform("uVolumeResolution", float(bake.resolution));
+  p.setUniform("uCell", toGlm(bake.spacing()));
+  p.setUniform("uBrickCount", glm::ivec3(bakedBrickCount.x(), bakedBrickCount.y(), bakedBrickCount.z()));
+  p.setUniform("uBrickSize", toGlm(bakedBrickSize));
+  bakedBricks.bind(2);
+  p.setUniform("uBakedBricks", 2);
+  normals.bind(4);
+  p.setUniform("uNormals", 4);
+}
+
+// Binds the exact mode's model: centres and β from the SSBOs of the program's precision, kernel,
+// polynomial (`real` uniforms in that precision) and the loop budget.
+void ImplicitTracer::Gpu::bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget) {
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, (exactDouble ? centresDouble : centres).id());
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, (exactDouble ? betasDouble : betas).id());
+  p.setUniform("uCount", paddedCentres);
+  p.setUniform("uLoopBudget", loopBudget);
+  p.setUniform("uHasBeta", model.hasBeta() ? 1 : 0);
+  p.setUniform("uKernel", kernelIndex(model.kernel().type));
+  p.setUniform("uPolyCount", monomialCount<3>(model.polynomial()));
+  auto setReal = [&](const std::string& name, double v) {
+    if (exactDouble)
+      p.setUniform(name, v);
+    else
+      p.setUniform(name, float(v));
   };
+  setReal("uRadius", model.kernel().radius);
+  for (int k = 0; k < 10; ++k) setReal("uPoly[" + std::to_string(k) + "]", shiftedPoly[k]);
+  p.setUniform("uOrigin", toGlm(origin));
+}
 
-  // Pixels whose march ran out of steps or loop budget (t = −2): traced on the CPU below.
-  std::vector<int> undecided;
-  for (std::size_t p = 0; p < npx; ++p)
-    if (surfaceT[p] < -1.5f) undecided.push_back(int(p));
-  result.cpuTracedPixels = int(undecided.size());
-
-  // ---- exact refinement on the CPU ------------------------------------------------------------
-  if ((settings.refineExact || !undecided.empty()) && settings.showSurface) {
-    t0 = Clock::now();
-    const ImplicitField<3>& field = *field_;
-    const double cell = bake.spacing().norm();
-    const double tol = 1e-7 * diagonal;
-    std::vector<double> refinedT(npx, -1.0);
-    std::vector<Vec<3>> refinedG(npx, Vec<3>::Zero());
-    std::vector<std::uint8_t> hasGpuHit(npx, 0);
-    std::vector<PixelRefine> work;
-    work.reserve(npx / 4);
-    for (std::size_t p = 0; p < npx; ++p) {
-      if (surfaceT[p] < 0) continue;
-      hasGpuHit[p] = 1;
-      if (!settings.refineExact) {  // here only for the undecided pixels: GPU hits stand as they are
-        refinedT[p] = surfaceT[p];
-        refinedG[p] = Vec<3>(result.normal[3 * p], result.normal[3 * p + 1], result.normal[3 * p + 2]);
-        continue;
-      }
-      const Ray ray = camera.pixelRay(int(p % W), int(p / W));
-      double a = 0, b = 0;
-      clipRayToBox(ray, bounds_, a, b);
-      work.push_back({int(p), ray, double(surfaceT[p]), a, b});
-    }
-    // Safeguarded Newton along the ray, batched over pixels (f and ∇f per iteration).
-    std::vector<PixelRefine> fallback;
-    Points<3> X;
-    Points<3> G;
-    Eigen::VectorXd F;
-    std::vector<PixelRefine> active = work;
-    for (int iteration = 0; iteration < 4 && !active.empty(); ++iteration) {
-      X.resize(3, Eigen::Index(active.size()));
-      for (std::size_t q = 0; q < active.size(); ++q) X.col(Eigen::Index(q)) = active[q].ray.at(active[q].t);
-      field.evaluateBatch(X, F, &G);
-      std::vector<PixelRefine> next;
-      for (std::size_t q = 0; q < active.size(); ++q) {
-        PixelRefine& w = active[q];
-        const Vec<3> g = G.col(Eigen::Index(q));
-        const double f = F(Eigen::Index(q));
-        const double fd = g.dot(w.ray.direction);
-        const double stepLength = fd != 0 ? f / fd : std::numeric_limits<double>::infinity();
-        const double tn = w.t - stepLength;
-        if (!std::isfinite(stepLength) || std::abs(stepLength) > 2 * cell || tn < w.tLo - tol || tn > w.tHi + tol ||
-            !std::isfinite(f)) {
-          fallback.push_back(w);
-          continue;
-        }
-        if (std::abs(stepLength) <= tol || f == 0) {
-          refinedT[w.pixel] = std::clamp(tn, w.tLo, w.tHi);
-          refinedG[w.pixel] = g;
-          continue;
-        }
-        w.t = tn;
-        if (iteration == 3)
-          fallback.push_back(w);
-        else
-          next.push_back(w);
-      }
-      active.swap(next);
-    }
-    // Bracket search with the true field near the GPU depth, then bisection. Used for hits Newton
-    // could not settle and for the silhouette ring (misses next to a hit).
-    auto bracketSearch = [&](const Ray& ray, double lo, double hi, int samplesCount, double& tHit, Vec<3>& g) {
-      double ta = lo, fa = field.evaluate(ray.at(lo));
-      if (fa == 0) {
-        tHit = lo;
-        field.evaluate(ray.at(tHit), &g);
-        return true;
-      }
-      for (int s = 1; s <= samplesCount; ++s) {
-        const double tb = lo + (hi - lo) * s / samplesCount;
-        const double fb = field.evaluate(ray.at(tb));
-        if (fb == 0 || (fa < 0) != (fb < 0)) {
-          double a = ta, b = tb;
-          const bool negA = fa < 0;
-          while (b - a > tol) {
-            const double m = 0.5 * (a + b);
-            const double fm = field.evaluate(ray.at(m));
-            if (fm != 0 && (fm < 0) == negA)
-              a = m;
-            else
-              b = m;
-          }
-          tHit = 0.5 * (a + b);
-          field.evaluate(ray.at(tHit), &g);
-          return true;
-        }
-        ta = tb;
-        fa = fb;
-      }
-      return false;
-    };
-    int dropped = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : dropped)
-    for (std::size_t q = 0; q < fallback.size(); ++q) {
-      const PixelRefine& w = fallback[q];
-      const double t = surfaceT[w.pixel];
-      double tHit;
-      Vec<3> g;
-      if (bracketSearch(w.ray, std::max(w.tLo, t - 2 * cell), std::min(w.tHi, t + 2 * cell), 16, tHit, g)) {
-        refinedT[w.pixel] = tHit;
-        refinedG[w.pixel] = g;
-      } else {
-        ++dropped;
-      }
-    }
-    if (!undecided.empty()) {
-      CpuTraceOptions cpuOptions;
-      cpuOptions.minStep = settings.minStepCells * 1e-3;  // the exact march's ε, relative to the diagonal
-      const CpuTracer cpu(field, bounds_, cpuOptions);
-#pragma omp parallel for schedule(dynamic, 16)
-      for (std::size_t q = 0; q < undecided.size(); ++q) {
-        const int p = undecided[q];
-        const RayHit hit = cpu.trace(camera.pixelRay(p % W, p / W));
-        if (hit.hit) {
-          refinedT[p] = hit.t;
-          refinedG[p] = hit.normal;
-        }
-      }
-    }
-    // Silhouette ring: misses with a hit among their 8 neighbours.
-    std::vector<std::pair<int, std::array<double, 2>>> ring;
-    for (int j = 0; j < H && settings.refineExact; ++j)
-      for (int i = 0; i < W; ++i) {
-        const std::size_t p = std::size_t(j) * W + i;
-        if (hasGpuHit[p]) continue;
-        double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-        for (int dj = -1; dj <= 1; ++dj)
-          for (int di = -1; di <= 1; ++di) {
-            const int ii = i + di, jj = j + dj;
-            if (ii < 0 || jj < 0 || ii >= W || jj >= H) continue;
-            const float t = surfaceT[std::size_t(jj) * W + ii];
-            if (t < 0) continue;
-            lo = std::min(lo, double(t));
-            hi = std::max(hi, double(t));
-          }
-        if (lo <= hi) ring.push_back({int(p), {lo, hi}});
-      }
-    int ringHits = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : ringHits)
-    for (std::size_t q = 0; q < ring.size(); ++q) {
-      const int p = ring[q].first;
-      const Ray ray = camera.pixelRay(p % W, p / W);
-      double a, b;
-      if (!clipRayToBox(ray, bounds_, a, b)) continue;
-      const double lo = std::max(a, ring[q].second[0] - 2 * cell), hi = std::min(b, ring[q].second[1] + 2 * cell);
-      if (!(lo < hi)) continue;
-      double tHit;
-      Vec<3> g;
-      if (bracketSearch(ray, lo, hi, 16, tHit, g)) {
-        refinedT[p] = tHit;
-        refinedG[p] = g;
-        ++ringHits;
-      }
-    }
-    result.ringHits = ringHits;
-    result.droppedHits = dropped;
-
-    // ---- composite: refined surface vs slice plane vs background; colour and depth ---------------
-    std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
-    const std::vector<std::uint8_t> planeColor = readTexture<std::uint8_t>(target.plane, GL_RGBA, GL_UNSIGNED_BYTE, 4);
-    std::vector<float> depth = readTexture<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
-    const std::uint8_t bg[3] = {shading::toByte(settings.background[0]), shading::toByte(settings.background[1]),
-                                shading::toByte(settings.background[2])};
-    auto windowDepth = [&](const Vec<3>& x) {
-      const Eigen::Vector4d clip = viewProjD * Eigen::Vector4d(x.x(), x.y(), x.z(), 1.0);
-      return float(std::clamp(0.5 * clip.z() / clip.w() + 0.5, 0.0, 1.0));
-    };
-    int refined = 0;
-#pragma omp parallel for schedule(static) reduction(+ : refined)
-    for (int j = 0; j < H; ++j)
-      for (int i = 0; i < W; ++i) {
-        const std::size_t p = std::size_t(j) * W + i;
-        const std::size_t glIndex = std::size_t(H - 1 - j) * W + i;
-        if (!hasGpuHit[p] && refinedT[p] < 0) continue;  // GPU colour (background or plane) stands
-        const Ray ray = camera.pixelRay(i, j);
-        const double tp = planeT(ray);
-        std::uint8_t* px = &color[4 * glIndex];
-        result.hit[p] = 0;
-        result.depth[p] = std::numeric_limits<float>::infinity();
-        for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = 0.0f;
-        if (refinedT[p] >= 0 && refinedT[p] < tp) {
-          ++refined;
-          const double t = refinedT[p];
-          const Vec<3> g = refinedG[p];
-          const double gn = g.norm();
-          const Vec<3> n = (gn > 0 && std::isfinite(gn)) ? Vec<3>(g / gn) : Vec<3>(-ray.direction);
-          const Vec<3> c = shading::shadeHit(n, ray.direction, camera.right(), camera.up(), camera.forward());
-          for (int k = 0; k < 3; ++k) px[k] = shading::toByte(c(k));
-          px[3] = 255;
-          depth[glIndex] = windowDepth(ray.at(t));
-          result.hit[p] = 1;
-          result.depth[p] = float(t);
-          for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = float(n(k));
-        } else if (std::isfinite(tp) && planeColor[4 * glIndex + 3] > 0) {
-          std::memcpy(px, &planeColor[4 * glIndex], 3);
-          px[3] = 255;
-          depth[glIndex] = windowDepth(ray.at(tp));
-        } else {
-          px[0] = bg[0];
-          px[1] = bg[1];
-          px[2] = bg[2];
-          px[3] = 255;
-          depth[glIndex] = 1.0f;
-        }
-      }
-    result.refinedPixels = refined;
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(target.color.id(), 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
-    glTextureSubImage2D(target.depth.id(), 0, 0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-    checkGl("implicit tracer refinement upload");
-    result.refineMs = msSince(t0);
-  } else {
-    // Unrefined: the surface is the visible hit unless the plane is nearer.
-    for (int j = 0; j < H; ++j)
-      for (int i = 0; i < W; ++i) {
-        const std::size_t p = std::size_t(j) * W + i;
-        if (surfaceT[p] < 0) continue;
-        const double tp = planeT(camera.pixelRay(i, j));
-        if (double(surfaceT[p]) < tp) {
-          result.hit[p] = 1;
-        } else {
-          result.depth[p] = std::numeric_limits<float>::infinity();
-          for (int k = 0; k < 3; ++k) result.normal[3 * p + k] = 0.0f;
-        }
-      }
+// Draws the trace program. Baked mode without a slice plane runs it only on the tiles the tile
+// pass did not prove empty (tile_spans.h) and clears the others to what a miss writes; the slice
+// plane can cover any pixel, so with it (and in exact mode) every pixel runs. Returns the pixels drawn.
+long long ImplicitTracer::Gpu::drawTracePass(const TraceFrame& frame) {
+  const TraceSettings& settings = frame.settings;
+  if (settings.mode != TracerMode::Baked) {
+    empty.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    return (long long)frame.pixels();
   }
+  std::vector<PixelRect> rectList{PixelRect{0, 0, frame.width, frame.height}};
+  if (settings.showSurface && !settings.slice.enabled && settings.skipEmptyTiles) {
+    const std::vector<float> tiles = readTexture<float>(target->tileStart, GL_RED, GL_FLOAT, 1);
+    rectList = occupiedTileRects(tiles, target->tileWidth, target->tileHeight, kTraceTile, frame.width, frame.height);
+  }
+  const long long traced = rectPixels(rectList);
+  if (traced < (long long)frame.pixels()) target->clearToMiss(settings.background);
+  const std::vector<float> corners = rectTriangles(rectList);
+  rectVertices.setData(std::span<const float>(corners));  // same buffer id: the binding stands
+  rects.bind();
+  if (!corners.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(corners.size() / 2));
+  return traced;
+}
 
-  // ---- overlays, depth-tested against the surface -----------------------------------------------
-  t0 = Clock::now();
-  target.bind();
-  target.setColorOnly();
+// Draws the overlays (points, normals, bounds box) depth-tested against the traced depth, and
+// reads the final colour back, flipped so that row 0 = top.
+ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples) {
+  const TraceSettings& settings = frame.settings;
+  target->bind();
+  target->setColorOnly();
   OverlayContent content;
-  content.samples = hasSamples_ ? &samples_ : nullptr;
+  content.samples = samples;
   content.showPoints = settings.showPoints;
   content.showNormals = settings.showNormals;
   content.showBounds = settings.showBounds;
-  content.bounds = bounds_;
-  gpu_->overlay->draw(camera, viewProj, content);
-  target.setAllBuffers();
-  // Read back colour, flipped so row 0 = top.
-  const std::vector<std::uint8_t> finalColor = readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
-  result.image = ImageRgba8(W, H);
-  const std::size_t rowBytes = std::size_t(W) * 4;
-  for (int j = 0; j < H; ++j)
-    std::memcpy(result.image.pixels.data() + std::size_t(j) * rowBytes,
-                finalColor.data() + std::size_t(H - 1 - j) * rowBytes, rowBytes);
+  content.bounds = frame.bounds;
+  overlay->draw(frame.camera, frame.viewProj, content);
+  target->setAllBuffers();
+  const std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target->color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+  ImageRgba8 image(frame.width, frame.height);
+  const std::size_t rowBytes = std::size_t(frame.width) * 4;
+  for (int j = 0; j < frame.height; ++j)
+    std::memcpy(image.pixels.data() + std::size_t(j) * rowBytes,
+                color.data() + std::size_t(frame.height - 1 - j) * rowBytes, rowBytes);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  result.overlayMs = msSince(t0);
-  return result;
+  return image;
 }
 
-// ---- bench ------------------------------------------------------------------------------------
+// A frame in passes: the GPU trace; the CPU refinement of its hits against the true field (or,
+// unrefined, the GPU's hits as they are) and the composite with the slice plane; the overlays.
+TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& settings) {
+  if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
+  if (settings.mode == TracerMode::Exact && !radialSum_)
+    throw InputError("implicit tracer: exact mode needs an HRBF or RBF-offset model");
+  const TraceFrame frame(camera, settings, bounds_, *bake_, depthRange(camera));
+  TraceTarget& target = gpu_->targetFor(frame.width, frame.height);
 
-TracerBenchResult benchTracer(int bakeCentres, int traceCentres, int bakeResolution, int width, int height,
-                              int repeats, const char* backend) {
-  TracerBenchResult out;
-  out.bakeCentres = bakeCentres;
-  out.traceCentres = traceCentres;
-  out.bakeResolution = bakeResolution;
-  out.width = width;
-  out.height = height;
-  repeats = std::max(1, repeats);
-  ContextOptions contextOptions;
-  contextOptions.width = width;
-  contextOptions.height = height;
-  auto context = createContext(backend, contextOptions);
-  auto median = [](std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    return v[v.size() / 2];
-  };
-  HrbfOptions options;
-  options.kernel = Kernel{KernelType::Cubic, 1.0};
-  options.polynomial = Polynomial::Linear;
+  TraceResult result;
+  auto t0 = Clock::now();
+  result.exactDouble = settings.mode == TracerMode::Exact &&
+                       (settings.exactPrecision == ExactPrecision::Double ||
+                        (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
+  result.tracedPixels = gpu_->trace(frame, *bake_, radialSum_, result.exactDouble);
+  result.traceMs = msSince(t0);
 
-  ImplicitTracer tracer;
-  {
-    const HermiteSamples<3> samples = makePreset3d("torus", bakeCentres);
-    const HrbfModel<3> model = fitHrbf(samples, options);
-    const Box<3> bounds = defaultViewBounds<3>(samples.points);
-    std::vector<double> times;
-    for (int r = 0; r < repeats; ++r) {
-      VolumeBakeOptions bakeOptions;
-      bakeOptions.resolution = bakeResolution;
-      const auto t0 = Clock::now();
-      const VolumeBake bake = bakeVolume(model, bounds, bakeOptions);
-      times.push_back(msSince(t0));
-    }
-    out.bakeMs = median(times);
+  const std::vector<float> surfaceT = readSurfaceHits(target, result);
+  const std::vector<int> undecided = undecidedPixels(surfaceT);
+  result.cpuTracedPixels = int(undecided.size());
+  if ((settings.refineExact || !undecided.empty()) && settings.showSurface) {
+    t0 = Clock::now();
+    HitRefinementOptions options;
+    options.refine = settings.refineExact;
+    options.cell = bake_->spacing().norm();
+    options.cpuMinStep = settings.minStepCells * 1e-3;  // the exact march's ε, relative to the diagonal
+    const HitRefinement hits =
+        refineHits(*field_, bounds_, camera, GpuHits{surfaceT, result.normal, undecided}, options);
+    result.ringHits = hits.ringHits;
+    result.droppedHits = hits.droppedHits;
+    result.refinedPixels = compositeRefined(target, frame, hits, result);
+    result.refineMs = msSince(t0);
+  } else {
+    keepVisibleSurface(frame, surfaceT, result);
   }
-  const HermiteSamples<3> samples = makePreset3d("torus", traceCentres);
-  const HrbfModel<3> model = fitHrbf(samples, options);
-  const Box<3> bounds = defaultViewBounds<3>(samples.points);
-  TracerUploadOptions upload;
-  upload.bakeResolution = bakeResolution;
-  tracer.upload(model, bounds, &samples, upload);
-  CameraSpec spec;
-  spec.eye = {1.6, -2.4, 1.8};
-  const Camera camera(spec, Projection::Perspective, width, height, 1.5);
-  TraceSettings settings;
-  std::vector<double> trace, refine;
-  // Traces back to back, as while orbiting a settled model; then the refinements (whose CPU
-  // threads, run in between, slowed the following trace by 10–25 % on this 2-core machine).
-  settings.refineExact = false;
-  for (int r = 0; r < 2 * repeats + 1; ++r) {
-    const TraceResult frame = tracer.render(camera, settings);
-    trace.push_back(frame.traceMs);
-    out.tracedPixels = frame.tracedPixels;
-  }
-  // The same frames tracing every pixel: what skipping the empty tiles saves.
-  std::vector<double> traceAll;
-  settings.skipEmptyTiles = false;
-  for (int r = 0; r < 2 * repeats + 1; ++r) traceAll.push_back(tracer.render(camera, settings).traceMs);
-  settings.skipEmptyTiles = true;
-  for (int r = 0; r < repeats; ++r) {
-    settings.refineExact = true;
-    const TraceResult refined = tracer.render(camera, settings);
-    refine.push_back(refined.refineMs);
-    out.hitPixels = refined.refinedPixels;
-  }
-  out.traceMs = median(trace);
-  out.traceAllPixelsMs = median(traceAll);
-  out.refineMs = median(refine);
-  return out;
+
+  t0 = Clock::now();
+  result.image = gpu_->drawOverlays(frame, hasSamples_ ? &samples_ : nullptr);
+  result.overlayMs = msSince(t0);
+  return result;
 }
 
 }  // namespace hermite::render

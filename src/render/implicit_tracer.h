@@ -1,30 +1,28 @@
 #pragma once
-// The GPU tracer of 3D implicits (issue 3 §2, DESIGN.md §6), with the slice plane and overlays.
+// The GPU tracer of 3D implicits, with the slice plane and overlays (docs/design.md, Rendering;
+// the marches' maths in docs/maths.md, Volume bake and sphere tracing).
 //
 // Baked mode (default, fast on llvmpipe): f is baked on the CPU over the bounds into an R32F 3D
-// texture (core/volume_bake.h); a fragment shader marches each pixel's ray (DESIGN.md §4, the
-// same rays as Camera / the CPU reference) brick by brick: bricks whose samples all have one sign
-// are skipped (the trilinear interpolant cannot vanish there), inside a brick it steps by
+// texture (core/trace/volume_bake.h); a fragment shader marches each pixel's ray (the same rays
+// as Camera and the CPU reference) brick by brick: bricks whose samples all have one sign are
+// skipped (the trilinear interpolant cannot vanish there), inside a brick it steps by
 // max(|f|/L, ε) with L = 1.01 × the trilinear interpolant's own Lipschitz bound on that brick
 // (‖(max|Δₖf|/hₖ)ₖ‖: what the shader samples; the field's bound from lipschitzBound is often far
-// above the true ‖∇f‖ for global kernels and only shrank steps), and refines the first sign
+// above the true ‖∇f‖ for global kernels and only shrinks steps), and refines the first sign
 // change by bisection on the interpolant.
 //
 // Exact refinement (settled views, the default for headless renders): the GPU's ray parameters
-// are read back and every hit pixel is refined against the TRUE field on the CPU (safeguarded
-// Newton along the pixel's Camera ray, batched and threaded), then shaded with the true ∇f
-// exactly like core/shading.h. Miss pixels next to a hit (the silhouette ring) are searched
-// with the true field near the neighbours' depth, so thin rims the bake loses are recovered.
-// Limitation: a component the bake misses entirely (thinner than about one bake cell) stays
-// missing away from the silhouette of a found surface; refinement only corrects what the bake
-// found, plus the one-pixel ring around it.
+// are read back and every hit pixel is refined against the TRUE field on the CPU, then shaded
+// with the true ∇f exactly like core/trace/shading.h; misses next to a hit (the silhouette ring)
+// are searched too. hit_refinement.h says how, and what it cannot recover.
 //
 // Exact mode (RadialSum models: HRBF and RBF-offset, every kernel and polynomial): the shader
 // sums the model from an SSBO and sphere-traces with per-brick Lipschitz bounds of the field.
-// Slow on llvmpipe (~2 ns per step per centre): meant for real GPUs and reference images.
+// Every step costs a sum over all centres, so it is slow on software renderers: it is meant for
+// real GPUs and reference images.
 //
 // Slice plane {x : n·x = offset} (unit n): f on the plane inside the bounds as a heat map
-// (core/color_map.h), iso-lines and the zero curve, depth-composited with the surface (the
+// (core/trace/color_map.h), iso-lines and the zero curve, depth-composited with the surface (the
 // nearer of the surface hit and the plane hit wins per pixel).
 //
 // Overlays (points, normals, bounds box) are drawn depth-tested against the traced depth, which
@@ -91,8 +89,8 @@ struct TraceResult {
   int ringHits = 0;               // silhouette-ring pixels the refinement added
   int droppedHits = 0;            // baked hits the true field does not confirm (turned to misses)
   bool exactDouble = false;       // exact mode summed in double precision
-  int cpuTracedPixels = 0;
-  long long tracedPixels = 0;     // pixels the GPU trace pass ran on (baked mode skips empty tiles)        // pixels the GPU march left undecided (steps or loop budget), traced on the CPU
+  int cpuTracedPixels = 0;        // pixels the GPU march left undecided (steps or loop budget), traced on the CPU
+  long long tracedPixels = 0;     // pixels the GPU trace pass ran on (baked mode skips empty tiles)
   Vec<3> normalAt(int i, int j) const {
     const std::size_t p = std::size_t(j) * image.width + i;
     return Vec<3>(normal[3 * p], normal[3 * p + 1], normal[3 * p + 2]);
@@ -150,24 +148,5 @@ class ImplicitTracer {
   bool hasSamples_ = false;
   double bakeMs_ = 0, uploadMs_ = 0;
 };
-
-// Timings of issue 3 §6 on this machine (for `hermite-lab bench`), in milliseconds.
-struct TracerBenchResult {
-  double bakeMs = 0;         // bake at bakeResolution³ of an HRBF with bakeCentres centres
-  double traceMs = 0;        // median baked trace (no refinement) at width×height, N = traceCentres
-  double refineMs = 0;       // median CPU exact refinement of that settled view, N = traceCentres
-  double traceAllPixelsMs = 0;  // the same trace with skipEmptyTiles off (every pixel traced)
-  long long tracedPixels = 0;   // pixels the trace pass ran on (the others are in empty tiles)
-  int bakeCentres = 250;
-  int traceCentres = 1000;
-  int bakeResolution = 128;
-  int width = 1024, height = 768;
-  int hitPixels = 0;
-};
-
-// Fits cubic HRBFs to the torus preset with the given sample counts and times bake, trace and
-// refinement in a fresh OSMesa context (`backend` names the context). `repeats` ≥ 1 frames each.
-TracerBenchResult benchTracer(int bakeCentres = 250, int traceCentres = 1000, int bakeResolution = 128,
-                              int width = 1024, int height = 768, int repeats = 3, const char* backend = "osmesa");
 
 }  // namespace hermite::render

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string>
@@ -517,11 +516,4 @@ TEST_CASE("implicit tracer: deterministic bytes, and EGL agrees with OSMesa") {
   const ImageDiffStats stats = compareImages(osmesa, egl, 2);
   CAPTURE(stats.maxChannelDiff);
   CHECK(stats.fractionOver <= 0.001);
-}
-
-TEST_CASE("implicit tracer: bench figures" * doctest::skip()) {
-  const TracerBenchResult r = benchTracer();
-  std::printf("bake %d^3 N=%d: %.1f ms; trace %dx%d N=%d: %.1f ms; refine: %.1f ms (%d hit pixels)\n",
-              r.bakeResolution, r.bakeCentres, r.bakeMs, r.width, r.height, r.traceCentres, r.traceMs, r.refineMs,
-              r.hitPixels);
 }

@@ -36,6 +36,7 @@
 
 #include "app/commands/bench_field2d.h"
 #include "app/commands/bench_gui.h"
+#include "app/commands/bench_tracer.h"
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
 #include "core/base/errors.h"
@@ -49,7 +50,6 @@
 #include "io/mesh_file.h"
 #include "io/point_file.h"
 #include "render/field2d_view.h"
-#include "render/implicit_tracer.h"
 #include "scene/patch_document.h"
 
 namespace hermite::app {
@@ -318,7 +318,7 @@ int runBench(const BenchArgs& args) {
   jobs.emplace_back("io/ply-load", [quick = args.quick] {
     return quick ? benchPlyLoad(100000, 1) : benchPlyLoad(1000000, 5);
   });
-  // Meshing and hole filling (issue 8 §2–3).
+  // Meshing and hole filling.
   for (int resolution : {64, 128}) {
     const int res = args.quick ? 16 : resolution, repeats = args.quick ? 1 : 3;
     jobs.emplace_back("mesh/marching-cubes/hrbf-N=1000/res=" + std::to_string(resolution),
@@ -327,10 +327,10 @@ int runBench(const BenchArgs& args) {
   jobs.emplace_back("holefill/100k-10holes",
                     [quick = args.quick] { return benchHoleFill(quick, quick ? 1 : 5); });
 
-  // Rendering (issue 3 §6), on this machine's OpenGL (llvmpipe here) through OSMesa.
+  // Rendering, on the OpenGL that OSMesa finds on this machine.
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {
-    const render::TracerBenchResult r =
-        quick ? render::benchTracer(50, 100, 32, 128, 96, 1) : render::benchTracer(250, 1000, 128, 1024, 768, 3);
+    const TracerBenchResult r =
+        quick ? benchTracer(50, 100, 32, 128, 96, 1) : benchTracer(250, 1000, 128, 1024, 768, 3);
     return {"render/trace-baked", {{"bake_ms", r.bakeMs}, {"bake_resolution", r.bakeResolution},
             {"bake_centres", r.bakeCentres}, {"refine_ms", r.refineMs}, {"trace_centres", r.traceCentres},
             {"width", r.width}, {"height", r.height}, {"hit_pixels", r.hitPixels},
@@ -349,7 +349,7 @@ int runBench(const BenchArgs& args) {
             {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
   });
 
-  // Patch editor (issue 5): re-tessellating a 4 × 4 grid at 64 × 64 samples per patch after a
+  // Patch editor: re-tessellating a 4 × 4 grid at 64 × 64 samples per patch after a
   // handle moved (edit + grid + tessellation), as while dragging.
   jobs.emplace_back("patch/retessellate-4x4-64", [quick = args.quick]() -> Result {
     PatchSpec spec;
@@ -372,7 +372,7 @@ int runBench(const BenchArgs& args) {
             ms[ms.size() / 2], "ms"};
   });
 
-  // GUI latency (issue 4 §5): dragging a sample until the refitted view is on screen.
+  // GUI latency: dragging a sample until the refitted view is on screen.
   for (const auto& [dim, n] : {std::pair{3, 250}, std::pair{2, 200}}) {
     const std::string name = "gui/drag-latency-" + std::to_string(dim) + "d/N=" + std::to_string(n);
     jobs.emplace_back(name, [name, dim = dim, n = n, quick = args.quick]() -> Result {
@@ -383,7 +383,7 @@ int runBench(const BenchArgs& args) {
     });
   }
 
-  // Partition of unity at scale (issue 6 §3): run on their own (--only pu3d), they take a while.
+  // Partition of unity at scale: run on their own (--only pu3d), they take a while.
   for (const auto& [label, N] : {std::pair<const char*, int>{"1e5", 100000}, {"1e6", 1000000}}) {
     const int n = args.quick ? N / 100 : N;
     jobs.emplace_back(std::string("pu3d/two-tori/N=") + label, [n, label = std::string(label)] { return benchPuTori(n, label); });

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/base/errors.h"
+#include "core/trace/ray_root.h"
 #include "core/trace/shading.h"
 
 namespace hermite {
@@ -15,8 +16,6 @@ namespace {
 double msSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
-
-int signOf(double v) { return (v > 0) - (v < 0); }
 
 // Parameter where the ray leaves the box (rays start inside or on it).
 double exitParameter(const Ray& ray, const Box<3>& box) {
@@ -48,9 +47,8 @@ struct CpuTracer::RayState {
   Ray ray;
   double t = 0, t1 = 0;    // current point and the exit of the bounds
   double fa = 0;           // f at t (valid after the first evaluation)
-  double ta = 0, tb = 0;   // bracket of the sign change during bisection
+  RootBracket bracket{0, 0, 0, ZeroRule::StopAtZero};  // the sign change, during bisection
   double query = 0;        // parameter whose f value advance() expects next
-  int sa = 0;              // sign of f at ta
   long long steps = 0;
   bool started = false;
   Phase phase = Miss;
@@ -90,27 +88,28 @@ void CpuTracer::advance(RayState& s, double value) const {
     s.phase = RayState::Hit;
   };
   auto bisectOrFinish = [&]() {
-    if (s.tb - s.ta <= tol)
-      hitAt(0.5 * (s.ta + s.tb));
+    if (s.bracket.settled(tol))
+      hitAt(s.bracket.probe());
     else
-      s.query = 0.5 * (s.ta + s.tb);
+      s.query = s.bracket.probe();
   };
   if (s.phase == RayState::March) {
     if (!s.started) {
       s.started = true;
       s.fa = value;
       if (value == 0) return hitAt(s.t);
-    } else if (value == 0) {
-      return hitAt(s.query);
-    } else if (signOf(value) * signOf(s.fa) < 0) {
-      s.ta = s.t;
-      s.tb = s.query;
-      s.sa = signOf(s.fa);
-      s.phase = RayState::Bisect;
-      return bisectOrFinish();
     } else {
-      s.t = s.query;
-      s.fa = value;
+      switch (judgeProbe(s.fa, value, ZeroRule::StopAtZero)) {
+        case ProbeVerdict::Root: return hitAt(s.query);
+        case ProbeVerdict::SignChange:
+          s.bracket = RootBracket(s.t, s.fa, s.query, ZeroRule::StopAtZero);
+          s.phase = RayState::Bisect;
+          return bisectOrFinish();
+        case ProbeVerdict::NoChange:
+          s.t = s.query;
+          s.fa = value;
+          break;
+      }
     }
     if (s.t >= s.t1 || s.steps > 10'000'000) {
       s.phase = RayState::Miss;
@@ -118,11 +117,7 @@ void CpuTracer::advance(RayState& s, double value) const {
     }
     s.query = nextMarch(s);
   } else if (s.phase == RayState::Bisect) {
-    if (value == 0) return hitAt(s.query);
-    if (signOf(value) == s.sa)
-      s.ta = s.query;
-    else
-      s.tb = s.query;
+    if (s.bracket.narrow(value)) return hitAt(s.query);
     bisectOrFinish();
   }
 }

@@ -1,9 +1,10 @@
 #pragma once
-// The CPU reference tracer (DESIGN.md §6): ground-truth images of any ImplicitField<3> for tests
-// and for checking the GPU tracers. Each pixel's ray (Camera, DESIGN.md §4) is clipped to the
-// bounds box and marched with safe steps max(|f|/L, ε), L a Lipschitz bound of f over the brick
-// the ray is in (bricks proven free of zeros are skipped); the first sign change is refined by
-// bisection. Every zero-set component inside the bounds thicker than ε is found.
+// The CPU reference tracer: ground-truth images of any ImplicitField<3> for tests and for
+// checking the GPU tracers (docs/maths.md, Volume bake and sphere tracing). Each pixel's ray
+// (Camera) is clipped to the bounds box and marched with safe steps max(|f|/L, ε), L a Lipschitz
+// bound of f over the brick the ray is in (bricks proven free of zeros are skipped); the first
+// sign change is refined by bisection (ray_root.h, shared with the GPU tracer's refinement).
+// Every zero-set component inside the bounds thicker than ε is found.
 
 #include <array>
 #include <cstdint>

@@ -1,0 +1,208 @@
+#include "render/hit_refinement.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "core/trace/cpu_tracer.h"
+#include "core/trace/ray_root.h"
+
+namespace hermite::render {
+
+namespace {
+
+// A GPU hit pixel's ray, the current guess of its surface parameter and the ray's clip to the bounds.
+struct PixelRay {
+  int pixel;
+  Ray ray;
+  double t;
+  double tLo, tHi;
+};
+
+// A stretch [lo, hi] of a pixel's ray where the bracket search looks for the surface.
+struct SearchWindow {
+  int pixel;
+  Ray ray;
+  double lo, hi;
+};
+
+// The refinement's shared state: the inputs, and the output it fills in.
+struct Refiner {
+  const ImplicitField<3>& field;
+  const Box<3>& bounds;
+  const Camera& camera;
+  const GpuHits& gpu;
+  const HitRefinementOptions& options;
+  double tol;  // bisection and Newton stop at this many world units along the ray
+  HitRefinement& out;
+
+  Ray pixelRay(int p) const { return camera.pixelRay(p % camera.width(), p / camera.width()); }
+  std::vector<PixelRay> seedHits();
+  std::vector<PixelRay> newton(std::vector<PixelRay> active);
+  int searchWindows(const std::vector<SearchWindow>& windows);
+  int searchUnsettled(const std::vector<PixelRay>& unsettled);
+  void traceUndecided();
+  std::vector<SearchWindow> silhouetteRing() const;
+};
+
+// Marks the GPU's hits. With refinement off they stand as they are (the refinement then runs only
+// for the undecided pixels); else each becomes a ray for Newton, starting at the GPU's t.
+std::vector<PixelRay> Refiner::seedHits() {
+  std::vector<PixelRay> work;
+  work.reserve(gpu.t.size() / 4);
+  for (std::size_t p = 0; p < gpu.t.size(); ++p) {
+    if (gpu.t[p] < 0) continue;
+    out.gpuHit[p] = 1;
+    if (!options.refine) {
+      out.t[p] = gpu.t[p];
+      out.gradient[p] = Vec<3>(gpu.normal[3 * p], gpu.normal[3 * p + 1], gpu.normal[3 * p + 2]);
+      continue;
+    }
+    const Ray ray = pixelRay(int(p));
+    double a = 0, b = 0;
+    clipRayToBox(ray, bounds, a, b);
+    work.push_back({int(p), ray, double(gpu.t[p]), a, b});
+  }
+  return work;
+}
+
+// Safeguarded Newton along each ray, batched over the pixels (one evaluateBatch of f and ∇f per
+// iteration). Returns the pixels it does not settle in 4 iterations: those whose step is longer
+// than 2 cells or leaves the bounds, or meets a non-finite f, go to the bracket search instead.
+std::vector<PixelRay> Refiner::newton(std::vector<PixelRay> active) {
+  const double cell = options.cell;
+  std::vector<PixelRay> unsettled;
+  Points<3> X;
+  Points<3> G;
+  Eigen::VectorXd F;
+  for (int iteration = 0; iteration < 4 && !active.empty(); ++iteration) {
+    X.resize(3, Eigen::Index(active.size()));
+    for (std::size_t q = 0; q < active.size(); ++q) X.col(Eigen::Index(q)) = active[q].ray.at(active[q].t);
+    field.evaluateBatch(X, F, &G);
+    std::vector<PixelRay> next;
+    for (std::size_t q = 0; q < active.size(); ++q) {
+      PixelRay& w = active[q];
+      const Vec<3> g = G.col(Eigen::Index(q));
+      const double f = F(Eigen::Index(q));
+      const double fd = g.dot(w.ray.direction);
+      const double stepLength = fd != 0 ? f / fd : std::numeric_limits<double>::infinity();
+      const double tn = w.t - stepLength;
+      if (!std::isfinite(stepLength) || std::abs(stepLength) > 2 * cell || tn < w.tLo - tol || tn > w.tHi + tol ||
+          !std::isfinite(f)) {
+        unsettled.push_back(w);
+        continue;
+      }
+      if (std::abs(stepLength) <= tol || f == 0) {
+        out.t[w.pixel] = std::clamp(tn, w.tLo, w.tHi);
+        out.gradient[w.pixel] = g;
+        continue;
+      }
+      w.t = tn;
+      (iteration == 3 ? unsettled : next).push_back(w);
+    }
+    active.swap(next);
+  }
+  return unsettled;
+}
+
+// Searches every window with the true field (16 probes over [lo, hi], then bisection to tol,
+// ray_root.h) and stores each hit found with its gradient; returns how many it found.
+int Refiner::searchWindows(const std::vector<SearchWindow>& windows) {
+  RayRootOptions search;
+  search.samples = 16;
+  search.tolerance = tol;
+  search.rule = ZeroRule::ZeroIsPast;
+  int found = 0;
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : found)
+  for (std::size_t q = 0; q < windows.size(); ++q) {
+    const SearchWindow& w = windows[q];
+    const std::optional<double> t = refineRayRoot(field, w.ray, w.lo, w.hi, search);
+    if (!t) continue;
+    Vec<3> g;
+    field.evaluate(w.ray.at(*t), &g);
+    out.t[w.pixel] = *t;
+    out.gradient[w.pixel] = g;
+    ++found;
+  }
+  return found;
+}
+
+// Looks for the surface within 2 cells of the GPU's t where Newton did not settle; returns how
+// many GPU hits the true field does not confirm there (they stay misses).
+int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
+  std::vector<SearchWindow> windows;
+  windows.reserve(unsettled.size());
+  for (const PixelRay& w : unsettled) {
+    const double t = gpu.t[w.pixel];
+    windows.push_back({w.pixel, w.ray, std::max(w.tLo, t - 2 * options.cell), std::min(w.tHi, t + 2 * options.cell)});
+  }
+  return int(unsettled.size()) - searchWindows(windows);
+}
+
+// Traces the pixels the GPU march left undecided with the CPU reference tracer, whose ε matches
+// the exact march's.
+void Refiner::traceUndecided() {
+  if (gpu.undecided.empty()) return;
+  CpuTraceOptions cpuOptions;
+  cpuOptions.minStep = options.cpuMinStep;
+  const CpuTracer cpu(field, bounds, cpuOptions);
+#pragma omp parallel for schedule(dynamic, 16)
+  for (std::size_t q = 0; q < gpu.undecided.size(); ++q) {
+    const int p = gpu.undecided[q];
+    const RayHit hit = cpu.trace(pixelRay(p));
+    if (hit.hit) {
+      out.t[p] = hit.t;
+      out.gradient[p] = hit.normal;
+    }
+  }
+}
+
+// The silhouette ring: pixels without a GPU hit that have one among their 8 neighbours, each
+// searched within 2 cells of those neighbours' ray parameters (inside the bounds).
+std::vector<SearchWindow> Refiner::silhouetteRing() const {
+  const int W = camera.width(), H = camera.height();
+  std::vector<SearchWindow> ring;
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const std::size_t p = std::size_t(j) * W + i;
+      if (out.gpuHit[p]) continue;
+      double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+      for (int dj = -1; dj <= 1; ++dj)
+        for (int di = -1; di <= 1; ++di) {
+          const int ii = i + di, jj = j + dj;
+          if (ii < 0 || jj < 0 || ii >= W || jj >= H) continue;
+          const float t = gpu.t[std::size_t(jj) * W + ii];
+          if (t < 0) continue;
+          lo = std::min(lo, double(t));
+          hi = std::max(hi, double(t));
+        }
+      if (!(lo <= hi)) continue;
+      const Ray ray = camera.pixelRay(i, j);
+      double a, b;
+      if (!clipRayToBox(ray, bounds, a, b)) continue;
+      const double from = std::max(a, lo - 2 * options.cell), to = std::min(b, hi + 2 * options.cell);
+      if (from < to) ring.push_back({int(p), ray, from, to});
+    }
+  return ring;
+}
+
+}  // namespace
+
+HitRefinement refineHits(const ImplicitField<3>& field, const Box<3>& bounds, const Camera& camera, const GpuHits& gpu,
+                         const HitRefinementOptions& options) {
+  const std::size_t pixels = gpu.t.size();
+  HitRefinement out;
+  out.t.assign(pixels, -1.0);
+  out.gradient.assign(pixels, Vec<3>::Zero());
+  out.gpuHit.assign(pixels, 0);
+  Refiner refiner{field, bounds, camera, gpu, options, 1e-7 * bounds.extent().norm(), out};
+  const std::vector<PixelRay> unsettled = refiner.newton(refiner.seedHits());
+  out.droppedHits = refiner.searchUnsettled(unsettled);
+  // The CPU-traced undecided pixels come before the ring, which may overwrite those next to a hit.
+  refiner.traceUndecided();
+  if (options.refine) out.ringHits = refiner.searchWindows(refiner.silhouetteRing());
+  return out;
+}
+
+}  // namespace hermite::render
