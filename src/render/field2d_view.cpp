@@ -1,4 +1,5 @@
 #include "render/field2d_view.h"
+#include "core/base/ms_since.h"
 #include "render/gl/glm_convert.h"
 
 #include <algorithm>
@@ -16,8 +17,6 @@ namespace hermite::render {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 // One instance of marks2d.vert: segment in GL pixel coordinates, colour and full width.
 struct Mark {

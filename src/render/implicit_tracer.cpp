@@ -1,4 +1,5 @@
 #include "render/implicit_tracer.h"
+#include "core/base/ms_since.h"
 #include "render/gl/gl_loader.h"
 #include "render/gl/glm_convert.h"
 
@@ -28,10 +29,6 @@ namespace hermite::render {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
 
 // Two unit vectors spanning the plane with unit normal n.
 void planeBasis(const Vec<3>& n, Vec<3>& u, Vec<3>& v) {

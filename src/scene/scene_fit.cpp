@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 #include "core/shapes/presets.h"
 #include "io/point_file.h"
 
@@ -27,10 +28,6 @@ HermiteSamples<Dim> makePreset(const std::string& name, int count) {
     return makePreset2d(name, count);
   else
     return makePreset3d(name, count);
-}
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
 // Fills probes, maxAbsDf and maxGradDiff of `tr`: the transformed samples (at most 20 000 of

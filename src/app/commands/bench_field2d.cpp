@@ -4,6 +4,7 @@
 #include <chrono>
 #include <vector>
 
+#include "core/base/ms_since.h"
 #include "core/rbf/hrbf.h"
 #include "core/shapes/presets.h"
 #include "render/field2d_view.h"
@@ -15,8 +16,6 @@ namespace hermite {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
 }  // namespace
 

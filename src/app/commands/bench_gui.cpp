@@ -7,6 +7,7 @@
 
 #include "app/gui/gui_app.h"
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 #include "render/gl/context.h"
 #include "render/gl/offscreen.h"
 
@@ -67,9 +68,6 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   in.mouseDown[0] = true;
   frame();
   std::vector<double> latency, withWait, frames, fit, view;
-  const auto msSince = [](std::chrono::steady_clock::time_point t) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t).count();
-  };
   for (int m = 1; m <= moves; ++m) {
     // The mouse moves just after a frame began (the worst phase): the move waits for the next
     // frame slot, and that frame is the first to read it.

@@ -5,14 +5,11 @@
 
 #include "app/gui/drag_refit.h"
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 
 namespace hermite::app {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Samples of the scene without fitting (for the duration estimate): inline data only, else 0.
 double sampleCount(const Scene& s) { return s.data.isInline() ? double(s.data.points.size()) : 0.0; }

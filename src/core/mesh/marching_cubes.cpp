@@ -194,7 +194,7 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
     if (len > 1e-300 && std::isfinite(len)) mesh.normals.col(v) /= len;
     else mesh.normals.col(v) = fallback.col(v);
   }
-  if (report) report->totalMs = detail::msSince(t0);
+  if (report) report->totalMs = msSince(t0);
   return mesh;
 }
 

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 #include "core/mesh/marching_options.h"
 
 namespace hermite::detail {
@@ -52,10 +53,6 @@ struct MarchingGrid {
     return it != edgeKeys.end() && *it == key ? static_cast<int>(it - edgeKeys.begin()) : -1;
   }
 };
-
-inline double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Culling (MarchingOptions::cull): fills g.values with a same-signed stand-in at the points of
 // blocks that cannot contain the zero set and returns which points still need f.

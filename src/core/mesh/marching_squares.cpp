@@ -71,7 +71,7 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
     if (prev[static_cast<size_t>(v)] < 0 && !used[static_cast<size_t>(v)]) trace(v);
   for (int v = 0; v < V; ++v)
     if (!used[static_cast<size_t>(v)]) trace(v);
-  if (report) report->totalMs = detail::msSince(t0);
+  if (report) report->totalMs = msSince(t0);
   return lines;
 }
 

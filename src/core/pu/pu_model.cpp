@@ -14,6 +14,7 @@
 #include <Eigen/LU>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 
 extern "C" int openblas_get_num_threads(void);
 extern "C" void openblas_set_num_threads(int num_threads);
@@ -21,10 +22,6 @@ extern "C" void openblas_set_num_threads(int num_threads);
 namespace hermite {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // max over t ∈ [−1, 1] of |d/dt (1 − t²)³| = |6t(1 − t²)²|, reached at t = 1/√5.
 constexpr double kMaxBumpSlope = 6.0 / 2.2360679774997896964 * 0.64;

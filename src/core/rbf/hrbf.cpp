@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 
 namespace hermite {
 
@@ -26,10 +27,6 @@ int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoot
 }
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
 

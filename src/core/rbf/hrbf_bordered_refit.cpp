@@ -6,14 +6,11 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 
 namespace hermite {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string shortNumber(double v) {
   char buf[32];

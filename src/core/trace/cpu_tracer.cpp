@@ -6,16 +6,13 @@
 #include <limits>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 #include "core/trace/ray_root.h"
 #include "core/trace/shading.h"
 
 namespace hermite {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Parameter where the ray leaves the box (rays start inside or on it).
 double exitParameter(const Ray& ray, const Box<3>& box) {

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
 #include "core/rbf/polynomial.h"
 #include "core/rbf/radial_sum.h"
 
@@ -15,10 +16,6 @@
 namespace hermite {
 
 namespace {
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Fills lipschitz, centreValue and mayContainZero of a grid whose bounds, count and size are set.
 void fillBrickGrid(const ImplicitField<3>& field, BrickGrid& grid) {
