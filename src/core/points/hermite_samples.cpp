@@ -27,6 +27,148 @@ std::string formatVector(const Vec<Dim>& v) {
   return s + ")";
 }
 
+// The spacing search's uniform grid: cell indices from the corner lo in cells of side h, packed
+// into a 64-bit key, kCellBits bits per axis.
+using CellKey = std::uint64_t;
+template <int Dim>
+using Cell = std::array<std::int64_t, Dim>;
+
+template <int Dim>
+Cell<Dim> cellOf(const Vec<Dim>& p, const Vec<Dim>& lo, double h) {
+  Cell<Dim> c;
+  for (int k = 0; k < Dim; ++k)
+    c[k] = static_cast<std::int64_t>(std::min(std::floor((p[k] - lo[k]) / h), kMaxCellsPerAxis));
+  return c;
+}
+
+template <int Dim>
+CellKey keyOf(const Cell<Dim>& c) {
+  CellKey key = 0;
+  for (int k = 0; k < Dim; ++k) key = (key << kCellBits) | static_cast<CellKey>(c[k]);
+  return key;
+}
+
+// The grid's cell size: first the one that gives one point per cell if the points filled their
+// bounding box; samples on a curve or surface fill a thin part of it, so it shrinks until at
+// least n/4 cells are occupied, jumping by the growth rate (the data's apparent dimension) once
+// known, but not below minCell.
+template <int Dim>
+double spacingCellSize(const Points<Dim>& points, const Vec<Dim>& lo, const Vec<Dim>& extent, double minCell) {
+  const Eigen::Index n = points.cols();
+  double volume = 1.0;
+  int spannedAxes = 0;
+  for (int k = 0; k < Dim; ++k)
+    if (extent[k] > 0) volume *= extent[k], ++spannedAxes;
+  double cell = std::max(minCell, std::pow(volume / double(n), 1.0 / spannedAxes));
+  std::vector<CellKey> keys(static_cast<std::size_t>(n));
+  double previousCell = 0;
+  double previousOccupied = 0;
+  for (int attempt = 0;; ++attempt) {
+    for (Eigen::Index i = 0; i < n; ++i) keys[i] = keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell));
+    std::sort(keys.begin(), keys.end());
+    const double occupied = double(std::unique(keys.begin(), keys.end()) - keys.begin());
+    if (4 * occupied >= double(n) || cell <= minCell || attempt >= 40) break;
+    double factor = 0.5;
+    if (previousOccupied > 0 && occupied > previousOccupied) {
+      const double dimension =
+          std::clamp(std::log(occupied / previousOccupied) / std::log(previousCell / cell), 1.0, double(Dim));
+      factor = std::clamp(std::pow(occupied / (0.5 * double(n)), 1.0 / dimension), 1.0 / 1024, 0.5);
+    }
+    previousCell = cell;
+    previousOccupied = occupied;
+    cell = std::max(minCell, factor * cell);
+  }
+  return cell;
+}
+
+// The points bucketed in the grid for nearest-neighbour queries: sorted by cell, copied so
+// that a cell's points are contiguous in memory.
+template <int Dim>
+class CellIndex {
+ public:
+  CellIndex(const Points<Dim>& points, const Vec<Dim>& lo, const Vec<Dim>& extent, double cell)
+      : lo_(lo), cell_(cell), sorted_(Dim, points.cols()), maxCell_(cellOf<Dim>(lo + extent, lo, cell)) {
+    const Eigen::Index n = points.cols();
+    std::vector<std::pair<CellKey, Eigen::Index>> byCell(static_cast<std::size_t>(n));
+    for (Eigen::Index i = 0; i < n; ++i) byCell[i] = {keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell)), i};
+    std::sort(byCell.begin(), byCell.end());
+    for (Eigen::Index s = 0; s < n; ++s) sorted_.col(s) = points.col(byCell[s].second);
+    for (Eigen::Index s = 0; s < n;) {
+      Eigen::Index e = s + 1;
+      while (e < n && byCell[e].first == byCell[s].first) ++e;
+      cells_.emplace(byCell[s].first, std::make_pair(s, e));
+      s = e;
+    }
+  }
+
+  Eigen::Index size() const { return sorted_.cols(); }
+
+  // The distance from sorted point `self` to its nearest other point: rings of cells of growing
+  // Chebyshev radius about its cell until no unvisited point can be nearer, or every point when
+  // the rings would cover more cells than there are points (an isolated point).
+  double nearestDistance(Eigen::Index self) const {
+    const Eigen::Index n = size();
+    const Cell<Dim> c = cellOf<Dim>(sorted_.col(self), lo_, cell_);
+    double best2 = std::numeric_limits<double>::infinity();
+    std::int64_t lastRing = 0;  // beyond it no cell holds points
+    for (int k = 0; k < Dim; ++k) lastRing = std::max({lastRing, c[k], maxCell_[k] - c[k]});
+    double cubeCells = 0;
+    for (std::int64_t ring = 0; ring <= lastRing; ++ring) {
+      // Rings 0 … ring−1 are done: every point not yet visited lies at least (ring−1)·h away
+      // along some axis (less a margin for rounding of points on cell boundaries).
+      if (ring > 1 && std::sqrt(best2) <= (double(ring - 1) - 1e-6) * cell_) break;
+      cubeCells += std::pow(2.0 * double(ring) + 1.0, Dim);
+      if (cubeCells > 4.0 * double(n))
+        return std::sqrt(nearestIn(self, 0, n, std::numeric_limits<double>::infinity()));
+      best2 = nearestInRing(self, c, ring, best2);
+    }
+    return std::sqrt(best2);
+  }
+
+ private:
+  // min(best2, squared distances from point self to the other points in [begin, end)).
+  double nearestIn(Eigen::Index self, Eigen::Index begin, Eigen::Index end, double best2) const {
+    const Vec<Dim> p = sorted_.col(self);
+    for (Eigen::Index s = begin; s < end; ++s)
+      if (s != self) best2 = std::min(best2, (sorted_.col(s) - p).squaredNorm());
+    return best2;
+  }
+
+  // min(best2, squared distances from point self to the points of the cells at Chebyshev
+  // distance `ring` from its cell c, within the grid).
+  double nearestInRing(Eigen::Index self, const Cell<Dim>& c, std::int64_t ring, double best2) const {
+    Cell<Dim> lower, upper;
+    for (int k = 0; k < Dim; ++k) {
+      lower[k] = std::max<std::int64_t>(0, c[k] - ring);
+      upper[k] = std::min(maxCell_[k], c[k] + ring);
+    }
+    Cell<Dim> q = lower;
+    while (true) {
+      std::int64_t chebyshev = 0;
+      for (int k = 0; k < Dim; ++k) chebyshev = std::max(chebyshev, std::abs(q[k] - c[k]));
+      if (chebyshev == ring) {
+        const auto it = cells_.find(keyOf<Dim>(q));
+        if (it != cells_.end()) best2 = nearestIn(self, it->second.first, it->second.second, best2);
+      }
+      int k = 0;
+      for (; k < Dim; ++k) {
+        if (q[k] < upper[k]) {
+          ++q[k];
+          break;
+        }
+        q[k] = lower[k];
+      }
+      if (k == Dim) return best2;
+    }
+  }
+
+  Vec<Dim> lo_;
+  double cell_;
+  Points<Dim> sorted_;
+  std::unordered_map<CellKey, std::pair<Eigen::Index, Eigen::Index>> cells_;  // key → [begin, end) in sorted_
+  Cell<Dim> maxCell_;
+};
+
 }  // namespace
 
 template <int Dim>
@@ -125,118 +267,11 @@ double meanSampleSpacing(const Points<Dim>& points) {
   const double largest = extent.maxCoeff();
   if (largest == 0) return 0.0;  // all points coincide
 
-  // Uniform grid hash; cells are packed into a 64-bit key, kCellBits bits per axis.
-  using Key = std::uint64_t;
-  using Cell = std::array<std::int64_t, Dim>;
-  const double minCell = largest / kMaxCellsPerAxis;
-  auto cellOf = [&lo](const Vec<Dim>& p, double h) {
-    Cell c;
-    for (int k = 0; k < Dim; ++k)
-      c[k] = static_cast<std::int64_t>(std::min(std::floor((p[k] - lo[k]) / h), kMaxCellsPerAxis));
-    return c;
-  };
-  auto keyOf = [](const Cell& c) {
-    Key key = 0;
-    for (int k = 0; k < Dim; ++k) key = (key << kCellBits) | static_cast<Key>(c[k]);
-    return key;
-  };
-
-  // Cell size: first the one that gives one point per cell if the points filled their bounding
-  // box; samples on a curve or surface fill a thin part of it, so shrink until at least n/4
-  // cells are occupied, jumping by the growth rate (the data's apparent dimension) once known.
-  double volume = 1.0;
-  int spannedAxes = 0;
-  for (int k = 0; k < Dim; ++k)
-    if (extent[k] > 0) volume *= extent[k], ++spannedAxes;
-  double cell = std::max(minCell, std::pow(volume / double(n), 1.0 / spannedAxes));
-  std::vector<Key> keys(static_cast<std::size_t>(n));
-  double previousCell = 0;
-  double previousOccupied = 0;
-  for (int attempt = 0;; ++attempt) {
-    for (Eigen::Index i = 0; i < n; ++i) keys[i] = keyOf(cellOf(points.col(i), cell));
-    std::sort(keys.begin(), keys.end());
-    const double occupied = double(std::unique(keys.begin(), keys.end()) - keys.begin());
-    if (4 * occupied >= double(n) || cell <= minCell || attempt >= 40) break;
-    double factor = 0.5;
-    if (previousOccupied > 0 && occupied > previousOccupied) {
-      const double dimension =
-          std::clamp(std::log(occupied / previousOccupied) / std::log(previousCell / cell), 1.0, double(Dim));
-      factor = std::clamp(std::pow(occupied / (0.5 * double(n)), 1.0 / dimension), 1.0 / 1024, 0.5);
-    }
-    previousCell = cell;
-    previousOccupied = occupied;
-    cell = std::max(minCell, factor * cell);
-  }
-
-  // Points sorted by cell, copied so that the points of a cell are contiguous in memory.
-  std::vector<std::pair<Key, Eigen::Index>> byCell(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) byCell[i] = {keyOf(cellOf(points.col(i), cell)), i};
-  std::sort(byCell.begin(), byCell.end());
-  Points<Dim> sorted(Dim, n);
-  for (Eigen::Index s = 0; s < n; ++s) sorted.col(s) = points.col(byCell[s].second);
-  // Cell key → [begin, end) in `sorted`.
-  std::unordered_map<Key, std::pair<Eigen::Index, Eigen::Index>> cells;
-  for (Eigen::Index s = 0; s < n;) {
-    Eigen::Index e = s + 1;
-    while (e < n && byCell[e].first == byCell[s].first) ++e;
-    cells.emplace(byCell[s].first, std::make_pair(s, e));
-    s = e;
-  }
-  const Cell maxCell = cellOf(lo + extent, cell);
-
+  const double cell = spacingCellSize<Dim>(points, lo, extent, largest / kMaxCellsPerAxis);
+  const CellIndex<Dim> index(points, lo, extent, cell);
   std::vector<double> nearest(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(dynamic, 1024)
-  for (Eigen::Index self = 0; self < n; ++self) {
-    const Vec<Dim> p = sorted.col(self);
-    const Cell c = cellOf(p, cell);
-    double best2 = std::numeric_limits<double>::infinity();
-    auto visit = [&](Eigen::Index begin, Eigen::Index end) {
-      for (Eigen::Index s = begin; s < end; ++s)
-        if (s != self) best2 = std::min(best2, (sorted.col(s) - p).squaredNorm());
-    };
-    std::int64_t lastRing = 0;  // beyond it no cell holds points
-    for (int k = 0; k < Dim; ++k) lastRing = std::max({lastRing, c[k], maxCell[k] - c[k]});
-    double cubeCells = 0;
-    bool bruteForce = false;
-    for (std::int64_t ring = 0; ring <= lastRing; ++ring) {
-      // Rings 0 … ring−1 are done: every point not yet visited lies at least (ring−1)·h away
-      // along some axis (less a margin for rounding of points on cell boundaries).
-      if (ring > 1 && std::sqrt(best2) <= (double(ring - 1) - 1e-6) * cell) break;
-      cubeCells += std::pow(2.0 * double(ring) + 1.0, Dim);
-      if (cubeCells > 4.0 * double(n)) {  // an isolated point: scanning everything is cheaper
-        bruteForce = true;
-        break;
-      }
-      Cell lower, upper;
-      for (int k = 0; k < Dim; ++k) {
-        lower[k] = std::max<std::int64_t>(0, c[k] - ring);
-        upper[k] = std::min(maxCell[k], c[k] + ring);
-      }
-      Cell q = lower;
-      while (true) {
-        std::int64_t chebyshev = 0;
-        for (int k = 0; k < Dim; ++k) chebyshev = std::max(chebyshev, std::abs(q[k] - c[k]));
-        if (chebyshev == ring) {
-          const auto it = cells.find(keyOf(q));
-          if (it != cells.end()) visit(it->second.first, it->second.second);
-        }
-        int k = 0;
-        for (; k < Dim; ++k) {
-          if (q[k] < upper[k]) {
-            ++q[k];
-            break;
-          }
-          q[k] = lower[k];
-        }
-        if (k == Dim) break;
-      }
-    }
-    if (bruteForce) {
-      best2 = std::numeric_limits<double>::infinity();
-      visit(0, n);
-    }
-    nearest[self] = std::sqrt(best2);
-  }
+  for (Eigen::Index self = 0; self < n; ++self) nearest[self] = index.nearestDistance(self);
   // Summed in a fixed order so the result does not depend on the thread count.
   double sum = 0;
   for (double d : nearest) sum += d;
