@@ -12,6 +12,8 @@
 #include <cstring>
 #include <filesystem>
 
+#include <imgui.h>
+
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_view.h"
 #include "render/gl/context.h"
@@ -189,7 +191,12 @@ TEST_CASE("UI: orbit, zoom and fit-to-view move the 3D camera and never touch th
   h.frames(2);
   const CameraSpec c0 = h.app->document().scene().view.camera;
   const Vec<2> o = h.app->viewOrigin();
-  h.drag(o.x() + 40, o.y() + 40, o.x() + 120, o.y() + 60);  // empty corner: orbit
+  // The lower left corner of the view is empty: the sphere's samples sit in the middle, and the
+  // Diagnostics window (top right, as wide as its text, which holds timings) can reach the top left.
+  const Vec<2> start(o.x() + 30, o.y() + h.app->viewSize().y() - 60);
+  h.moveTo(start.x(), start.y());
+  REQUIRE(!ImGui::GetIO().WantCaptureMouse);
+  h.drag(start.x(), start.y(), start.x() + 80, start.y() - 20);  // orbit
   const CameraSpec c1 = h.app->document().scene().view.camera;
   CHECK(c1.eye != c0.eye);
   const auto dist = [](const CameraSpec& c) {
