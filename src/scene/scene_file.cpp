@@ -401,7 +401,7 @@ FitSpec SceneReader::readFit(const json& v) const {
 }
 
 TransformSpec SceneReader::readTransform(const json& v, int dim) const {
-  object(v, "transform", {"translate", "rotate_axis_angle_deg", "rotate_deg", "scale", "method", "matrix"});
+  object(v, "transform", {"translate", "rotate_axis_angle_deg", "rotate_deg", "scale", "method", "matrix", "verify"});
   TransformSpec t;
   t.translate.assign(static_cast<std::size_t>(dim), 0.0);
   if (dim == 2) {
@@ -432,6 +432,7 @@ TransformSpec SceneReader::readTransform(const json& v, int dim) const {
     t.method = choice<TransformMethod>(*x, "transform.method",
                                        {{"auto", TransformMethod::Auto}, {"update", TransformMethod::Update},
                                         {"re-solve", TransformMethod::Resolve}});
+  if (const json* x = find(v, "verify")) t.verify = boolean(*x, "transform.verify");
   if (const json* x = find(v, "matrix")) {
     const std::size_t n = std::size_t(dim) * std::size_t(dim);
     t.matrix = numbers(*x, "transform.matrix", n, dim == 2 ? "[m00, m01, m10, m11] (row-major)" : "9 numbers, row-major");
@@ -824,6 +825,7 @@ json sceneToJson(const Scene& scene) {
   else transform["rotate_axis_angle_deg"] = toArray(t.rotateAxisAngleDeg);
   transform["method"] = std::string(transformMethodName(t.method));
   if (!t.matrix.empty()) transform["matrix"] = t.matrix;
+  if (t.verify) transform["verify"] = true;
   doc["transform"] = std::move(transform);
 
   const ViewSpec& v = scene.view;

@@ -80,6 +80,10 @@ struct TransformSpec {
   // after scale·R: x ↦ M·scale·R·x + translate. A non-similarity M (non-uniform scale, shear)
   // makes the field the exact composition f(T⁻¹x), which is not the re-solved interpolant.
   std::vector<double> matrix;
+  // Added key `verify`: also re-solve on the transformed data and compare the field used with
+  // it on probes (fit --json's transform.resolve_ms, max_abs_df, max_grad_diff). Off by default:
+  // the comparison costs a whole fit.
+  bool verify = false;
   bool matrixIsIdentity() const;
   bool isIdentity() const;
   bool operator==(const TransformSpec&) const = default;

@@ -79,9 +79,36 @@ bool chooseUpdate(const Scene& scene, SceneFit<Dim>& out) {
   return update;
 }
 
-// transform.matrix outside the similarities: g(x) = f(A⁻¹(x − b)) with A = M·q·R, b = translate,
-// compared with a re-solve on the transformed data (points Apᵢ + b, normals A⁻ᵀnᵢ normalised,
-// radius and shift scaled by |det A|^(1/Dim)) so the report says how far it is from one.
+// transform.verify for a composition: the re-solve on the transformed data (radius and shift
+// scaled by |det A|^(1/Dim)), compared with the composed field on probes.
+template <int Dim>
+void verifyAffine(const Scene& scene, const Mat<Dim>& A, const HermiteSamples<Dim>& moved,
+                  const ImplicitField<Dim>& composed, SceneFit<Dim>& out) {
+  TransformReport& tr = out.transform;
+  const auto t0 = std::chrono::steady_clock::now();
+  Scene re = scene;
+  re.transform = TransformSpec{};
+  re.transform.translate.assign(Dim, 0.0);
+  re.data = DataSpec{};
+  for (int i = 0; i < moved.size(); ++i) {
+    re.data.points.emplace_back(moved.points.col(i).data(), moved.points.col(i).data() + Dim);
+    re.data.normals.emplace_back(moved.normals.col(i).data(), moved.normals.col(i).data() + Dim);
+  }
+  const double s = std::pow(std::abs(A.determinant()), 1.0 / Dim);
+  re.fit.radius *= s;
+  re.fit.shift *= s;
+  try {
+    const SceneFit<Dim> resolved = fitScene<Dim>(re);
+    tr.resolveMs = msSince(t0);
+    compareOnProbes<Dim>(composed, resolved.field(), moved.points, tr);
+  } catch (const std::exception& e) {
+    out.warnings.push_back(std::string("transform: the re-solve for comparison failed: ") + e.what());
+  }
+}
+
+// transform.matrix outside the similarities: g(x) = f(A⁻¹(x − b)) with A = M·q·R, b = translate:
+// the exact composition, which is not the re-solved interpolant of the transformed data (points
+// Apᵢ + b, normals A⁻ᵀnᵢ normalised); transform.verify says how far it is from one.
 template <int Dim>
 void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
   const Similarity<Dim> S = sceneSimilarity<Dim>(scene.transform);
@@ -99,25 +126,7 @@ void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
   HermiteSamples<Dim> moved;
   moved.points = (A * out.samples.points).colwise() + S.t;
   moved.normals = (A.inverse().transpose() * out.samples.normals).colwise().normalized();
-  t0 = std::chrono::steady_clock::now();
-  Scene re = scene;
-  re.transform = TransformSpec{};
-  re.transform.translate.assign(Dim, 0.0);
-  re.data = DataSpec{};
-  for (int i = 0; i < moved.size(); ++i) {
-    re.data.points.emplace_back(moved.points.col(i).data(), moved.points.col(i).data() + Dim);
-    re.data.normals.emplace_back(moved.normals.col(i).data(), moved.normals.col(i).data() + Dim);
-  }
-  const double s = std::pow(std::abs(A.determinant()), 1.0 / Dim);
-  re.fit.radius *= s;
-  re.fit.shift *= s;
-  try {
-    const SceneFit<Dim> resolved = fitScene<Dim>(re);
-    tr.resolveMs = msSince(t0);
-    compareOnProbes<Dim>(*composed, resolved.field(), moved.points, tr);
-  } catch (const std::exception& e) {
-    out.warnings.push_back(std::string("transform: the re-solve for comparison failed: ") + e.what());
-  }
+  if (scene.transform.verify) verifyAffine(scene, A, moved, *composed, out);
   tr.exact = false;
   tr.method = "composition";
   out.warnings.push_back(
@@ -127,6 +136,7 @@ void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
   out.transformed = true;
   out.data = moved;
 }
+
 
 // The partition-of-unity path of fitScene: samples are loaded; fits, transforms, reports.
 template <int Dim>
@@ -158,13 +168,20 @@ void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
   auto updated = std::make_unique<PuModel<Dim>>(transformPu<Dim>(*out.pu, T));
   tr.updateMs = msSince(t0);
   const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
-  // The re-solve keeps the tree too (built in the frame T), so both are the same PU construction
-  // on the transformed data; only the local solves differ.
-  t0 = std::chrono::steady_clock::now();
-  auto resolved = std::make_unique<PuModel<Dim>>(fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
-  tr.resolveMs = msSince(t0);
-  compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
-  out.pu = chooseUpdate(scene, out) ? std::move(updated) : std::move(resolved);
+  const bool update = chooseUpdate(scene, out);
+  if (!update || scene.transform.verify) {
+    // The re-solve keeps the tree too (built in the frame T), so both are the same PU
+    // construction on the transformed data; only the local solves differ.
+    t0 = std::chrono::steady_clock::now();
+    auto resolved = std::make_unique<PuModel<Dim>>(
+        fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
+    if (scene.transform.verify) {
+      tr.resolveMs = msSince(t0);
+      compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
+    }
+    if (!update) updated = std::move(resolved);
+  }
+  out.pu = std::move(updated);
   out.transformed = true;
   out.data = moved;
 }
@@ -266,12 +283,18 @@ SceneFit<Dim> fitScene(const Scene& scene) {
           transformModel<Dim>(static_cast<const RbfOffsetModel<Dim>&>(*out.model), T));
     tr.updateMs = msSince(t0);
     const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
-    t0 = std::chrono::steady_clock::now();
-    FitReport rep;
-    std::unique_ptr<RadialSum<Dim>> resolved = fitOn(moved, T.q, &rep);
-    tr.resolveMs = msSince(t0);
-    compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
-    out.model = chooseUpdate(scene, out) ? std::move(updated) : std::move(resolved);
+    const bool update = chooseUpdate(scene, out);
+    if (!update || scene.transform.verify) {
+      t0 = std::chrono::steady_clock::now();
+      FitReport rep;
+      std::unique_ptr<RadialSum<Dim>> resolved = fitOn(moved, T.q, &rep);
+      if (scene.transform.verify) {
+        tr.resolveMs = msSince(t0);
+        compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
+      }
+      if (!update) updated = std::move(resolved);
+    }
+    out.model = std::move(updated);
     out.transformed = true;
     out.data = moved;
   } else {

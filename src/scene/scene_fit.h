@@ -32,9 +32,10 @@ Similarity<Dim> sceneSimilarity(const TransformSpec& spec);
 // The `transform` object of `fit --json` (docs/cli.md).
 struct TransformReport {
   double updateMs = 0;     // coefficient update
-  double resolveMs = 0;    // re-solve on the transformed data
-  double maxAbsDf = 0;     // max |f_update − f_resolve| over probe points
-  double maxGradDiff = 0;  // max ‖∇f_update − ∇f_resolve‖
+  // The comparison with a re-solve, present only when transform.verify asks for it.
+  std::optional<double> resolveMs;    // re-solve on the transformed data
+  std::optional<double> maxAbsDf;     // max |f_update − f_resolve| over probe points
+  std::optional<double> maxGradDiff;  // max ‖∇f_update − ∇f_resolve‖
   int probes = 0;
   bool exact = true;       // the update is the re-solved fit (else the re-solve is used)
   std::string method;      // "coefficient-update" or "re-solve"

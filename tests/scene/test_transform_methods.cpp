@@ -40,13 +40,34 @@ TEST_CASE("transform.method: auto uses the exact update, update / re-solve force
   // With smoothing the update is not the re-solve: forcing it warns.
   s.fit.smoothing = 1e-3;
   s.transform.method = TransformMethod::Update;
+  s.transform.verify = true;
   const SceneFit<3> forced = fitScene<3>(s);
   CHECK(forced.transform.method == "coefficient-update");
   CHECK_FALSE(forced.transform.exact);
   bool warned = false;
   for (const auto& w : forced.warnings) warned |= w.find("not the re-solved interpolant") != std::string::npos;
   CHECK(warned);
-  CHECK(forced.transform.maxAbsDf > 0);
+  REQUIRE(forced.transform.maxAbsDf);
+  CHECK(*forced.transform.maxAbsDf > 0);
+}
+
+TEST_CASE("transform.verify: without it a transformed fit costs the update only and reports no comparison") {
+  Scene s = sphereScene();
+  s.transform.translate = {0.5, -1, 2};
+  s.transform.scale = 1.5;
+  const SceneFit<3> plain = fitScene<3>(s);
+  CHECK(plain.transform.method == "coefficient-update");
+  CHECK_FALSE(plain.transform.resolveMs);
+  CHECK_FALSE(plain.transform.maxAbsDf);
+  CHECK_FALSE(plain.transform.maxGradDiff);
+  s.transform.verify = true;
+  const SceneFit<3> verified = fitScene<3>(s);
+  REQUIRE(verified.transform.maxAbsDf);
+  CHECK(*verified.transform.maxAbsDf <= 1e-9);  // the update is exact here
+  CHECK(*verified.transform.resolveMs > 0);
+  // Verification never changes the field that is used.
+  const Vec<3> x(0.3, 0.2, -0.1);
+  CHECK(plain.field().value(x) == verified.field().value(x));
 }
 
 TEST_CASE("transform.matrix: the composition f(T⁻¹x) with the gradient A⁻ᵀ∇f, and a real Lipschitz bound") {

@@ -71,6 +71,8 @@ int dispatch(int argc, char** argv) {
     addSceneOptions(cmd, a.scene, true);
     cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
     cmd.add_flag("--coefficients", a.coefficients, "also print the fitted model (centres, alpha, beta, poly)");
+    cmd.add_flag("--verify", a.verify,
+                 "with a transform, also re-solve on the transformed data and compare (as transform.verify)");
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);

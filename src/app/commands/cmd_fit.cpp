@@ -1,4 +1,4 @@
-// `hermite-lab fit SCENE [--json] [--coefficients]` and the default fit report.
+// `hermite-lab fit SCENE [--json] [--coefficients] [--verify]` and the default fit report.
 
 #include <cmath>
 #include <cstdio>
@@ -117,9 +117,10 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   }
   if (fit.transformed) {
     const TransformReport& t = fit.transform;
-    out["transform"] = {{"update_ms", t.updateMs},       {"resolve_ms", t.resolveMs},
-                        {"max_abs_df", t.maxAbsDf},      {"max_grad_diff", t.maxGradDiff},
-                        {"method", t.method},            {"exact", t.exact},
+    const auto orNull = [](const std::optional<double>& v) { return v ? json(*v) : json(nullptr); };
+    out["transform"] = {{"update_ms", t.updateMs},           {"resolve_ms", orNull(t.resolveMs)},
+                        {"max_abs_df", orNull(t.maxAbsDf)}, {"max_grad_diff", orNull(t.maxGradDiff)},
+                        {"method", t.method},               {"exact", t.exact},
                         {"probes", t.probes}};
   } else {
     out["transform"] = nullptr;
@@ -167,11 +168,13 @@ void printReadable(const Scene& scene, const json& j) {
          std::to_string(j["partition"]["max_box_samples"].get<int>()) + " samples per box, " +
          std::to_string(j["partition"]["max_support_samples"].get<int>()) + " per local fit (" +
          j["partition"]["blend"].get<std::string>() + " blend)\n";
-  if (!j["transform"].is_null())
-    s += "transform    " + j["transform"]["method"].get<std::string>() + "; update " +
-         sci(j["transform"]["update_ms"]) + " ms, re-solve " + sci(j["transform"]["resolve_ms"]) +
-         " ms, max |df| " + sci(j["transform"]["max_abs_df"]) + ", max |d grad f| " +
-         sci(j["transform"]["max_grad_diff"]) + "\n";
+  if (const json& t = j["transform"]; !t.is_null()) {
+    s += "transform    " + t["method"].get<std::string>() + "; update " + sci(t["update_ms"]) + " ms";
+    if (!t["resolve_ms"].is_null())
+      s += ", re-solve " + sci(t["resolve_ms"]) + " ms, max |df| " + sci(t["max_abs_df"]) + ", max |d grad f| " +
+           sci(t["max_grad_diff"]);
+    s += "\n";
+  }
   if (j["warnings"].empty()) {
     s += "warnings     none\n";
   } else {
@@ -189,7 +192,8 @@ json fitAndReport(const Scene& scene, bool coefficients) {
 }  // namespace
 
 int runFit(const FitArgs& args) {
-  const Scene scene = loadCommandScene(args.scene);
+  Scene scene = loadCommandScene(args.scene);
+  if (args.verify) scene.transform.verify = true;
   const json j = scene.dimension() == 2 ? fitAndReport<2>(scene, args.coefficients)
                                         : fitAndReport<3>(scene, args.coefficients);
   if (args.json) {

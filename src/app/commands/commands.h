@@ -17,6 +17,7 @@ struct FitArgs {
   SceneArgs scene;
   bool json = false;
   bool coefficients = false;
+  bool verify = false;  // --verify: as transform.verify = true
 };
 int runFit(const FitArgs& args);
 

@@ -222,7 +222,15 @@ TEST_CASE("a transformed scene is the interpolant of the transformed data") {
   const std::string scene = writeTemp("moved.json", R"({"version": 1, "mode": "implicit3d", "data": {"preset": "sphere6"},
     "fit": {"kernel": "gaussian", "radius": 1.0, "polynomial": "none"},
     "transform": {"translate": [1, 2, 3], "rotate_axis_angle_deg": [0, 0, 1, 90], "scale": 2}})");
-  const auto r = runCli("fit " + scene + " --json");
+  const auto plain = runCli("fit " + scene + " --json");
+  REQUIRE(plain.rc == 0);
+  const json p = json::parse(plain.out);
+  REQUIRE(p["transform"].is_object());
+  for (const char* key : {"resolve_ms", "max_abs_df", "max_grad_diff"}) {
+    CHECK(p["transform"].contains(key));
+    CHECK(p["transform"][key].is_null());  // no comparison without --verify
+  }
+  const auto r = runCli("fit " + scene + " --json --verify");
   REQUIRE(r.rc == 0);
   const json j = json::parse(r.out);
   REQUIRE(j["transform"].is_object());
@@ -360,7 +368,7 @@ TEST_CASE("a partition-of-unity scene fits, reports its boxes, transforms and ev
   CHECK(box0["model"]["alpha"].size() == box0["model"]["centres"].size());
   CHECK(box0["model"]["poly"].size() == 4);
 
-  r = runCli("fit " + scene + " --json --set 'transform={\"translate\":[0.5,-1,2],\"rotate_axis_angle_deg\":[1,1,0,40],\"scale\":1.5}'");
+  r = runCli("fit " + scene + " --json --verify --set 'transform={\"translate\":[0.5,-1,2],\"rotate_axis_angle_deg\":[1,1,0,40],\"scale\":1.5}'");
   REQUIRE(r.rc == 0);
   j = json::parse(r.out);
   REQUIRE(j["transform"].is_object());
