@@ -692,7 +692,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   gpu_->bakedBrickSize = baked.size;
 
   field_ = &field;
-  radialSum_ = dynamic_cast<const RadialSum<3>*>(&field);
+  radialSum_ = field.asRadialSum();
   bounds_ = bounds;
   exactNeedsDouble_.reset();
   if (radialSum_) gpu_->uploadModel(*radialSum_, bounds.center());

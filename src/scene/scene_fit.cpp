@@ -276,8 +276,9 @@ SceneFit<Dim> fitScene(const Scene& scene) {
     TransformReport& tr = out.transform;
     auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<RadialSum<Dim>> updated;
-    if (auto* h = dynamic_cast<const HrbfModel<Dim>*>(out.model.get()))
-      updated = std::make_unique<HrbfModel<Dim>>(transformModel<Dim>(*h, T));
+    // fitOn made the model of fit.method.
+    if (f.method == FitMethod::Hrbf)
+      updated = std::make_unique<HrbfModel<Dim>>(transformModel<Dim>(static_cast<const HrbfModel<Dim>&>(*out.model), T));
     else
       updated = std::make_unique<RbfOffsetModel<Dim>>(
           transformModel<Dim>(static_cast<const RbfOffsetModel<Dim>&>(*out.model), T));

@@ -6,6 +6,10 @@
 
 namespace hermite {
 
+// Declared in core/rbf/radial_sum.h; named here only so a field can say that it is one.
+template <int Dim>
+class RadialSum;
+
 template <int Dim>
 class ImplicitField {
  public:
@@ -33,6 +37,10 @@ class ImplicitField {
 
   // L ≥ sup over the box of ‖∇f‖: |f(x) − f(y)| ≤ L‖x − y‖ inside the box (safe ray steps).
   virtual double lipschitzBound(const Box<Dim>& box) const = 0;
+
+  // The field as one global sum of kernels, when it is one (null otherwise): the tracer uploads
+  // its centres and coefficients to the GPU and the bake has a fused loop for it.
+  virtual const RadialSum<Dim>* asRadialSum() const { return nullptr; }
 };
 
 extern template class ImplicitField<2>;

@@ -19,6 +19,7 @@ class RadialSum : public ImplicitField<Dim> {
   double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override;
   void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
   double lipschitzBound(const Box<Dim>& box) const override;
+  const RadialSum<Dim>* asRadialSum() const override { return this; }
   // Σⱼ |αⱼ φ(‖x − cⱼ‖)| + |βⱼ·∇φ(x − cⱼ)| + Σ |each polynomial monomial term| at x: the size of
   // the terms that cancel into f(x). Rounding of a sum in precision u errs by about u times this
   // (times a slowly growing factor in N), so it says whether float evaluation is good enough.

@@ -53,7 +53,7 @@ void fillBrickGrid(const ImplicitField<3>& field, BrickGrid& grid) {
 // βy dy + βz dz) hoisted out of the x loop — the structure evaluateBatch cannot see. Per pair:
 // f += x (α x² − 3 β·d). Threaded over rows. False (nothing written) for other fields.
 bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out) {
-  const auto* rs = dynamic_cast<const RadialSum<3>*>(&field);
+  const RadialSum<3>* rs = field.asRadialSum();
   if (rs == nullptr || rs->kernel().type != KernelType::Cubic) return false;
   const int n = int(rs->centres().cols());
   const bool beta = rs->hasBeta();
