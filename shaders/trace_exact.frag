@@ -23,7 +23,7 @@ layout(std430, binding = 1) readonly buffer Betas { real4 uBeta[]; };           
 uniform highp sampler3D uBricks;  // RGBA32F per brick; .zw = (L field, field may contain a zero)
 uniform int uCount;      // N centres rounded up to a multiple of 4 (padding: α = β = 0)
 uniform int uHasBeta;
-uniform int uKernel;     // KernelType order: gaussian, wendland, multiquadric, inverse-mq, cubic, polyharmonic
+uniform int uKernel;     // a KERNEL_* id, defined by the tracer from the kernel table (core/rbf/kernels.h)
 uniform real uRadius;
 uniform int uPolyCount;  // 0, 4 or 10
 uniform real uPoly[10];  // in the shifted frame, order 1, x, y, z, xx, xy, xz, yy, yz, zz
@@ -102,26 +102,26 @@ real3 kernelTerms(real x) {
   real r = uRadius;
   real r2 = r * r;
   real3 terms = real3(0.0);
-  if (uKernel == 0) {
+  if (uKernel == KERNEL_GAUSSIAN) {
     real p = realExp(-(x * x) / r2);
     terms = real3(p, -2.0 / r2 * p, 4.0 / (r2 * r2) * p);
-  } else if (uKernel == 1) {
+  } else if (uKernel == KERNEL_WENDLAND) {
     real s = x / r;
     if (s < 1.0) {
       real u = 1.0 - s;
       real u3 = u * u * u;
       terms = real3(u3 * u * (4.0 * s + 1.0), -20.0 * u3 / r2, x > 0.0 ? 60.0 * u * u / (r2 * r * x) : 0.0);
     }
-  } else if (uKernel == 2) {
+  } else if (uKernel == KERNEL_MULTIQUADRIC) {
     real p = sqrt(1.0 + x * x / r2);
     terms = real3(p, 1.0 / (r2 * p), -1.0 / (r2 * r2 * p * p * p));
-  } else if (uKernel == 3) {
+  } else if (uKernel == KERNEL_INVERSE_MULTIQUADRIC) {
     real p = inversesqrt(1.0 + x * x / r2);
     real p3 = p * p * p;
     terms = real3(p, -p3 / r2, 3.0 * p3 * p * p / (r2 * r2));
-  } else if (uKernel == 4) {
+  } else if (uKernel == KERNEL_CUBIC) {
     terms = real3(x * x * x, 3.0 * x, x > 0.0 ? 3.0 / x : 0.0);
-  } else if (x > 0.0) {
+  } else if (uKernel == KERNEL_POLYHARMONIC && x > 0.0) {
     real lx = realLog(x);
     real x2 = x * x;
     terms = real3(x2 * x2 * lx, x2 * (4.0 * lx + 1.0), 8.0 * lx + 6.0);

@@ -21,6 +21,7 @@
 #include "render/gl/gl_objects.h"
 #include "render/gl/shader_library.h"
 #include "render/hit_refinement.h"
+#include "render/kernel_shader_defines.h"
 #include "render/overlay.h"
 #include "render/tile_spans.h"
 
@@ -172,17 +173,7 @@ BakedBricks bakedBrickTexels(const VolumeBake& bake, int C) {
   return out;
 }
 
-int kernelIndex(KernelType t) {
-  switch (t) {
-    case KernelType::Gaussian: return 0;
-    case KernelType::Wendland: return 1;
-    case KernelType::Multiquadric: return 2;
-    case KernelType::InverseMultiquadric: return 3;
-    case KernelType::Cubic: return 4;
-    case KernelType::Polyharmonic: return 5;
-  }
-  return 4;
-}
+
 
 // Polynomial coefficients (order 1, x, y, z, xx, xy, xz, yy, yz, zz) re-expressed for
 // x = o + y (y the shifted coordinate): p(o + y) as a polynomial in y, i.e. the core's
@@ -291,7 +282,8 @@ constexpr int kTraceProgramKinds = 4;
 Program buildTraceProgram(TraceProgramKind kind, bool slice) {
   const bool baked = kind == kBakedProgram || kind == kBakedTileProgram;
   const char* file = baked ? "trace_baked.frag" : "trace_exact.frag";
-  std::string fragment = slice ? "#define TRACE_SLICE 1\n" : "";
+  std::string fragment = kernelShaderDefines();
+  if (slice) fragment += "#define TRACE_SLICE 1\n";
   if (kind == kExactDoubleProgram) fragment += "#define EXACT_DOUBLE 1\n";
   if (baked) fragment += "#define TRACE_TILE " + std::to_string(kTraceTile) + "\n";
   if (kind == kBakedProgram) fragment += "#define TRACE_TILE_START 1\n";
@@ -808,7 +800,7 @@ void ImplicitTracer::Gpu::bindExact(const Program& p, const RadialSum<3>& model,
   p.setUniform("uCount", paddedCentres);
   p.setUniform("uLoopBudget", loopBudget);
   p.setUniform("uHasBeta", model.hasBeta() ? 1 : 0);
-  p.setUniform("uKernel", kernelIndex(model.kernel().type));
+  p.setUniform("uKernel", kernelInfo(model.kernel().type).id);
   p.setUniform("uPolyCount", monomialCount<3>(model.polynomial()));
   auto setReal = [&](const std::string& name, double v) {
     if (exactDouble)

@@ -79,6 +79,23 @@ bool chooseUpdate(const Scene& scene, SceneFit<Dim>& out) {
   return update;
 }
 
+// The model a similarity transform keeps: `updated`, or the re-solve that `resolve` makes where
+// chooseUpdate says so; with transform.verify the re-solve runs either way and the two are
+// compared on probes around the moved samples.
+template <int Dim, class Model, class Resolve>
+std::unique_ptr<Model> keptModel(const Scene& scene, std::unique_ptr<Model> updated, const Points<Dim>& moved,
+                                 SceneFit<Dim>& out, Resolve resolve) {
+  const bool update = chooseUpdate(scene, out);
+  if (update && !scene.transform.verify) return updated;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::unique_ptr<Model> resolved = resolve();
+  if (scene.transform.verify) {
+    out.transform.resolveMs = msSince(t0);
+    compareOnProbes<Dim>(*updated, *resolved, moved, out.transform);
+  }
+  return update ? std::move(updated) : std::move(resolved);
+}
+
 // transform.verify for a composition: the re-solve on the transformed data (radius and shift
 // scaled by |det A|^(1/Dim)), compared with the composed field on probes.
 template <int Dim>
@@ -168,20 +185,11 @@ void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
   auto updated = std::make_unique<PuModel<Dim>>(transformPu<Dim>(*out.pu, T));
   tr.updateMs = msSince(t0);
   const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
-  const bool update = chooseUpdate(scene, out);
-  if (!update || scene.transform.verify) {
-    // The re-solve keeps the tree too (built in the frame T), so both are the same PU
-    // construction on the transformed data; only the local solves differ.
-    t0 = std::chrono::steady_clock::now();
-    auto resolved = std::make_unique<PuModel<Dim>>(
-        fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
-    if (scene.transform.verify) {
-      tr.resolveMs = msSince(t0);
-      compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
-    }
-    if (!update) updated = std::move(resolved);
-  }
-  out.pu = std::move(updated);
+  // The re-solve keeps the tree too (built in the frame T), so both are the same PU construction
+  // on the transformed data; only the local solves differ.
+  out.pu = keptModel<Dim>(scene, std::move(updated), moved.points, out, [&] {
+    return std::make_unique<PuModel<Dim>>(fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
+  });
   out.transformed = true;
   out.data = moved;
 }
@@ -284,18 +292,10 @@ SceneFit<Dim> fitScene(const Scene& scene) {
           transformModel<Dim>(static_cast<const RbfOffsetModel<Dim>&>(*out.model), T));
     tr.updateMs = msSince(t0);
     const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
-    const bool update = chooseUpdate(scene, out);
-    if (!update || scene.transform.verify) {
-      t0 = std::chrono::steady_clock::now();
+    out.model = keptModel<Dim>(scene, std::move(updated), moved.points, out, [&] {
       FitReport rep;
-      std::unique_ptr<RadialSum<Dim>> resolved = fitOn(moved, T.q, &rep);
-      if (scene.transform.verify) {
-        tr.resolveMs = msSince(t0);
-        compareOnProbes<Dim>(*updated, *resolved, moved.points, tr);
-      }
-      if (!update) updated = std::move(resolved);
-    }
-    out.model = std::move(updated);
+      return fitOn(moved, T.q, &rep);
+    });
     out.transformed = true;
     out.data = moved;
   } else {

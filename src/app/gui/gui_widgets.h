@@ -11,9 +11,10 @@ namespace hermite::app {
 
 inline std::string toString(std::string_view v) { return std::string(v); }
 
-// A combo over `items` showing names; returns true when the choice changed.
-template <class T, std::size_t N, class NameOf>
-inline bool comboOf(const char* label, T& value, const T (&items)[N], NameOf nameOf) {
+// A combo over `items` (an array or container of T) showing names; returns true when the
+// choice changed.
+template <class T, class Items, class NameOf>
+inline bool comboOf(const char* label, T& value, const Items& items, NameOf nameOf) {
   bool changed = false;
   if (ImGui::BeginCombo(label, toString(nameOf(value)).c_str())) {
     for (const T& item : items) {

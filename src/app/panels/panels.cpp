@@ -31,8 +31,6 @@ namespace hermite::app {
 namespace {
 
 
-const KernelType kKernels[] = {KernelType::Gaussian,     KernelType::Wendland, KernelType::Multiquadric,
-                               KernelType::InverseMultiquadric, KernelType::Cubic, KernelType::Polyharmonic};
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
 
 std::vector<std::filesystem::path> teachingScenes() {
@@ -276,7 +274,7 @@ void GuiApp::drawFitPanel() {
   FitSpec fit = scene().fit;
   const FitMethod methods[] = {FitMethod::Hrbf, FitMethod::RbfOffset};
   if (comboOf("method", fit.method, methods, fitMethodName)) editFit(fit, "method");
-  if (comboOf("kernel", fit.kernel, kKernels, kernelName)) editFit(fit, "kernel");
+  if (comboOf("kernel", fit.kernel, allKernelTypes(), kernelName)) editFit(fit, "kernel");
   recordWidget("fit.kernel");
 
   // r: logarithmic slider (one undo step per drag) and exact text entry.
@@ -366,7 +364,7 @@ void GuiApp::drawComparePanel() {
   const char* withNames[] = {"RBF with offset points", "HRBF", "another kernel", "another radius"};
   int with = int(compare.with);
   if (ImGui::Combo("right half", &with, withNames, 4)) compare.with = CompareWith(with);
-  if (compare.with == CompareWith::OtherKernel) comboOf("kernel##compare", compare.kernel, kKernels, kernelName);
+  if (compare.with == CompareWith::OtherKernel) comboOf("kernel##compare", compare.kernel, allKernelTypes(), kernelName);
   if (compare.with == CompareWith::OtherRadius) {
     double r = compare.radius;
     if (ImGui::InputDouble("r##compare", &r, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && r > 0) compare.radius = r;

@@ -182,22 +182,22 @@ double Kernel::supportRadius() const {
   return type == KernelType::Wendland ? radius : std::numeric_limits<double>::infinity();
 }
 
-std::string_view kernelName(KernelType t) {
-  switch (t) {
-    case KernelType::Gaussian: return "gaussian";
-    case KernelType::Wendland: return "wendland";
-    case KernelType::Multiquadric: return "multiquadric";
-    case KernelType::InverseMultiquadric: return "inverse-multiquadric";
-    case KernelType::Cubic: return "cubic";
-    case KernelType::Polyharmonic: return "polyharmonic";
-  }
-  return "?";
-}
+static_assert([] {
+  for (std::size_t i = 0; i < kKernelTable.size(); ++i)
+    if (static_cast<std::size_t>(kKernelTable[i].type) != i || kKernelTable[i].id != int(i)) return false;
+  return true;
+}(), "kKernelTable: rows in enum order, id = row");
+
+const KernelInfo& kernelInfo(KernelType t) { return kKernelTable.at(static_cast<std::size_t>(t)); }
+
+std::string_view kernelName(KernelType t) { return kernelInfo(t).name; }
 
 const std::vector<KernelType>& allKernelTypes() {
-  static const std::vector<KernelType> all{KernelType::Gaussian,     KernelType::Wendland,
-                                           KernelType::Multiquadric, KernelType::InverseMultiquadric,
-                                           KernelType::Cubic,        KernelType::Polyharmonic};
+  static const std::vector<KernelType> all = [] {
+    std::vector<KernelType> types;
+    for (const KernelInfo& k : kKernelTable) types.push_back(k.type);
+    return types;
+  }();
   return all;
 }
 

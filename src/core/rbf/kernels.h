@@ -9,6 +9,7 @@
 // wendland, polyharmonic) but always multiply enough factors of d to vanish there, so at x = 0
 // exactly they are reported as 0 and every product they enter is then the exact limit.
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -17,6 +18,25 @@
 namespace hermite {
 
 enum class KernelType { Gaussian, Wendland, Multiquadric, InverseMultiquadric, Cubic, Polyharmonic };
+
+// The one table of the kernels' identities: the enum, the scene-file name, and the id and macro
+// name the shaders use (the tracer injects `#define <macro> <id>` and sets the uniform uKernel
+// to the id). Rows are in enum order, so a kernel's id is its row.
+struct KernelInfo {
+  KernelType type;
+  std::string_view name;
+  std::string_view shaderMacro;
+  int id;
+};
+inline constexpr std::array<KernelInfo, 6> kKernelTable{{
+    {KernelType::Gaussian, "gaussian", "KERNEL_GAUSSIAN", 0},
+    {KernelType::Wendland, "wendland", "KERNEL_WENDLAND", 1},
+    {KernelType::Multiquadric, "multiquadric", "KERNEL_MULTIQUADRIC", 2},
+    {KernelType::InverseMultiquadric, "inverse-multiquadric", "KERNEL_INVERSE_MULTIQUADRIC", 3},
+    {KernelType::Cubic, "cubic", "KERNEL_CUBIC", 4},
+    {KernelType::Polyharmonic, "polyharmonic", "KERNEL_POLYHARMONIC", 5},
+}};
+const KernelInfo& kernelInfo(KernelType t);
 
 // φ and its derivative factors at one distance.
 struct RadialTerms {

@@ -5,6 +5,7 @@
 
 #include "core/base/errors.h"
 #include "render/gl/shader_library.h"
+#include "render/kernel_shader_defines.h"
 #include "support/render_test_support.h"
 
 using namespace hermite;
@@ -101,11 +102,13 @@ TEST_CASE("driver logs of the common vendors are translated to FILE:LINE") {
   CHECK(translateShaderLog("something else", files) == "something else");
 }
 
-TEST_CASE("every embedded shader compiles") {
+TEST_CASE("every embedded shader compiles; those naming a kernel with the ids the tracer defines") {
   auto context = testing::makeTestContext();
   for (const std::string& name : shaderNames()) {
     CAPTURE(name);
     if (name.ends_with(".glsl")) continue;
-    CHECK_NOTHROW(compileShader({shaderStageFor(name), std::string(shaderSource(name)), name}));
+    const std::string source(shaderSource(name));
+    const std::string defines = source.find("KERNEL_") != std::string::npos ? kernelShaderDefines() : "";
+    CHECK_NOTHROW(compileShader({shaderStageFor(name), defines + source, name}));
   }
 }
