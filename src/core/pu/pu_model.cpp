@@ -15,6 +15,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/rbf/dense_solver.h"
 
 extern "C" int openblas_get_num_threads(void);
 extern "C" void openblas_set_num_threads(int num_threads);
@@ -94,9 +95,7 @@ HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& optio
     if (llt.info() == Eigen::Success) {
       x = llt.solve(sys.b);
       c.resize(0);
-      const Eigen::VectorXd d = llt.matrixLLT().diagonal();
-      const double ratio = d.maxCoeff() / d.minCoeff();
-      condition = ratio * ratio;  // a cheap estimate: (max/min pivot)² ≤ κ₂
+      condition = 1.0 / llt.rcond();  // Eigen's 1-norm estimate, as LAPACK's dpocon
       solved = x.allFinite();
       report.solver = "cholesky";
     }
@@ -137,7 +136,7 @@ HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& optio
   report.nUnknowns = n + m;
   report.conditionEstimate = condition;
   report.warnings = polynomialOrderWarnings(options.kernel, options.polynomial);
-  if (condition > 1e12) report.warnings.push_back("condition estimate " + std::to_string(condition) + " (ill-conditioned)");
+  if (auto warning = illConditionedWarning(condition, report.solver)) report.warnings.push_back(*warning);
   report.fitMs = msSince(t0);
   return HrbfModel<Dim>(options.kernel, options.polynomial, sub.points, std::move(alpha), std::move(beta), std::move(c));
 }

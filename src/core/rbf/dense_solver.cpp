@@ -316,10 +316,14 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   if (!out.x.allFinite() || !out.c.allFinite())
     throw NumericalError("the solution is not finite (solver " + out.solver + ", condition estimate " +
                          fmt(out.conditionEstimate) + ")");
-  if (out.conditionEstimate > kIllConditionedEstimate)
-    out.warnings.push_back("ill-conditioned system: condition estimate " + fmt(out.conditionEstimate) +
-                           " (" + out.solver + "); expect lost digits in the coefficients");
+  if (auto warning = illConditionedWarning(out.conditionEstimate, out.solver)) out.warnings.push_back(*warning);
   return out;
+}
+
+std::optional<std::string> illConditionedWarning(double conditionEstimate, std::string_view solver) {
+  if (!(conditionEstimate > kIllConditionedEstimate)) return std::nullopt;
+  return "ill-conditioned system: condition estimate " + fmt(conditionEstimate) + " (" + std::string(solver) +
+         "); expect lost digits in the coefficients";
 }
 
 Eigen::MatrixXd saddleMatrix(const SaddleSystem& system) {

@@ -14,6 +14,7 @@
 // back to LU with a warning. Only a failed LU or a non-finite result throws NumericalError.
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +53,12 @@ SaddleSolution solveSaddle(SaddleSystem system, SolverChoice choice = SolverChoi
 
 // Condition estimates above this get an "ill-conditioned" warning (about 4 of 16 digits left).
 inline constexpr double kIllConditionedEstimate = 1e12;
+
+// The one meaning of "condition estimate" in reports: 1/rcond, the reciprocal of a 1-norm
+// reciprocal-condition estimate of the factorised matrix (LAPACK's ?con, or the same estimate
+// made by Eigen or by the bordered refit). Above kIllConditionedEstimate: the one warning,
+// naming the solver path; otherwise nothing.
+std::optional<std::string> illConditionedWarning(double conditionEstimate, std::string_view solver);
 
 // The whole saddle matrix K = [[A, P], [Pᵀ, 0]], both triangles, from a system whose A holds
 // (at least) its lower triangle. Throws NumericalError on non-finite entries.

@@ -146,9 +146,7 @@ HrbfModel<Dim> HrbfBorderedRefit<Dim>::fit(const Vec<Dim>& point, const Vec<Dim>
     report->solver = "bordered-lu";
     report->conditionEstimate = condition;
     report->warnings = polynomialOrderWarnings(kernel, options_.polynomial);
-    if (condition > kIllConditionedEstimate)
-      report->warnings.push_back("ill-conditioned system: condition estimate " + shortNumber(condition) +
-                                 " (bordered-lu); expect lost digits in the coefficients");
+    if (auto warning = illConditionedWarning(condition, report->solver)) report->warnings.push_back(*warning);
     report->assemblyMs = assemblyMs;
     report->fitMs = msSince(t0);
     report->solveMs = report->fitMs - assemblyMs;
