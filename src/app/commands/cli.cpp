@@ -29,7 +29,7 @@ constexpr const char* kUsage =
     "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
     "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--size WxH] [--set KEY=VALUE ...]\n"
     "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
-    "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf]\n"
+    "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
     "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
@@ -138,6 +138,7 @@ int dispatch(int argc, char** argv) {
         ->check(CLI::Range(1, 10));
     cmd.add_option("--implicit", a.implicit, "rbf-offset (default: cubic, linear, ±d offsets) or hrbf")
         ->check(CLI::IsMember({"rbf-offset", "hrbf"}));
+    cmd.add_flag("--allow-open", a.allowOpen, "exit 0 even when some hole stays open (default: exit 5)");
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);

@@ -80,6 +80,7 @@ struct HoleFillArgs {
   bool json = false;
   int rings = 2;                       // --rings: vertex rings around each hole given to the fit
   std::string implicit = "rbf-offset"; // --implicit rbf-offset | hrbf
+  bool allowOpen = false;              // --allow-open: holes left open still exit 0
 };
 int runHoleFill(const HoleFillArgs& args);
 

@@ -4,16 +4,23 @@
 #include "core/mesh/hole_fill.h"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
+#include <cmath>
 #include <exception>
+#include <mutex>
 #include <tuple>
 
 #include "core/base/errors.h"
 #include "core/base/threading.h"
+#include "core/mesh/min_weight_triangulation.h"
+#include "core/mesh/patch_refinement.h"
 
 namespace hermite {
 
 namespace {
+
+constexpr double kMinimumPatchAngle = M_PI / 180.0;  // 1°
 
 // A 3-edge loop whose vertices are one triangle of the mesh: that triangle touches nothing.
 bool isLoneTriangle(const PreparedMesh& prepared, const BoundaryLoop& loop) {
@@ -27,6 +34,110 @@ bool isLoneTriangle(const PreparedMesh& prepared, const BoundaryLoop& loop) {
   return false;
 }
 
+// Stage 2: the advancing front (with its retries) for holes of at most frontMaxEdges edges; the
+// minimum-weight triangulation for larger holes and where every front attempt fails.
+HolePatch firstPatch(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options,
+                     std::string& method) {
+  std::string frontFailure;
+  if (int(loop.size()) <= options.frontMaxEdges) {
+    HolePatch patch = advancingFront(prepared, loop, options);
+    for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
+      HoleFillOptions retry = options;
+      std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
+      patch = advancingFront(prepared, loop, retry);
+    }
+    method = "front";
+    if (patch.closed) return patch;
+    frontFailure = patch.failure;
+  }
+  method = "min-weight";
+  HolePatch patch = minWeightPatch(prepared, loop);
+  if (!patch.closed && !frontFailure.empty())
+    patch.failure = "the advancing front failed (" + frontFailure + "), and " + patch.failure;
+  return patch;
+}
+
+// The smallest angle of patch triangle t, radians.
+double triangleSmallestAngle(const PreparedMesh& prepared, const HolePatch& patch, Eigen::Index t) {
+  const auto position = [&](int id) -> Vec<3> {
+    return id < patch.baseId ? Vec<3>(prepared.mesh().vertices.col(id)) : Vec<3>(patch.vertices.col(id - patch.baseId));
+  };
+  double smallest = M_PI;
+  for (int c = 0; c < 3; ++c) {
+    const Vec<3> u = position(patch.triangles((c + 1) % 3, t)) - position(patch.triangles(c, t));
+    const Vec<3> v = position(patch.triangles((c + 2) % 3, t)) - position(patch.triangles(c, t));
+    const double nu = u.norm(), nv = v.norm();
+    smallest = std::min(smallest, nu > 0 && nv > 0 ? std::acos(std::clamp(u.dot(v) / (nu * nv), -1.0, 1.0)) : 0.0);
+  }
+  return smallest;
+}
+
+// The smallest angle of the patch's triangles, radians.
+double smallestPatchAngle(const PreparedMesh& prepared, const HolePatch& patch) {
+  double smallest = M_PI;
+  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t)
+    smallest = std::min(smallest, triangleSmallestAngle(prepared, patch, t));
+  return smallest;
+}
+
+// The patch's own vertices (0-based) in triangles with an angle below 1°.
+std::vector<int> verticesOfSlivers(const PreparedMesh& prepared, const HolePatch& patch) {
+  std::vector<int> out;
+  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t) {
+    if (triangleSmallestAngle(prepared, patch, t) >= kMinimumPatchAngle) continue;
+    for (int c = 0; c < 3; ++c)
+      if (patch.triangles(c, t) >= patch.baseId) out.push_back(patch.triangles(c, t) - patch.baseId);
+  }
+  return out;
+}
+
+// Stages 3–5 on a closed first patch, as the options and `last` enable them.
+void fairFitProject(const PreparedMesh& prepared, const HoleFillOptions& options, HoleFillStage last,
+                    const std::string& name, HolePatch& patch, HoleOutcome& out) {
+  if (options.fair && last >= HoleFillStage::Fair) patch = fairPatch(prepared, patch);
+  out.unprojected = patch.vertices;
+  if (!options.fitAndProject || last < HoleFillStage::Fit || patch.vertices.cols() == 0) return;
+  try {
+    const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
+    out.ringPoints = implicit.points;
+    out.ringNormals = implicit.normals;
+    if (last < HoleFillStage::Project) return;
+    ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
+    out.unconverged = projected.unconverged;
+    out.maxAbsF = projected.maxAbsF;
+    if (projected.unconverged > 0)
+      out.notes.push_back(name + ": " + std::to_string(projected.unconverged) +
+                          " vertices did not converge onto the implicit (left faired)");
+    patch = std::move(projected.patch);
+  } catch (const NumericalError& e) {
+    out.notes.push_back(name + ": implicit fit failed (" + e.what() + "); the faired patch is kept");
+  }
+}
+
+// Stages 3–5, then angle-improving flips where a triangle has an angle below 1° (a sharp fold, a
+// collinear run of boundary vertices). Returns the patch's smallest angle.
+double finishPatch(const PreparedMesh& prepared, const HoleFillOptions& options, HoleFillStage last,
+                   const std::string& name, HolePatch& patch, HoleOutcome& out) {
+  fairFitProject(prepared, options, last, name, patch, out);
+  if (smallestPatchAngle(prepared, patch) < kMinimumPatchAngle) improvePatchAngles(prepared, patch);
+  // Projection can crowd vertices at a crease: those of triangles still below 1° go back to their
+  // faired positions, a few times; failing that the whole faired patch is kept.
+  for (int round = 0; round < 3 && smallestPatchAngle(prepared, patch) < kMinimumPatchAngle; ++round) {
+    int reverted = 0;
+    for (int k : verticesOfSlivers(prepared, patch))
+      if (patch.vertices.col(k) != out.unprojected.col(k)) patch.vertices.col(k) = out.unprojected.col(k), ++reverted;
+    if (reverted == 0) break;
+    improvePatchAngles(prepared, patch, 2);
+  }
+  if (smallestPatchAngle(prepared, patch) < kMinimumPatchAngle && out.unprojected.cols() == patch.vertices.cols() &&
+      patch.vertices != out.unprojected) {
+    patch.vertices = out.unprojected;
+    improvePatchAngles(prepared, patch, 4);
+    out.notes.push_back(name + ": projecting onto the implicit crowded vertices into slivers; the faired patch is kept");
+  }
+  return smallestPatchAngle(prepared, patch);
+}
+
 }  // namespace
 
 HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options,
@@ -35,42 +146,35 @@ HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, con
   if (last == HoleFillStage::Holes) return out;
   try {
     if (isLoneTriangle(prepared, loop)) {  // its "hole" is its own back side (a triangle soup?)
-      out.notes.push_back(name + " not filled: it is the boundary of a lone triangle (unwelded vertices?)");
+      out.reason = "it is the boundary of a lone triangle (unwelded vertices?)";
+      out.notes.push_back(name + " not filled: " + out.reason);
       return out;
     }
-    HolePatch patch = advancingFront(prepared, loop, options);
-    for (size_t r = 0; r < options.frontRetries.size() && !patch.closed; ++r) {
-      HoleFillOptions retry = options;
-      std::tie(retry.mergeDistance, retry.clipFrontSize) = options.frontRetries[r];
-      patch = advancingFront(prepared, loop, retry);
-    }
+    HolePatch patch = firstPatch(prepared, loop, options, out.method);
     if (!patch.closed) {
+      out.reason = patch.failure;
       out.notes.push_back(name + " not filled: " + patch.failure);
       out.patch = std::move(patch);  // the front as far as it got, for display
       return out;
     }
-    if (options.fair && last >= HoleFillStage::Fair) patch = fairPatch(prepared, patch);
-    if (options.fitAndProject && last >= HoleFillStage::Fit && patch.vertices.cols() > 0) {
-      try {
-        const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
-        out.ringPoints = implicit.points;
-        out.ringNormals = implicit.normals;
-        if (last >= HoleFillStage::Project) {
-          ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
-          out.unconverged = projected.unconverged;
-          out.maxAbsF = projected.maxAbsF;
-          if (projected.unconverged > 0)
-            out.notes.push_back(name + ": " + std::to_string(projected.unconverged) +
-                                " vertices did not converge onto the implicit (left faired)");
-          patch = std::move(projected.patch);
-        }
-      } catch (const NumericalError& e) {
-        out.notes.push_back(name + ": implicit fit failed (" + e.what() + "); the faired patch is kept");
+    double smallest = finishPatch(prepared, options, last, name, patch, out);
+    if (smallest < kMinimumPatchAngle && out.method == "front") {
+      // The front left slivers (it can stack new vertices on one point): start again from the
+      // minimum-weight triangulation and keep whichever is better.
+      HoleOutcome retry;
+      retry.method = "min-weight";
+      HolePatch other = minWeightPatch(prepared, loop);
+      if (other.closed) {
+        const double otherSmallest = finishPatch(prepared, options, last, name, other, retry);
+        if (otherSmallest > smallest) smallest = otherSmallest, patch = std::move(other), out = std::move(retry);
       }
     }
+    if (smallest < kMinimumPatchAngle)
+      out.notes.push_back(name + ": a new triangle has an angle below 1° (" + std::to_string(smallest * 180 / M_PI) + "°)");
     out.patch = std::move(patch);
     out.filled = true;
   } catch (const std::exception& e) {  // never let an exception leave a caller's parallel loop
+    out.reason = e.what();
     out.notes.push_back(name + " not filled: " + e.what());
   }
   return out;
@@ -103,9 +207,11 @@ TriMesh appendPatches(const TriMesh& mesh, const std::vector<const HolePatch*>& 
   return out;
 }
 
-HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
+HoleFillResult fillHoles(const TriMesh& input, const HoleFillOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillResult result;
+  const TriMesh mesh = repairMesh(input, result.repair);
+  result.messages = result.repair.messages;
   if (options.rings < 1) throw InputError("hole filling: rings must be ≥ 1");
   if (!(options.offsetFraction > 0)) throw InputError("hole filling: the offset fraction must be > 0");
   const PreparedMesh prepared(mesh);
@@ -117,15 +223,29 @@ HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options) {
   std::vector<HoleOutcome> perHole(holes.size());
   const int threads = threadCount();
   setBlasThreadCount(1);
+  std::atomic<bool> cancelled{false};
+  std::mutex progressMutex;
+  int finished = 0;
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t h = 0; h < holes.size(); ++h) {
+    if (cancelled) {
+      perHole[h].reason = "cancelled";
+      continue;
+    }
     const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
                              " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
     perHole[h] = fillHole(prepared, holes[h], options, HoleFillStage::Project, name);
+    if (options.progress) {
+      const std::lock_guard<std::mutex> lock(progressMutex);
+      if (!options.progress(double(++finished) / double(holes.size()))) cancelled = true;
+    }
   }
   setThreadCount(threads);
+  result.cancelled = cancelled;
   std::vector<const HolePatch*> patches;
-  for (HoleOutcome& o : perHole) {
+  for (size_t h = 0; h < holes.size(); ++h) {
+    HoleOutcome& o = perHole[h];
+    result.holes.push_back({int(holes[h].size()), o.method, o.filled, o.reason});
     for (std::string& m : o.notes) result.messages.push_back(std::move(m));
     result.unconverged += o.unconverged;
     result.maxAbsF = std::max(result.maxAbsF, o.maxAbsF);

@@ -5,6 +5,8 @@
 //   1. detectHoles      boundary edges chained into ordered loops (tri_mesh.h boundaryLoops);
 //   2. advancingFront   the minimum-angle advancing front: an initial patch of new vertices and
 //                       triangles (Zhao, Gao & Lin 2007, "A robust hole-filling algorithm");
+//                       where it fails, or for holes too large for it, minWeightPatch: the
+//                       minimum-weight triangulation of the boundary (Liepa 2003), refined;
 //   3. fairPatch        least-squares mesh (Sorkine & Cohen-Or 2004): the new vertices minimise
 //                       Σ‖L x‖² with the uniform Laplacian L, original vertices fixed;
 //   4. fitHoleImplicit  an implicit through `rings` rings of vertices around the hole: values 0
@@ -24,6 +26,7 @@
 #include "core/mesh/hole_fill_options.h"
 #include "core/mesh/hole_implicit.h"
 #include "core/mesh/hole_patch.h"
+#include "core/mesh/mesh_repair.h"
 #include "core/mesh/prepared_mesh.h"
 #include "core/mesh/tri_mesh.h"
 
@@ -41,8 +44,11 @@ enum class HoleFillStage { Holes, Front, Fair, Fit, Project };
 // starting with `name`.
 struct HoleOutcome {
   HolePatch patch;           // as the last stage left it (the unclosed front when not filled)
+  std::string method;        // "front" or "min-weight": what made the first patch
+  std::string reason;        // why not filled (empty when filled)
   Points<3> ringPoints;      // Fit and later: the samples of the implicit
   Points<3> ringNormals;
+  Eigen::Matrix3Xd unprojected;  // the patch's vertices before projection (after fairing)
   bool filled = false;       // the front closed and the stages ran
   int unconverged = 0;       // Project: vertices left at their faired position
   double maxAbsF = 0;        // Project: max |f| over the new vertices
@@ -55,6 +61,14 @@ HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, con
 // their triangles after its triangles; normals are not set.
 TriMesh appendPatches(const TriMesh& mesh, const std::vector<const HolePatch*>& patches);
 
+// One hole in `holefill --json`'s `holes` list.
+struct HoleReport {
+  int edges = 0;
+  std::string method;  // "front" or "min-weight"
+  bool filled = false;
+  std::string reason;  // empty when filled
+};
+
 // Everything: the filled mesh and what `holefill --json` reports.
 struct HoleFillResult {
   TriMesh mesh;                       // input vertices first (same ids), then the patches'
@@ -65,7 +79,12 @@ struct HoleFillResult {
   int unconverged = 0;
   double ms = 0;
   std::vector<std::string> messages;  // holes not filled and why
+  std::vector<HoleReport> holes;      // one per hole found, in detectHoles order
+  MeshRepairReport repair;            // what was mended in the input first (mesh_repair.h)
+  bool cancelled = false;             // options.progress returned false
 };
+// The input is first mended (repairMesh: duplicate faces dropped, orientation made consistent);
+// the result's mesh has the mended triangles, then the patches'.
 HoleFillResult fillHoles(const TriMesh& mesh, const HoleFillOptions& options = {});
 
 }  // namespace hermite

@@ -1,6 +1,7 @@
 #pragma once
 // The settings of every hole-filling stage (hole_fill.h), with their defaults.
 
+#include <functional>
 #include <utility>
 #include <vector>
 
@@ -18,6 +19,10 @@ struct HoleFillOptions {
   // fillHoles: when a front does not close, retry with these (mergeDistance, clipFrontSize) pairs
   // before reporting the hole (a front that wraps around a strongly curved part can fold).
   std::vector<std::pair<double, int>> frontRetries{{0.8, 8}, {0.6, 10}, {1.2, 4}};
+  // Holes of more boundary edges than this skip the advancing front (its step bound grows as n²)
+  // and go straight to the minimum-weight triangulation, which is also the fallback when every
+  // front attempt fails.
+  int frontMaxEdges = 200;
   bool fair = true;
   bool fitAndProject = true;          // stages 4–5 (off: the faired patch is the result)
   int rings = 2;                      // rings of vertices around the hole given to the fit (≥ 1)
@@ -26,6 +31,9 @@ struct HoleFillOptions {
   HoleImplicitKind implicit = HoleImplicitKind::RbfOffset;
   int newtonIterations = 20;          // per vertex
   double newtonTolerance = 1e-7;      // step length below this × hole diameter: converged
+  // Called with the fraction of the work done (holes finished, in [0, 1]) from any thread, one
+  // call at a time; returning false cancels the holes not yet finished. Optional.
+  std::function<bool(double)> progress;
 };
 
 }  // namespace hermite

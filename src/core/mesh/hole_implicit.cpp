@@ -75,6 +75,40 @@ HoleImplicit fitHoleImplicit(const PreparedMesh& prepared, const HolePatch& patc
   return out;
 }
 
+// Three Newton steps for all of the patch's vertices at once (batch evaluation), then every
+// vertex of a triangle that `valid` rejects back to its faired position, until none is rejected.
+template <class Valid>
+void batchedNewtonStart(const ImplicitField<3>& field, const Eigen::Matrix3Xd& faired, double scale, Valid valid,
+                        HolePatch& P) {
+  const Eigen::Index K = P.vertices.cols();
+  for (int it = 0; it < 3; ++it) {
+    Eigen::VectorXd f;
+    Points<3> G;
+    field.evaluateBatch(P.vertices, f, &G);
+    for (Eigen::Index k = 0; k < K; ++k) {
+      const double g2 = G.col(k).squaredNorm();
+      if (!std::isfinite(f(k)) || !(g2 > 0) || !std::isfinite(g2)) continue;
+      Eigen::Vector3d step = -f(k) / g2 * G.col(k);
+      if (step.norm() > 0.5 * scale) step *= 0.5 * scale / step.norm();
+      P.vertices.col(k) += step;
+    }
+  }
+  for (bool reverted = true; reverted;) {
+    reverted = false;
+    for (Eigen::Index t = 0; t < P.triangles.cols(); ++t) {
+      if (valid(t)) continue;
+      for (int c = 0; c < 3; ++c) {
+        const int id = P.triangles(c, t);
+        if (id >= P.baseId && P.vertices.col(id - P.baseId) != faired.col(id - P.baseId))
+          P.vertices.col(id - P.baseId) = faired.col(id - P.baseId), reverted = true;
+      }
+    }
+  }
+}
+
+// Patches with at least this many new vertices start with batched Newton steps.
+constexpr int kBatchProjectionVertices = 4096;
+
 ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& patch, const ImplicitField<3>& field,
                               const HoleFillOptions& options) {
   ProjectionResult result;
@@ -106,9 +140,16 @@ ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& pat
     }
     return true;
   };
+  const Eigen::Matrix3Xd faired = P.vertices;
+  // Large patches: Newton steps for all vertices at once first (batch evaluation), then every
+  // vertex of a triangle they flipped or degenerated back to its faired position; the sweeps
+  // below finish from there.
+  if (K >= kBatchProjectionVertices) batchedNewtonStart(field, faired, scale, [&](Eigen::Index t) {
+    const Eigen::Vector3d n = triangleNormal(t);
+    return n.norm() > minArea2 && n.dot(reference[static_cast<size_t>(t)]) > 0;
+  }, P);
   // Gauss–Seidel sweeps: a vertex whose step was blocked by a neighbour not yet projected gets
   // another chance once the neighbours have moved.
-  const Eigen::Matrix3Xd faired = P.vertices;
   std::vector<char> converged(static_cast<size_t>(K), 0);
   for (int sweep = 0; sweep < 3; ++sweep) {
     bool blocked = false;

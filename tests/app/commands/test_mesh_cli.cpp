@@ -137,6 +137,53 @@ TEST_CASE("holefill: fills the holes of a mesh file and reports the docs/cli.md 
   CHECK(r.out.find("holes filled:     2") != std::string::npos);
 }
 
+TEST_CASE("holefill: each hole's method and result; exit 5 while a hole stays open unless --allow-open") {
+  const hermite::SphereField sphere;
+  hermite::Box<3> box;
+  box.lo = hermite::Vec<3>::Constant(-1.3);
+  box.hi = hermite::Vec<3>::Constant(1.3);
+  hermite::TriMesh mesh = hermite::testing::cutBall(hermite::marchingCubes(sphere, box, {40}), Eigen::Vector3d(0, 0, 1), 0.3);
+  mesh.normals.resize(3, 0);
+  // A lone triangle beside the sphere: its rim is no hole to fill, so it stays open.
+  const int v = mesh.vertexCount();
+  mesh.vertices.conservativeResize(3, v + 3);
+  mesh.vertices.col(v) = Eigen::Vector3d(3, 0, 0);
+  mesh.vertices.col(v + 1) = Eigen::Vector3d(3.1, 0, 0);
+  mesh.vertices.col(v + 2) = Eigen::Vector3d(3, 0.1, 0);
+  mesh.triangles.conservativeResize(3, mesh.triangles.cols() + 1);
+  mesh.triangles.col(mesh.triangles.cols() - 1) = Eigen::Vector3i(v, v + 1, v + 2);
+  const std::string in = tempPath("open.ply"), out = tempPath("open_filled.ply");
+  hermite::saveMesh(in, mesh);
+
+  auto r = runCli("holefill " + in + " -o " + out + " --json");
+  CHECK(r.rc == 5);
+  CHECK(r.err.find("stay open") != std::string::npos);
+  CHECK(std::filesystem::exists(out));  // written, though incomplete
+  const json j = json::parse(r.out);
+  CHECK(j["complete"] == false);
+  REQUIRE(j["holes"].size() == 2);
+  int filled = 0;
+  for (const json& h : j["holes"]) {
+    for (const char* key : {"edges", "method", "filled", "reason"}) CHECK(h.contains(key));
+    if (h["filled"].get<bool>()) {
+      ++filled;
+      CHECK(h["reason"].is_null());
+      CHECK((h["method"] == "front" || h["method"] == "min-weight"));
+    } else {
+      CHECK(h["edges"] == 3);
+      CHECK(h["reason"].get<std::string>().find("lone triangle") != std::string::npos);
+    }
+  }
+  CHECK(filled == 1);
+  for (const char* key : {"welded_vertices", "collapsed_faces", "duplicate_faces", "reoriented_faces",
+                          "non_manifold_edges", "non_orientable_components"})
+    CHECK(j["repairs"][key] == 0);
+
+  r = runCli("holefill " + in + " -o " + out + " --allow-open");
+  CHECK(r.rc == 0);
+  CHECK(r.out.find("open: it is the boundary of a lone triangle") != std::string::npos);
+}
+
 TEST_CASE("holefill: errors name the file and map to exit codes") {
   auto r = runCli("holefill /nonexistent/in.obj -o " + tempPath("x.obj"));
   CHECK(r.rc == 1);

@@ -231,16 +231,21 @@ TEST_CASE("hole filling: pathological loops end, filled or reported") {
     CHECK(r.holesFound == 1);
     CHECK(r.holesFilled == 0);
     REQUIRE(r.messages.size() == 1);
-    CHECK(r.messages[0].find("wrong way") != std::string::npos);
+    CHECK(r.messages[0].find("the rim of an open surface") != std::string::npos);
+    REQUIRE(r.holes.size() == 1);
+    CHECK(r.holes[0].method == "min-weight");  // 400 edges: past the front's limit
+    CHECK_FALSE(r.holes[0].filled);
   }
-  SUBCASE("a front bounded to too few steps is reported, not a hang") {
+  SUBCASE("a front bounded to too few steps ends at once; the minimum-weight fallback closes the hole") {
     HoleFillOptions o;
     o.frontStepFactor = 0;
     const HoleFillResult r = fillHoles(cutBall(closed, Eigen::Vector3d(0, 0, 1), 0.5), o);
     CHECK(r.holesFound == 1);
-    CHECK(r.holesFilled == 0);
-    REQUIRE(r.messages.size() == 1);
-    CHECK(r.messages[0].find("did not close") != std::string::npos);
+    CHECK(r.holesFilled == 1);
+    REQUIRE(r.holes.size() == 1);
+    CHECK(r.holes[0].method == "min-weight");
+    CHECK(r.holes[0].reason.empty());
+    CHECK(checkMesh(r.mesh).closedManifold());
   }
 }
 
