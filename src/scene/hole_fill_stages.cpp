@@ -50,8 +50,11 @@ TriMesh holeFillPresetMesh(const std::string& name) {
 HoleFillStages runHoleFillStages(const HoleFillSpec& spec) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillStages out;
-  out.input = spec.mesh.empty() ? holeFillPresetMesh(spec.preset)
-                                : loadMesh(spec.resolvedMesh.empty() ? spec.mesh : spec.resolvedMesh);
+  MeshRepairReport repair;
+  out.input = repairMesh(spec.mesh.empty() ? holeFillPresetMesh(spec.preset)
+                                           : loadMesh(spec.resolvedMesh.empty() ? spec.mesh : spec.resolvedMesh),
+                         repair);
+  out.repairMessages = repair.messages;
   HoleFillOptions options;
   options.rings = spec.rings;
   options.implicit = spec.implicit;

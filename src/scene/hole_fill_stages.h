@@ -32,7 +32,8 @@ struct HoleFillStageHole : HoleOutcome {
 };
 
 struct HoleFillStages {
-  TriMesh input;
+  TriMesh input;                            // as mended by repairMesh
+  std::vector<std::string> repairMessages;  // what was mended or found there
   std::vector<HoleFillStageHole> holes;
   TriMesh result;            // input + every patch at the stage (for export)
   int trianglesAdded = 0;

@@ -355,6 +355,7 @@ void GuiApp::frame(const FrameInput& in) {
   drawViewImage();
   drawSelectionOverlay();
   drawPatchHandles();
+  drawHoleLabels();
   if (showPartitionBoxes_) drawPartitionBoxes();
   if (showGizmo_ && (scene().mode == SceneMode::Implicit2d || scene().mode == SceneMode::Implicit3d)) drawGizmo();
   if (panels.help) drawHelpOverlay();

@@ -180,6 +180,8 @@ class GuiApp {
   // panels/patch_panel.cpp: the patch editor (mode "patch")
   void drawPatchPanel();
   void drawPatchHandles();
+  void drawHoleLabels();  // each hole's index at its boundary's centre
+  void openHoleFillMesh(const std::string& path);  // hole-fill mode: the mesh to fill
   bool pressPatchHandle(const Vec<2>& mouse);  // true when a handle was grabbed
   void dragPatchHandle(const Vec<2>& mouse, const FrameInput& in);
   // tools/view_tools.cpp: the slice plane, dragged along its normal in the 3D view

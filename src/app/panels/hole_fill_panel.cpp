@@ -11,6 +11,43 @@
 
 namespace hermite::app {
 
+void GuiApp::openHoleFillMesh(const std::string& path) {
+  try {
+    loadMesh(path);  // read now, so a malformed file is reported here and not as a failed run
+    Scene s = scene();
+    s.holefill.mesh = path;
+    s.holefill.resolvedMesh = path;
+    document_.apply(s, "open " + path);
+    setStatus("loaded " + path + " (the mesh to fill)");
+  } catch (const std::exception& e) {
+    setStatus(e.what(), true);
+  }
+}
+
+void GuiApp::drawHoleLabels() {
+  const FitOutcome* f = shown_.get();
+  if (scene().mode != SceneMode::HoleFill || !f || !f->holefill) return;
+  const HoleFillStages& st = *f->holefill;
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+  const Vec<2> o = viewOrigin();
+  for (std::size_t k = 0; k < st.holes.size(); ++k) {
+    const BoundaryLoop& loop = st.holes[k].loop;
+    if (loop.empty()) continue;
+    Vec<3> centre = Vec<3>::Zero();
+    for (int v : loop) centre += st.input.vertices.col(v);
+    centre /= double(loop.size());
+    if (cam.projection() == Projection::Perspective && (centre - cam.eye()).dot(cam.forward()) <= 0) continue;
+    const Vec<2> q = cam.project(centre) + o;
+    const std::string text = std::to_string(k);
+    const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+    const ImVec2 at(float(q.x()) - 0.5f * size.x, float(q.y()) - 0.5f * size.y);
+    dl->AddRectFilled(ImVec2(at.x - 3, at.y - 1), ImVec2(at.x + size.x + 3, at.y + size.y + 1),
+                      st.holes[k].filled ? IM_COL32(20, 90, 90, 210) : IM_COL32(160, 30, 20, 220), 3.0f);
+    dl->AddText(at, IM_COL32(255, 255, 255, 255), text.c_str());
+  }
+}
+
 void GuiApp::drawHoleFillPanel() {
   Scene s = scene();
   HoleFillSpec& h = s.holefill;
@@ -33,10 +70,8 @@ void GuiApp::drawHoleFillPanel() {
   inputText("##meshfile", meshPath_);
   ImGui::SameLine();
   if (ImGui::Button("Open mesh")) {
-    h.mesh = meshPath_;
-    h.resolvedMesh = meshPath_;
-    changed = true;
-    label = "open " + meshPath_;
+    openHoleFillMesh(meshPath_);
+    return;
   }
   helpMarker("OFF, OBJ, PLY (ascii or binary), glTF / GLB. The holes are its boundary loops.");
   const char* stages[] = {"1 holes", "2 advancing front", "3 fairing", "4 implicit fit", "5 projection"};
@@ -71,6 +106,14 @@ void GuiApp::drawHoleFillPanel() {
     if (scene().holefill.stage == HoleFillStage::Project)
       ImGui::Text("max |f| %.2g, unconverged %d", st.maxAbsF, st.unconverged);
     if (options_.showTimings) ImGui::Text("%.1f ms", st.ms);
+    for (const std::string& note : st.repairMessages) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", note.c_str());
+    for (std::size_t k = 0; k < st.holes.size(); ++k) {
+      const HoleFillStageHole& hole = st.holes[k];
+      const std::string method = hole.method.empty() ? "-" : hole.method;
+      if (hole.filled) ImGui::Text("hole %d: %d edges, %s, filled", int(k), int(hole.loop.size()), method.c_str());
+      else ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "hole %d: %d edges, %s, open", int(k), int(hole.loop.size()), method.c_str());
+      if (!hole.filled && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", hole.reason.c_str());
+    }
     for (const auto& hole : st.holes)
       for (const std::string& note : hole.notes) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", note.c_str());
     inputText("##export", meshExportPath_);

@@ -549,6 +549,10 @@ void GuiApp::handleDroppedFiles(const FrameInput& in) {
     openScene(path);
     return;
   }
+  if (scene().mode == SceneMode::HoleFill) {  // in hole-fill mode a file is the mesh to fill
+    openHoleFillMesh(path);
+    return;
+  }
   // A point file: keep the fit and view settings, replace the data.
   try {
     const int dim = pointFileDimension(path);

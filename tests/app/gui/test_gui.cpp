@@ -16,10 +16,13 @@
 
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_view.h"
+#include "io/mesh_file.h"
 #include "render/gl/context.h"
 #include "render/gl/offscreen.h"
 #include "scene/scene_file.h"
+#include "scene/hole_fill_stages.h"
 #include "scene/scene_fit.h"
+#include "support/mesh_test_shapes.h"
 
 using namespace hermite;
 using namespace hermite::app;
@@ -443,4 +446,35 @@ TEST_CASE("UI: right after a mode switch the previous mode's fit stays on screen
   h.frame();
   REQUIRE(h.app->shownFit()->patch);
   CHECK(h.app->currentFit() == h.app->shownFit());
+}
+
+TEST_CASE("UI: a mesh dropped in hole-fill mode is the mesh to fill; each hole's method and result are shown") {
+  Scene s;
+  s.mode = SceneMode::HoleFill;
+  s.holefill.preset = "sphere";
+  s.sourceName = "test-holefill";
+  Harness h(s, true, 900, 650);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  REQUIRE(h.app->shownFit()->holefill);
+  // A sphere with one hole, written as PLY (which also reads as a point file outside this mode).
+  TriMesh holed = hermite::testing::cutBall(hermite::holeFillPresetMesh("sphere"), Vec<3>(0, 0, -1), 0.3);
+  holed.normals.resize(3, 0);
+  const std::string path = (std::filesystem::temp_directory_path() / "hermite_gui_drop_holed.ply").string();
+  saveMesh(path, holed);
+  h.input.droppedFiles = {path};
+  h.frames(3);
+  CHECK(h.app->document().scene().mode == SceneMode::HoleFill);
+  CHECK(h.app->document().scene().holefill.mesh == path);
+  REQUIRE(h.app->shownFit());
+  REQUIRE(h.app->shownFit()->holefill);
+  const HoleFillStages& st = *h.app->shownFit()->holefill;
+  CHECK(st.input.triangleCount() == holed.triangleCount());
+  CHECK(st.holes.size() >= 1);
+  for (const auto& hole : st.holes) {
+    CHECK(hole.filled);
+    CHECK((hole.method == "front" || hole.method == "min-weight"));
+  }
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene().holefill.mesh.empty());
 }
