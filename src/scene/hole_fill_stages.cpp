@@ -9,16 +9,7 @@
 
 namespace hermite {
 
-std::string_view holeFillStageName(HoleFillStage s) {
-  switch (s) {
-    case HoleFillStage::Holes: return "holes";
-    case HoleFillStage::Front: return "front";
-    case HoleFillStage::Fair: return "fair";
-    case HoleFillStage::Fit: return "fit";
-    case HoleFillStage::Project: return "project";
-  }
-  return "project";
-}
+std::string_view holeFillStageName(HoleFillStage s) { return nameIn<HoleFillStage>(kHoleFillStageNames, s); }
 
 const std::vector<std::pair<std::string, std::string>>& holeFillPresets() {
   static const std::vector<std::pair<std::string, std::string>> p{

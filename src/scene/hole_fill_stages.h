@@ -8,10 +8,18 @@
 #include <vector>
 
 #include "core/mesh/hole_fill.h"
+#include "core/base/enum_names.h"
 
 namespace hermite {
 
-std::string_view holeFillStageName(HoleFillStage s);  // holes, front, fair, fit, project
+inline constexpr EnumName<HoleFillStage> kHoleFillStageNames[] = {{"holes", HoleFillStage::Holes},
+                                                                  {"front", HoleFillStage::Front},
+                                                                  {"fair", HoleFillStage::Fair},
+                                                                  {"fit", HoleFillStage::Fit},
+                                                                  {"project", HoleFillStage::Project}};
+std::string_view holeFillStageName(HoleFillStage s);
+inline constexpr EnumName<HoleImplicitKind> kHoleImplicitNames[] = {{"rbf-offset", HoleImplicitKind::RbfOffset},
+                                                                    {"hrbf", HoleImplicitKind::Hrbf}};
 
 struct HoleFillSpec {
   std::string mesh;           // a mesh file as written in the scene ("" = the preset)

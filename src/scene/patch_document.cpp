@@ -6,7 +6,7 @@
 
 namespace hermite {
 
-std::string_view patchFormName(PatchForm f) { return f == PatchForm::Bezier ? "bezier" : "hermite"; }
+std::string_view patchFormName(PatchForm f) { return nameIn<PatchForm>(kPatchFormNames, f); }
 
 bool PatchSpec::operator==(const PatchSpec& o) const {
   if (!(preset == o.preset && splits == o.splits && domain == o.domain && form == o.form && showError == o.showError &&

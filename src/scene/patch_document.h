@@ -18,11 +18,13 @@
 #include <vector>
 
 #include "core/patch/patch_grid.h"
+#include "core/base/enum_names.h"
 
 namespace hermite {
 
 enum class PatchForm { Hermite, Bezier };
-std::string_view patchFormName(PatchForm f);  // hermite, bezier
+inline constexpr EnumName<PatchForm> kPatchFormNames[] = {{"hermite", PatchForm::Hermite}, {"bezier", PatchForm::Bezier}};
+std::string_view patchFormName(PatchForm f);
 
 struct PatchSpec {
   std::string preset = "torus";              // torus | flat | saddle | zero-twist

@@ -17,6 +17,7 @@
 #include "core/rbf/kernels.h"
 #include "core/rbf/polynomial.h"
 #include "core/trace/camera.h"
+#include "core/base/enum_names.h"
 #include "scene/hole_fill_stages.h"
 #include "scene/patch_document.h"
 
@@ -26,10 +27,20 @@ enum class SceneMode { Implicit2d, Implicit3d, Patch, HoleFill };
 enum class FitMethod { Hrbf, RbfOffset };
 enum class TraceMode { Auto, Baked, Exact };
 
-std::string_view sceneModeName(SceneMode m);  // implicit2d, implicit3d, patch, holefill
-std::string_view fitMethodName(FitMethod m);  // hrbf, rbf-offset
-std::string_view projectionName(Projection p);  // perspective, orthographic
-std::string_view traceModeName(TraceMode t);    // auto, baked, exact
+inline constexpr EnumName<SceneMode> kSceneModeNames[] = {{"implicit2d", SceneMode::Implicit2d},
+                                                          {"implicit3d", SceneMode::Implicit3d},
+                                                          {"patch", SceneMode::Patch},
+                                                          {"holefill", SceneMode::HoleFill}};
+inline constexpr EnumName<FitMethod> kFitMethodNames[] = {{"hrbf", FitMethod::Hrbf}, {"rbf-offset", FitMethod::RbfOffset}};
+inline constexpr EnumName<Projection> kProjectionNames[] = {{"perspective", Projection::Perspective},
+                                                            {"orthographic", Projection::Orthographic}};
+inline constexpr EnumName<TraceMode> kTraceModeNames[] = {
+    {"auto", TraceMode::Auto}, {"baked", TraceMode::Baked}, {"exact", TraceMode::Exact}};
+
+std::string_view sceneModeName(SceneMode m);
+std::string_view fitMethodName(FitMethod m);
+std::string_view projectionName(Projection p);
+std::string_view traceModeName(TraceMode t);
 
 struct DataSpec {
   // Exactly one source is set: preset, file, or inline points/normals.
@@ -68,7 +79,9 @@ struct FitSpec {
 // re-solved interpolant (docs/maths.md, Transforms), else the re-solve; update / re-solve force one
 // (the GUI's switch, to compare them live).
 enum class TransformMethod { Auto, Update, Resolve };
-std::string_view transformMethodName(TransformMethod m);  // auto, update, re-solve
+inline constexpr EnumName<TransformMethod> kTransformMethodNames[] = {
+    {"auto", TransformMethod::Auto}, {"update", TransformMethod::Update}, {"re-solve", TransformMethod::Resolve}};
+std::string_view transformMethodName(TransformMethod m);
 
 struct TransformSpec {
   std::vector<double> translate;                     // 3 numbers (3D) or 2 (2D); default zeros

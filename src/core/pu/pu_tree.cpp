@@ -8,12 +8,12 @@
 
 namespace hermite {
 
-std::string_view puBlendName(PuBlend b) { return b == PuBlend::Hard ? "hard" : "smooth"; }
+std::string_view puBlendName(PuBlend b) { return nameIn<PuBlend>(kPuBlendNames, b); }
 
 PuBlend parsePuBlend(std::string_view s) {
-  if (s == "smooth") return PuBlend::Smooth;
-  if (s == "hard") return PuBlend::Hard;
-  throw InputError("unknown blend '" + std::string(s) + "' (expected smooth or hard)");
+  if (const auto value = valueIn<PuBlend>(kPuBlendNames, s)) return *value;
+  throw InputError("unknown blend '" + std::string(s) + "' (expected " + std::string(kPuBlendNames[0].name) + " or " +
+                   std::string(kPuBlendNames[1].name) + ")");
 }
 
 

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/base/enum_names.h"
 #include "core/base/geometry.h"
 
 namespace hermite {
@@ -18,7 +19,8 @@ enum class PuBlend {
   Hard,    // each point takes its own box's fit: a teaching demo of the seams box division leaves
 };
 
-std::string_view puBlendName(PuBlend b);   // smooth, hard
+inline constexpr EnumName<PuBlend> kPuBlendNames[] = {{"smooth", PuBlend::Smooth}, {"hard", PuBlend::Hard}};
+std::string_view puBlendName(PuBlend b);
 PuBlend parsePuBlend(std::string_view s);  // throws InputError
 
 

@@ -197,23 +197,12 @@ bool allFinite(const Eigen::MatrixXd& M) { return M.allFinite(); }
 
 }  // namespace
 
-std::string_view solverName(SolverChoice s) {
-  switch (s) {
-    case SolverChoice::Auto: return "auto";
-    case SolverChoice::Cholesky: return "cholesky";
-    case SolverChoice::NullspaceCholesky: return "nullspace-cholesky";
-    case SolverChoice::Ldlt: return "ldlt";
-    case SolverChoice::Lu: return "lu";
-  }
-  return "?";
-}
+std::string_view solverName(SolverChoice s) { return nameIn<SolverChoice>(kSolverChoiceNames, s); }
 
 SolverChoice parseSolverChoice(std::string_view name) {
-  for (SolverChoice s : {SolverChoice::Auto, SolverChoice::Cholesky, SolverChoice::NullspaceCholesky,
-                         SolverChoice::Ldlt, SolverChoice::Lu})
-    if (solverName(s) == name) return s;
-  throw InputError("unknown solver '" + std::string(name) +
-                   "', expected one of: auto, cholesky, nullspace-cholesky, ldlt, lu");
+  if (const auto value = valueIn<SolverChoice>(kSolverChoiceNames, name)) return *value;
+  throw InputError("unknown solver '" + std::string(name) + "', expected one of: " +
+                   namesIn<SolverChoice>(kSolverChoiceNames));
 }
 
 SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {

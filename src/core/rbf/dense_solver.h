@@ -21,11 +21,18 @@
 
 #include <Eigen/Core>
 
+#include "core/base/enum_names.h"
+
 namespace hermite {
 
 enum class SolverChoice { Auto, Cholesky, NullspaceCholesky, Ldlt, Lu };
+inline constexpr EnumName<SolverChoice> kSolverChoiceNames[] = {{"auto", SolverChoice::Auto},
+                                                                {"cholesky", SolverChoice::Cholesky},
+                                                                {"nullspace-cholesky", SolverChoice::NullspaceCholesky},
+                                                                {"ldlt", SolverChoice::Ldlt},
+                                                                {"lu", SolverChoice::Lu}};
 
-std::string_view solverName(SolverChoice s);  // auto, cholesky, nullspace-cholesky, ldlt, lu
+std::string_view solverName(SolverChoice s);
 SolverChoice parseSolverChoice(std::string_view name);  // throws InputError
 
 struct SaddleSystem {

@@ -6,20 +6,12 @@
 
 namespace hermite {
 
-std::string_view polynomialName(Polynomial p) {
-  switch (p) {
-    case Polynomial::None: return "none";
-    case Polynomial::Linear: return "linear";
-    case Polynomial::Quadratic: return "quadratic";
-  }
-  return "?";
-}
+std::string_view polynomialName(Polynomial p) { return nameIn<Polynomial>(kPolynomialNames, p); }
 
 Polynomial parsePolynomial(std::string_view name) {
-  if (name == "none") return Polynomial::None;
-  if (name == "linear") return Polynomial::Linear;
-  if (name == "quadratic") return Polynomial::Quadratic;
-  throw InputError("unknown polynomial '" + std::string(name) + "', expected one of: none, linear, quadratic");
+  if (const auto value = valueIn<Polynomial>(kPolynomialNames, name)) return *value;
+  throw InputError("unknown polynomial '" + std::string(name) + "', expected one of: " +
+                   namesIn<Polynomial>(kPolynomialNames));
 }
 
 int polynomialDegree(Polynomial p) {

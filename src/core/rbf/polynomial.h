@@ -5,11 +5,14 @@
 
 #include <string_view>
 
+#include "core/base/enum_names.h"
 #include "core/base/geometry.h"
 
 namespace hermite {
 
 enum class Polynomial { None, Linear, Quadratic };
+inline constexpr EnumName<Polynomial> kPolynomialNames[] = {
+    {"none", Polynomial::None}, {"linear", Polynomial::Linear}, {"quadratic", Polynomial::Quadratic}};
 
 std::string_view polynomialName(Polynomial p);
 // Throws InputError listing none, linear, quadratic.

@@ -1,0 +1,47 @@
+// The keys of `fit` and `fit.partition` (docs/scene-format.md).
+
+#include <climits>
+
+#include "scene/scene_file.h"
+#include "scene/scene_keys.h"
+
+namespace hermite {
+
+namespace {
+
+using json = nlohmann::json;
+using Reader = SceneReader;
+
+constexpr SceneKey<PartitionSpec> kPartitionKeys[] = {
+    valueKey<PartitionSpec, &PartitionSpec::enabled, &Reader::boolean>("enabled"),
+    integerKey<PartitionSpec, &PartitionSpec::maxPointsPerBox, 1, INT_MAX>("max_points_per_box"),
+    valueKey<PartitionSpec, &PartitionSpec::boxSize, &Reader::nonNegative>("box_size"),
+    {"overlap",
+     [](const Reader& r, const json& x, const std::string& p, PartitionSpec& s, int) {
+       s.overlap = r.number(x, p);
+       if (!(s.overlap >= 1)) r.fail(p, "must be >= 1 (got " + describeJson(x) + ")");
+     },
+     [](const PartitionSpec& s, int) -> Written { return s.overlap; }},
+    namedKey<PartitionSpec, &PartitionSpec::blend, parsePuBlend, puBlendName>("blend"),
+};
+
+constexpr SceneKey<FitSpec> kFitKeys[] = {
+    enumKey<FitSpec, &FitSpec::method, kFitMethodNames>("method"),
+    namedKey<FitSpec, &FitSpec::kernel, parseKernelType, kernelName>("kernel"),
+    valueKey<FitSpec, &FitSpec::radius, &Reader::positive>("radius"),
+    namedKey<FitSpec, &FitSpec::polynomial, parsePolynomial, polynomialName>("polynomial"),
+    valueKey<FitSpec, &FitSpec::smoothing, &Reader::nonNegative>("smoothing"),
+    valueKey<FitSpec, &FitSpec::shift, &Reader::positive>("shift"),
+    namedKey<FitSpec, &FitSpec::solver, parseSolverChoice, solverName>("solver"),
+    {"partition",
+     [](const Reader& r, const json& x, const std::string& p, FitSpec& f, int dim) {
+       f.partition = readObject<PartitionSpec>(r, x, p, kPartitionKeys, dim);
+     },
+     [](const FitSpec& f, int dim) -> Written { return writeObject<PartitionSpec>(f.partition, kPartitionKeys, dim); }},
+};
+
+}  // namespace
+
+std::span<const SceneKey<FitSpec>> fitKeys() { return kFitKeys; }
+
+}  // namespace hermite
