@@ -79,19 +79,24 @@ bool chooseUpdate(const Scene& scene, SceneFit<Dim>& out) {
   return update;
 }
 
+template <int Dim>
+const ImplicitField<Dim>& fieldOf(const FittedModel<Dim>& m) {
+  return std::visit([](const auto& p) -> const ImplicitField<Dim>& { return *p; }, m);
+}
+
 // The model a similarity transform keeps: `updated`, or the re-solve that `resolve` makes where
 // chooseUpdate says so; with transform.verify the re-solve runs either way and the two are
 // compared on probes around the moved samples.
-template <int Dim, class Model, class Resolve>
-std::unique_ptr<Model> keptModel(const Scene& scene, std::unique_ptr<Model> updated, const Points<Dim>& moved,
-                                 SceneFit<Dim>& out, Resolve resolve) {
+template <int Dim, class Resolve>
+FittedModel<Dim> keptModel(const Scene& scene, FittedModel<Dim> updated, const Points<Dim>& moved, SceneFit<Dim>& out,
+                           Resolve resolve) {
   const bool update = chooseUpdate(scene, out);
   if (update && !scene.transform.verify) return updated;
   const auto t0 = std::chrono::steady_clock::now();
-  std::unique_ptr<Model> resolved = resolve();
+  FittedModel<Dim> resolved = resolve();
   if (scene.transform.verify) {
     out.transform.resolveMs = msSince(t0);
-    compareOnProbes<Dim>(*updated, *resolved, moved, out.transform);
+    compareOnProbes<Dim>(fieldOf<Dim>(updated), fieldOf<Dim>(resolved), moved, out.transform);
   }
   return update ? std::move(updated) : std::move(resolved);
 }
@@ -135,7 +140,7 @@ void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
   const Mat<Dim> A = M * (S.q * S.R);
   TransformReport& tr = out.transform;
   auto t0 = std::chrono::steady_clock::now();
-  const ImplicitField<Dim>& inner = out.pu ? static_cast<const ImplicitField<Dim>&>(*out.pu) : *out.model;
+  const ImplicitField<Dim>& inner = out.modelField();
   // Non-owning: the wrapped model lives in `out` beside the composition (moves keep it in place).
   auto composed = std::make_unique<AffineComposedField<Dim>>(
       std::shared_ptr<const ImplicitField<Dim>>(&inner, [](const ImplicitField<Dim>*) {}), A, S.t);
@@ -155,12 +160,34 @@ void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
 }
 
 
-// The partition-of-unity path of fitScene: samples are loaded; fits, transforms, reports.
+// The coefficient update of each model kind under a similarity (transform.h, pu_model.h).
+template <int Dim>
+FittedModel<Dim> updatedModel(const HrbfModel<Dim>& m, const Similarity<Dim>& T) {
+  return std::make_unique<HrbfModel<Dim>>(transformModel<Dim>(m, T));
+}
+template <int Dim>
+FittedModel<Dim> updatedModel(const RbfOffsetModel<Dim>& m, const Similarity<Dim>& T) {
+  return std::make_unique<RbfOffsetModel<Dim>>(transformModel<Dim>(m, T));
+}
+template <int Dim>
+FittedModel<Dim> updatedModel(const PuModel<Dim>& m, const Similarity<Dim>& T) {
+  return std::make_unique<PuModel<Dim>>(transformPu<Dim>(m, T));
+}
+
+// The global model of fit.method on `s`, with radius and shift scaled by `scale`.
+template <int Dim>
+FittedModel<Dim> fitGlobal(const FitSpec& f, const HermiteSamples<Dim>& s, double scale, FitReport* rep) {
+  const Kernel kernel{f.kernel, f.radius * scale};
+  if (f.method == FitMethod::Hrbf)
+    return std::make_unique<HrbfModel<Dim>>(fitHrbf<Dim>(s, {kernel, f.polynomial, f.smoothing, f.solver}, rep));
+  return std::make_unique<RbfOffsetModel<Dim>>(
+      fitRbfOffset<Dim>(s, {kernel, f.polynomial, f.smoothing, f.shift * scale, f.solver}, rep));
+}
+
+// The partition-of-unity fit of `out.samples` and its report in the scene's FitReport terms.
 template <int Dim>
 void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
-  const FitSpec& f = scene.fit;
-  const PuOptions options = scenePuOptions(f);
-  out.pu = std::make_unique<PuModel<Dim>>(fitPu<Dim>(out.samples, options, &out.puReport));
+  out.model = std::make_unique<PuModel<Dim>>(fitPu<Dim>(out.samples, scenePuOptions(scene.fit), &out.puReport));
   const PuReport& pr = out.puReport;
   out.report.nSamples = out.samples.size();
   out.report.nUnknowns = pr.unknowns;
@@ -170,26 +197,30 @@ void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
   out.report.assemblyMs = pr.treeMs;  // the tree; the local fits are all "solve"
   out.report.solveMs = pr.fitMs - pr.treeMs;
   out.report.warnings = pr.warnings;
-  out.warnings.insert(out.warnings.end(), pr.warnings.begin(), pr.warnings.end());
-  if (scene.transform.isIdentity()) {
-    out.data = out.samples;
-    return;
-  }
-  if (!scene.transform.matrixIsIdentity()) {
-    composeAffine(scene, out);
-    return;
-  }
+}
+
+// The re-solve on the data moved by T: a global fit with radius and shift scaled by q, or the
+// PU construction with its tree built in the frame T (so only the local solves differ).
+template <int Dim>
+FittedModel<Dim> resolvedModel(const Scene& scene, const SceneFit<Dim>& out, const HermiteSamples<Dim>& moved,
+                               const Similarity<Dim>& T) {
+  if (const PuModel<Dim>* pu = out.pu())
+    return std::make_unique<PuModel<Dim>>(
+        fitPu<Dim>(moved, scenePuOptions(scene.fit), nullptr, composeSimilarity<Dim>(T, pu->frame())));
+  FitReport rep;
+  return fitGlobal<Dim>(scene.fit, moved, T.q, &rep);
+}
+
+// A similarity `transform`: the coefficient update or the re-solve (keptModel).
+template <int Dim>
+void transformBySimilarity(const Scene& scene, SceneFit<Dim>& out) {
   const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
-  TransformReport& tr = out.transform;
-  auto t0 = std::chrono::steady_clock::now();
-  auto updated = std::make_unique<PuModel<Dim>>(transformPu<Dim>(*out.pu, T));
-  tr.updateMs = msSince(t0);
+  const auto t0 = std::chrono::steady_clock::now();
+  FittedModel<Dim> updated = std::visit([&](const auto& m) { return updatedModel<Dim>(*m, T); }, out.model);
+  out.transform.updateMs = msSince(t0);
   const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
-  // The re-solve keeps the tree too (built in the frame T), so both are the same PU construction
-  // on the transformed data; only the local solves differ.
-  out.pu = keptModel<Dim>(scene, std::move(updated), moved.points, out, [&] {
-    return std::make_unique<PuModel<Dim>>(fitPu<Dim>(moved, options, nullptr, composeSimilarity<Dim>(T, out.pu->frame())));
-  });
+  out.model = keptModel<Dim>(scene, std::move(updated), moved.points, out,
+                             [&] { return resolvedModel<Dim>(scene, out, moved, T); });
   out.transformed = true;
   out.data = moved;
 }
@@ -263,44 +294,17 @@ SceneFit<Dim> fitScene(const Scene& scene) {
                      std::string(fitMethodName(scene.fit.method)) + "')");
   SceneFit<Dim> out;
   out.samples = sceneSamples<Dim>(scene, out.warnings);
-  const FitSpec& f = scene.fit;
-  if (f.partition.enabled) {
+  if (scene.fit.partition.enabled)
     fitScenePu(scene, out);
-    return out;
-  }
-  auto fitOn = [&](const HermiteSamples<Dim>& s, double scale, FitReport* rep) -> std::unique_ptr<RadialSum<Dim>> {
-    const Kernel kernel{f.kernel, f.radius * scale};
-    if (f.method == FitMethod::Hrbf)
-      return std::make_unique<HrbfModel<Dim>>(fitHrbf<Dim>(s, {kernel, f.polynomial, f.smoothing, f.solver}, rep));
-    return std::make_unique<RbfOffsetModel<Dim>>(
-        fitRbfOffset<Dim>(s, {kernel, f.polynomial, f.smoothing, f.shift * scale, f.solver}, rep));
-  };
-  out.model = fitOn(out.samples, 1.0, &out.report);
+  else
+    out.model = fitGlobal<Dim>(scene.fit, out.samples, 1.0, &out.report);
   out.warnings.insert(out.warnings.end(), out.report.warnings.begin(), out.report.warnings.end());
-  if (!scene.transform.isIdentity() && !scene.transform.matrixIsIdentity()) {
-    composeAffine(scene, out);
-  } else if (!scene.transform.isIdentity()) {
-    const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
-    TransformReport& tr = out.transform;
-    auto t0 = std::chrono::steady_clock::now();
-    std::unique_ptr<RadialSum<Dim>> updated;
-    // fitOn made the model of fit.method.
-    if (f.method == FitMethod::Hrbf)
-      updated = std::make_unique<HrbfModel<Dim>>(transformModel<Dim>(static_cast<const HrbfModel<Dim>&>(*out.model), T));
-    else
-      updated = std::make_unique<RbfOffsetModel<Dim>>(
-          transformModel<Dim>(static_cast<const RbfOffsetModel<Dim>&>(*out.model), T));
-    tr.updateMs = msSince(t0);
-    const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
-    out.model = keptModel<Dim>(scene, std::move(updated), moved.points, out, [&] {
-      FitReport rep;
-      return fitOn(moved, T.q, &rep);
-    });
-    out.transformed = true;
-    out.data = moved;
-  } else {
+  if (scene.transform.isIdentity())
     out.data = out.samples;
-  }
+  else if (!scene.transform.matrixIsIdentity())
+    composeAffine(scene, out);
+  else
+    transformBySimilarity(scene, out);
   return out;
 }
 

@@ -9,6 +9,7 @@
 
 #include <memory>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/base/affine_field.h"
@@ -41,26 +42,43 @@ struct TransformReport {
   std::string method;      // "coefficient-update" or "re-solve"
 };
 
-template <int Dim>
-struct SceneFit {
-  HermiteSamples<Dim> samples;             // the scene's data, before the transform
-  HermiteSamples<Dim> data;                // what the model interpolates: samples, transformed if asked
-  std::unique_ptr<RadialSum<Dim>> model;   // the fitted (and transformed) global field; null for PU
-  std::unique_ptr<PuModel<Dim>> pu;        // the partition-of-unity field when fit.partition.enabled
+// What a fitted scene says regardless of its dimension: reports, warnings and the transform.
+struct SceneFitReport {
   PuReport puReport;                       // of the PU fit on the untransformed data
   FitReport report;                        // of the fit on the untransformed data
   std::vector<std::string> warnings;       // data + fit warnings, in order
   bool transformed = false;
   TransformReport transform;
+};
+
+// The fitted model: one global interpolant of fit.method, or a partition of unity
+// (fit.partition.enabled). Held on the heap so that compositions wrapping it survive moves.
+template <int Dim>
+using FittedModel =
+    std::variant<std::unique_ptr<HrbfModel<Dim>>, std::unique_ptr<RbfOffsetModel<Dim>>, std::unique_ptr<PuModel<Dim>>>;
+
+template <int Dim>
+struct SceneFit : SceneFitReport {
+  static constexpr int kDim = Dim;
+  HermiteSamples<Dim> samples;  // the scene's data, before the transform
+  HermiteSamples<Dim> data;     // what the model interpolates: samples, transformed if asked
+  FittedModel<Dim> model;       // the fitted (and, by a similarity, transformed) model
+  // transform.matrix outside the similarities: the exact composition f(T⁻¹x) of `model`.
+  std::unique_ptr<ImplicitField<Dim>> composed;
 
   // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
-  // transform.matrix outside the similarities: the exact composition f(T⁻¹x) of the fitted field
-  // (model or pu stay the untransformed fit it wraps).
-  std::unique_ptr<ImplicitField<Dim>> composed;
   const ImplicitField<Dim>& field() const {
     if (composed) return *composed;
-    if (pu) return *pu;
-    return *model;
+    return modelField();
+  }
+  // The model without the composition.
+  const ImplicitField<Dim>& modelField() const {
+    return std::visit([](const auto& m) -> const ImplicitField<Dim>& { return *m; }, model);
+  }
+  // The partition of unity, or null for a global fit.
+  const PuModel<Dim>* pu() const {
+    const auto* p = std::get_if<std::unique_ptr<PuModel<Dim>>>(&model);
+    return p ? p->get() : nullptr;
   }
 };
 

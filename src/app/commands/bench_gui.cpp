@@ -82,7 +82,7 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
     latency.push_back(msSince(t0));
     withWait.push_back(msSince(moved));
     frames.push_back(count);
-    fit.push_back(app.shownFit()->fit2 ? app.shownFit()->fit2->report.fitMs : app.shownFit()->fit3->report.fitMs);
+    fit.push_back(app.shownFit()->implicitFit()->report.fitMs);
     view.push_back(app.viewResult().ms);
   }
   in.mouseDown[0] = false;

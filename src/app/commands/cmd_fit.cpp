@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <type_traits>
 
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
@@ -92,6 +93,19 @@ json puModelJson(const Scene& scene, const PuModel<Dim>& pu) {
   return out;
 }
 
+// The coefficients of either model kind (docs/cli.md, fit --coefficients).
+template <int Dim>
+json fittedModelJson(const Scene& scene, const FittedModel<Dim>& model) {
+  return std::visit(
+      [&](const auto& m) -> json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(*m)>, PuModel<Dim>>)
+          return puModelJson<Dim>(scene, *m);
+        else
+          return modelJson<Dim>(scene, *m);
+      },
+      model);
+}
+
 template <int Dim>
 json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficients) {
   const FitResiduals r = fitResiduals(fit);
@@ -106,12 +120,12 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["assembly_ms"] = fit.report.assemblyMs;
   out["solve_ms"] = fit.report.solveMs;
   out["warnings"] = fit.warnings;
-  if (fit.pu) {
+  if (const PuModel<Dim>* pu = fit.pu()) {
     out["partition"] = {{"boxes", fit.puReport.boxes},
                         {"max_box_samples", fit.puReport.maxBoxSamples},
                         {"max_support_samples", fit.puReport.maxSupportSamples},
                         {"grown_supports", fit.puReport.grownSupports},
-                        {"blend", std::string(puBlendName(fit.pu->options().blend))}};
+                        {"blend", std::string(puBlendName(pu->options().blend))}};
   } else {
     out["partition"] = nullptr;
   }
@@ -133,7 +147,7 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
   out["smoothing"] = scene.fit.smoothing;
   out["mean_spacing"] = meanSampleSpacing<Dim>(fit.samples.points);
-  if (coefficients) out["model"] = fit.pu ? puModelJson<Dim>(scene, *fit.pu) : modelJson<Dim>(scene, *fit.model);
+  if (coefficients) out["model"] = fittedModelJson<Dim>(scene, fit.model);
   return out;
 }
 
@@ -206,8 +220,9 @@ int runFit(const FitArgs& args) {
 }
 
 std::string fittedModelJson(const FitOutcome& fit) {
-  if (fit.fit2) return fitReportJson<2>(fit.scene, *fit.fit2, true)["model"].dump(2);
-  if (fit.fit3) return fitReportJson<3>(fit.scene, *fit.fit3, true)["model"].dump(2);
+  std::string model;
+  if (fit.visitImplicit([&](const auto& f) { model = fitReportJson(fit.scene, f, true)["model"].dump(2); }))
+    return model;
   throw InputError("no fitted model to export: " + fit.error);
 }
 

@@ -89,9 +89,9 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
   options.resolution = resolution;
   MarchingReport report;
   char line[512];
-  if (fit.fit3) {
-    const Box<3> bounds = viewBounds<3>(scene.view, fit.fit3->data.points);
-    const TriMesh mesh = marchingCubes(fit.fit3->field(), bounds, options, &report);
+  if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) {
+    const Box<3> bounds = viewBounds<3>(scene.view, f3->data.points);
+    const TriMesh mesh = marchingCubes(f3->field(), bounds, options, &report);
     saveMesh(output, mesh);
     const MeshCheck c = checkMesh(mesh);
     std::snprintf(line, sizeof line,
@@ -100,9 +100,9 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
                   mesh.vertexCount(), mesh.triangleCount(),
                   c.closedManifold() ? "closed manifold" : "open (the surface leaves view.bounds)", c.eulerCharacteristic,
                   cellsText(report, 3).c_str(), report.maxAbsF, report.totalMs, report.evaluateMs);
-  } else if (fit.fit2) {
-    const Box<2> bounds = viewBounds<2>(scene.view, fit.fit2->data.points);
-    const std::vector<Polyline2d> lines = marchingSquares(fit.fit2->field(), bounds, options, &report);
+  } else if (const SceneFit<2>* f2 = fit.as<SceneFit<2>>()) {
+    const Box<2> bounds = viewBounds<2>(scene.view, f2->data.points);
+    const std::vector<Polyline2d> lines = marchingSquares(f2->field(), bounds, options, &report);
     writeFileAtomically(output, ext == "svg" ? polylinesSvg(lines, bounds) : polylinesObj(lines));
     int closed = 0;
     Eigen::Index points = 0;

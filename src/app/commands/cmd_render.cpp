@@ -121,7 +121,7 @@ void blitImage(const ImageRgba8& image) {
 // 2D views get their colour legend.
 ImageRgba8 renderView(const Scene& scene, const RenderArgs& args) {
   const std::shared_ptr<const FitOutcome> fit = fitOutcomeOrThrow(scene);
-  if (scene.view.trace == TraceMode::Exact && fit->fit3 && fit->fit3->pu)
+  if (scene.view.trace == TraceMode::Exact && fit->as<SceneFit<3>>() && fit->as<SceneFit<3>>()->pu())
     // The exact shader sums one RadialSum; a partition-of-unity field is drawn from its bake.
     std::fprintf(stderr, "warning: view.trace 'exact' needs a global fit; the partition-of-unity field is traced baked\n");
   const int w = scene.view.size[0], h = scene.view.size[1];

@@ -67,9 +67,11 @@ int runSweep(const SweepArgs& args) {
     RadiusSweepRow row;
     std::string image;
     if (fit->ok()) {
-      if (spacing < 0)
-        spacing = fit->fit2 ? meanSampleSpacing<2>(fit->fit2->samples.points) : meanSampleSpacing<3>(fit->fit3->samples.points);
-      row = fit->fit2 ? radiusSweepRow<2>(s, *fit->fit2, spacing) : radiusSweepRow<3>(s, *fit->fit3, spacing);
+      fit->visitImplicit([&](const auto& f) {
+        constexpr int D = std::decay_t<decltype(f)>::kDim;
+        if (spacing < 0) spacing = meanSampleSpacing<D>(f.samples.points);
+        row = radiusSweepRow<D>(s, f, spacing);
+      });
       image = imageName(int(k), radii[k]);
       const SceneViewResult view = renderer.render(fit, s, w, h, ViewQuality::Settled);
       writePng((dir / image).string(), view.image);

@@ -88,19 +88,16 @@ std::shared_ptr<const FitOutcome> DragRefit::fitDim(const Scene& scene) {
       last->drag = std::make_unique<HrbfBorderedRefit<Dim>>(last->samples, hrbfOptions(scene.fit), moved);
       ++factorisations_;
     }
-    auto fitted = std::make_unique<SceneFit<Dim>>();
-    fitted->model = std::make_unique<HrbfModel<Dim>>(
-        last->drag->fit(samples.points.col(moved), samples.normals.col(moved), &fitted->report));
-    fitted->samples = samples;
-    fitted->data = samples;
-    fitted->warnings = dataWarnings;
-    fitted->warnings.insert(fitted->warnings.end(), fitted->report.warnings.begin(), fitted->report.warnings.end());
+    SceneFit<Dim> fitted;
+    fitted.model = std::make_unique<HrbfModel<Dim>>(
+        last->drag->fit(samples.points.col(moved), samples.normals.col(moved), &fitted.report));
+    fitted.samples = samples;
+    fitted.data = samples;
+    fitted.warnings = dataWarnings;
+    fitted.warnings.insert(fitted.warnings.end(), fitted.report.warnings.begin(), fitted.report.warnings.end());
     auto out = std::make_shared<FitOutcome>();
     out->scene = scene;
-    if constexpr (Dim == 2)
-      out->fit2 = std::move(fitted);
-    else
-      out->fit3 = std::move(fitted);
+    out->result = std::move(fitted);
     out->wallMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     last->samples = std::move(samples);
     ++borderedFits_;

@@ -47,7 +47,7 @@ void RadiusExplorer::start(const Scene& scene, std::vector<double> radii) {
       ExplorerEntry e;
       auto fit = fitOutcome(s);
       if (fit->ok()) {
-        e.row = fit->fit2 ? radiusSweepRow<2>(s, *fit->fit2, spacing) : radiusSweepRow<3>(s, *fit->fit3, spacing);
+        fit->visitImplicit([&](const auto& f) { e.row = radiusSweepRow(s, f, spacing); });
         e.fit = std::move(fit);
       } else {
         e.row.radius = radii[k];

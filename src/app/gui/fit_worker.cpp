@@ -28,13 +28,13 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene) {
   out->scene = scene;
   const auto t0 = std::chrono::steady_clock::now();
   if (scene.mode == SceneMode::Implicit2d)
-    out->fit2 = std::make_unique<SceneFit<2>>(fitScene<2>(scene));
+    out->result = fitScene<2>(scene);
   else if (scene.mode == SceneMode::Implicit3d)
-    out->fit3 = std::make_unique<SceneFit<3>>(fitScene<3>(scene));
+    out->result = fitScene<3>(scene);
   else if (scene.mode == SceneMode::Patch)
-    out->patch = std::make_unique<PatchDisplay>(buildPatchDisplay(scene.patch));
+    out->result = buildPatchDisplay(scene.patch);
   else
-    out->holefill = std::make_unique<HoleFillStages>(runHoleFillStages(scene.holefill));
+    out->result = runHoleFillStages(scene.holefill);
   out->wallMs = msSince(t0);
   return out;
 }
@@ -53,9 +53,22 @@ std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene) {
   }
 }
 
+const SceneFitReport* FitOutcome::implicitFit() const {
+  const SceneFitReport* r = nullptr;
+  visitImplicit([&](const auto& f) { r = &f; });
+  return r;
+}
+
+int FitOutcome::dataCount() const {
+  int n = 0;
+  visitImplicit([&](const auto& f) { n = f.data.size(); });
+  return n;
+}
+
 const std::vector<std::string>& FitOutcome::warnings() const {
   static const std::vector<std::string> none;
-  return fit2 ? fit2->warnings : fit3 ? fit3->warnings : none;
+  const SceneFitReport* r = implicitFit();
+  return r ? r->warnings : none;
 }
 
 FitWorker::FitWorker() : dragRefit_(std::make_unique<DragRefit>()), thread_([this] { loop(); }) {}

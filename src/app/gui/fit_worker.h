@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 
 #include "scene/hole_fill_stages.h"
 #include "scene/patch_display.h"
@@ -27,20 +28,33 @@ namespace hermite::app {
 
 class DragRefit;
 
-// A finished fit of one scene: either a model (2D or 3D by the scene's mode) or the error that
-// stopped it (with its exit-code class, for the status bar).
+// What fitting one scene gives, by its mode: an implicit fit (2D or 3D), the patch display or
+// the hole-filling stages; monostate when the fit failed.
+using FitResult = std::variant<std::monostate, SceneFit<2>, SceneFit<3>, PatchDisplay, HoleFillStages>;
+
+// A finished fit of one scene: its result or the error that stopped it (with its exit-code
+// class, for the status bar).
 struct FitOutcome {
   Scene scene;  // as fitted
-  std::unique_ptr<SceneFit<2>> fit2;
-  std::unique_ptr<SceneFit<3>> fit3;
-  std::unique_ptr<PatchDisplay> patch;  // mode "patch": the grid, its tessellation and error
-  std::unique_ptr<HoleFillStages> holefill;  // mode "holefill": the pipeline up to the stage shown
-  std::string error;  // non-empty: no model
+  FitResult result;
+  std::string error;  // non-empty: no result
   double wallMs = 0;  // whole fitScene call, incl. the transform re-solve check
 
   bool ok() const { return error.empty(); }
-  const ImplicitField<2>* field2() const { return fit2 ? &fit2->field() : nullptr; }
-  const ImplicitField<3>* field3() const { return fit3 ? &fit3->field() : nullptr; }
+  // The result when it is a T, else null.
+  template <class T>
+  const T* as() const { return std::get_if<T>(&result); }
+  // The dimension-free part of an implicit fit (reports, warnings, transform), or null.
+  const SceneFitReport* implicitFit() const;
+  // Calls fn(const SceneFit<Dim>&) for an implicit fit of either dimension; false otherwise.
+  template <class Fn>
+  bool visitImplicit(Fn&& fn) const {
+    if (const auto* f = as<SceneFit<2>>()) return fn(*f), true;
+    if (const auto* f = as<SceneFit<3>>()) return fn(*f), true;
+    return false;
+  }
+  // Samples the implicit fit interpolates (SceneFit::data), 0 for other results.
+  int dataCount() const;
   const std::vector<std::string>& warnings() const;  // the fit's warnings (empty on error)
 };
 

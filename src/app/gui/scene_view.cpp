@@ -42,72 +42,16 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
   SceneViewResult out;
   out.width = width;
   out.height = height;
-  const ViewSpec& v = viewScene.view;
-
-  if (fit->fit2) {
-    const SceneFit<2>& f = *fit->fit2;
-    if (!view2d_) view2d_ = std::make_unique<render::Field2dView>();
-    render::Field2dViewOptions o;
-    o.showPoints = v.showPoints;
-    o.showNormals = v.showNormals;
-    o.bounds = viewBounds<2>(v, f.data.points);
-    o.outsideColor = v.background;
-    // While dragging: f and ∇f every 6 px, bilinear between, so a drag frame fits in one 60 Hz
-    // frame (tests/render/test_field2d_view.cpp keeps the zero curve within a pixel at 1/8).
-    o.gridScale = quality == ViewQuality::Interactive ? 1.0 / 6 : 1.0;
-    o.style.range = colourRange;
-    const View2d view = sceneView2d(viewScene, width, height);
-    view2d_->setField(f.field(), view, o, f.data.points, f.data.normals);
-    if (keepOnGpu) {
-      if (!target2d_ || target2d_->width() != width || target2d_->height() != height)
-        target2d_ = std::make_unique<render::OffscreenTarget>(width, height, false);
-      target2d_->bind();
-      view2d_->draw();
-      glBindFramebuffer(GL_FRAMEBUFFER, 0);
-      out.gpuImage = &target2d_->framebuffer().color();
-    } else {
-      render::OffscreenTarget target(width, height, false);
-      target.bind();
-      view2d_->draw();
-      out.image = target.read();
-    }
-    out.colourRange = view2d_->range();
-    out.isoSpacing = view2d_->isoSpacing();
+  if (const auto* f2 = fit->as<SceneFit<2>>()) {
+    renderField2d(fit, *f2, viewScene, quality, keepOnGpu, out);
+  } else if (const auto* f3 = fit->as<SceneFit<3>>()) {
+    renderField3d(fit, *f3, viewScene, quality, out);
+  } else if (const auto* patch = fit->as<PatchDisplay>()) {
+    out.image = renderPatch(*patch, viewScene, width, height);
+    out.traceMode = "rasterised";
     field_ = fit;
-  } else if (fit->fit3) {
-    const SceneFit<3>& f = *fit->fit3;
-    if (!tracer_) tracer_ = std::make_unique<render::ImplicitTracer>();
-    const Box<3> bounds = viewBounds<3>(v, f.data.points);
-    const int resolution = quality == ViewQuality::Interactive ? 64 : 128;
-    const std::vector<double> boundsKey{bounds.lo.x(), bounds.lo.y(), bounds.lo.z(),
-                                        bounds.hi.x(), bounds.hi.y(), bounds.hi.z()};
-    if (field_ != fit || bakeResolution_ != resolution || bakedBounds_ != boundsKey) {
-      render::TracerUploadOptions uo;
-      uo.bakeResolution = resolution;
-      tracer_->upload(f.field(), bounds, &f.data, uo);
-      field_ = fit;
-      bakeResolution_ = resolution;
-      bakedBounds_ = boundsKey;
-    }
-    render::TraceSettings s;
-    const bool exact = v.trace == TraceMode::Exact && tracer_->hasExactModel();
-    s.mode = exact ? render::TracerMode::Exact : render::TracerMode::Baked;
-    s.refineExact = quality == ViewQuality::Settled;
-    s.showPoints = v.showPoints;
-    s.showNormals = v.showNormals;
-    s.showBounds = v.showBounds;
-    s.slice.enabled = v.slice.enabled;
-    s.slice.normal = v.slice.normal;
-    s.slice.offset = v.slice.offset;
-    s.background = v.background;
-    render::TraceResult r = tracer_->render(sceneCamera(viewScene, width, height), s);
-    out.image = std::move(r.image);
-    out.depth = std::move(r.depth);
-    out.refinedPixels = r.refinedPixels;
-    out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
-  } else if (fit->patch || fit->holefill) {
-    out.image = fit->patch ? renderPatch(*fit->patch, viewScene, width, height)
-                           : renderHoleFill(*fit->holefill, viewScene, width, height);
+  } else if (const auto* holefill = fit->as<HoleFillStages>()) {
+    out.image = renderHoleFill(*holefill, viewScene, width, height);
     out.traceMode = "rasterised";
     field_ = fit;
   } else {
@@ -115,6 +59,79 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
   }
   out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
+}
+
+// The heat map, iso-lines, samples and normals of a 2D field, read back or kept on the GPU.
+void SceneViewRenderer::renderField2d(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<2>& f,
+                                      const Scene& viewScene, ViewQuality quality, bool keepOnGpu,
+                                      SceneViewResult& out) {
+  const ViewSpec& v = viewScene.view;
+  const int width = out.width, height = out.height;
+  if (!view2d_) view2d_ = std::make_unique<render::Field2dView>();
+  render::Field2dViewOptions o;
+  o.showPoints = v.showPoints;
+  o.showNormals = v.showNormals;
+  o.bounds = viewBounds<2>(v, f.data.points);
+  o.outsideColor = v.background;
+  // While dragging: f and ∇f every 6 px, bilinear between, so a drag frame fits in one 60 Hz
+  // frame (tests/render/test_field2d_view.cpp keeps the zero curve within a pixel at 1/8).
+  o.gridScale = quality == ViewQuality::Interactive ? 1.0 / 6 : 1.0;
+  o.style.range = colourRange;
+  const View2d view = sceneView2d(viewScene, width, height);
+  view2d_->setField(f.field(), view, o, f.data.points, f.data.normals);
+  if (keepOnGpu) {
+    if (!target2d_ || target2d_->width() != width || target2d_->height() != height)
+      target2d_ = std::make_unique<render::OffscreenTarget>(width, height, false);
+    target2d_->bind();
+    view2d_->draw();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    out.gpuImage = &target2d_->framebuffer().color();
+  } else {
+    render::OffscreenTarget target(width, height, false);
+    target.bind();
+    view2d_->draw();
+    out.image = target.read();
+  }
+  out.colourRange = view2d_->range();
+  out.isoSpacing = view2d_->isoSpacing();
+  field_ = fit;
+}
+
+// A 3D field sphere-traced from its bake (re-baked when the field, the quality or the bounds
+// changed), refined exactly when settled.
+void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
+                                      const Scene& viewScene, ViewQuality quality, SceneViewResult& out) {
+  const ViewSpec& v = viewScene.view;
+  const int width = out.width, height = out.height;
+  if (!tracer_) tracer_ = std::make_unique<render::ImplicitTracer>();
+  const Box<3> bounds = viewBounds<3>(v, f.data.points);
+  const int resolution = quality == ViewQuality::Interactive ? 64 : 128;
+  const std::vector<double> boundsKey{bounds.lo.x(), bounds.lo.y(), bounds.lo.z(),
+                                      bounds.hi.x(), bounds.hi.y(), bounds.hi.z()};
+  if (field_ != fit || bakeResolution_ != resolution || bakedBounds_ != boundsKey) {
+    render::TracerUploadOptions uo;
+    uo.bakeResolution = resolution;
+    tracer_->upload(f.field(), bounds, &f.data, uo);
+    field_ = fit;
+    bakeResolution_ = resolution;
+    bakedBounds_ = boundsKey;
+  }
+  render::TraceSettings s;
+  const bool exact = v.trace == TraceMode::Exact && tracer_->hasExactModel();
+  s.mode = exact ? render::TracerMode::Exact : render::TracerMode::Baked;
+  s.refineExact = quality == ViewQuality::Settled;
+  s.showPoints = v.showPoints;
+  s.showNormals = v.showNormals;
+  s.showBounds = v.showBounds;
+  s.slice.enabled = v.slice.enabled;
+  s.slice.normal = v.slice.normal;
+  s.slice.offset = v.slice.offset;
+  s.background = v.background;
+  render::TraceResult r = tracer_->render(sceneCamera(viewScene, width, height), s);
+  out.image = std::move(r.image);
+  out.depth = std::move(r.depth);
+  out.refinedPixels = r.refinedPixels;
+  out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
 }
 
 void patchLines(const PatchDisplay& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors) {

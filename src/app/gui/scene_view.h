@@ -66,6 +66,10 @@ class SceneViewRenderer {
   std::unique_ptr<render::Field2dView> view2d_;
   std::unique_ptr<render::MeshView> meshView_;
   std::unique_ptr<render::OffscreenTarget> target2d_;  // keepOnGpu renders, resized on demand
+  void renderField2d(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<2>& f, const Scene& viewScene,
+                     ViewQuality quality, bool keepOnGpu, SceneViewResult& out);
+  void renderField3d(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f, const Scene& viewScene,
+                     ViewQuality quality, SceneViewResult& out);
   // The rasterised modes' images (the mesh view).
   ImageRgba8 renderPatch(const PatchDisplay& patch, const Scene& viewScene, int width, int height);
   ImageRgba8 renderHoleFill(const HoleFillStages& stages, const Scene& viewScene, int width, int height);

@@ -5,32 +5,23 @@
 
 #include <imgui.h>
 
-#include "app/gui/gui_app.h"
+#include "app/panels/hole_fill_panel.h"
+
+#include "app/gui/document_actions.h"
 #include "app/gui/gui_widgets.h"
 #include "io/mesh_file.h"
 
 namespace hermite::app {
 
-void GuiApp::openHoleFillMesh(const std::string& path) {
-  try {
-    loadMesh(path);  // read now, so a malformed file is reported here and not as a failed run
-    Scene s = scene();
-    s.holefill.mesh = path;
-    s.holefill.resolvedMesh = path;
-    document_.apply(s, "open " + path);
-    setStatus("loaded " + path + " (the mesh to fill)");
-  } catch (const std::exception& e) {
-    setStatus(e.what(), true);
-  }
-}
 
-void GuiApp::drawHoleLabels() {
-  const FitOutcome* f = shown_.get();
-  if (scene().mode != SceneMode::HoleFill || !f || !f->holefill) return;
-  const HoleFillStages& st = *f->holefill;
+void HoleFillPanel::drawLabels() const {
+  const FitOutcome* f = ctx_.fits.shown().get();
+  const HoleFillStages* stages = f ? f->as<HoleFillStages>() : nullptr;
+  if (ctx_.scene().mode != SceneMode::HoleFill || !stages) return;
+  const HoleFillStages& st = *stages;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
-  const Vec<2> o = viewOrigin();
+  const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
+  const Vec<2> o = ctx_.view.origin();
   for (std::size_t k = 0; k < st.holes.size(); ++k) {
     const BoundaryLoop& loop = st.holes[k].loop;
     if (loop.empty()) continue;
@@ -48,8 +39,8 @@ void GuiApp::drawHoleLabels() {
   }
 }
 
-void GuiApp::drawHoleFillPanel() {
-  Scene s = scene();
+void HoleFillPanel::draw() {
+  Scene s = ctx_.scene();
   HoleFillSpec& h = s.holefill;
   bool changed = false;
   std::string label = "hole filling";
@@ -70,7 +61,7 @@ void GuiApp::drawHoleFillPanel() {
   inputText("##meshfile", meshPath_);
   ImGui::SameLine();
   if (ImGui::Button("Open mesh")) {
-    openHoleFillMesh(meshPath_);
+    openHoleFillMesh(ctx_, meshPath_);
     return;
   }
   helpMarker("OFF, OBJ, PLY (ascii or binary), glTF / GLB. The holes are its boundary loops.");
@@ -84,7 +75,7 @@ void GuiApp::drawHoleFillPanel() {
       label = std::string("stage ") + stages[k];
     }
   }
-  recordWidget("holefill.stage");
+  ctx_.recordWidget("holefill.stage");
   const HoleImplicitKind kinds[] = {HoleImplicitKind::RbfOffset, HoleImplicitKind::Hrbf};
   changed |= comboOf("implicit", h.implicit, kinds,
                      [](HoleImplicitKind k) { return std::string_view(k == HoleImplicitKind::Hrbf ? "hrbf" : "rbf-offset (x^3 + linear)"); });
@@ -93,19 +84,19 @@ void GuiApp::drawHoleFillPanel() {
     h.rings = rings;
     changed = true;
   }
-  if (changed) document_.apply(s, label);
+  if (changed) ctx_.document.apply(s, label);
 
-  const FitOutcome* f = shown_.get();
-  if (f && f->holefill) {
-    const HoleFillStages& st = *f->holefill;
+  const FitOutcome* f = ctx_.fits.shown().get();
+  if (const HoleFillStages* shownStages = f ? f->as<HoleFillStages>() : nullptr) {
+    const HoleFillStages& st = *shownStages;
     ImGui::Separator();
     int filled = 0;
     for (const auto& hole : st.holes) filled += hole.filled;
     ImGui::Text("%d vertices, %d triangles", st.input.vertexCount(), st.input.triangleCount());
     ImGui::Text("holes %d, filled %d, triangles added %d", int(st.holes.size()), filled, st.trianglesAdded);
-    if (scene().holefill.stage == HoleFillStage::Project)
+    if (ctx_.scene().holefill.stage == HoleFillStage::Project)
       ImGui::Text("max |f| %.2g, unconverged %d", st.maxAbsF, st.unconverged);
-    if (options_.showTimings) ImGui::Text("%.1f ms", st.ms);
+    if (ctx_.options.showTimings) ImGui::Text("%.1f ms", st.ms);
     for (const std::string& note : st.repairMessages) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", note.c_str());
     for (std::size_t k = 0; k < st.holes.size(); ++k) {
       const HoleFillStageHole& hole = st.holes[k];
@@ -121,9 +112,9 @@ void GuiApp::drawHoleFillPanel() {
     if (ImGui::Button("Export mesh")) {
       try {
         saveMesh(meshExportPath_, st.result);
-        setStatus("wrote " + meshExportPath_);
+        ctx_.setStatus("wrote " + meshExportPath_);
       } catch (const std::exception& e) {
-        setStatus(e.what(), true);
+        ctx_.setStatus(e.what(), true);
       }
     }
   }

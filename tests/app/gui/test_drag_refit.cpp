@@ -32,9 +32,9 @@ Scene moved(Scene s, int sample, const Vec<Dim>& by, bool turnNormal = false) {
 template <int Dim>
 const SceneFit<Dim>& sceneFit(const FitOutcome& o) {
   if constexpr (Dim == 2)
-    return *o.fit2;
+    return *o.as<SceneFit<2>>();
   else
-    return *o.fit3;
+    return *o.as<SceneFit<3>>();
 }
 
 // max |f_a − f_b| over the samples and a ring of probes around them, relative to max |∇f_b|·extent.
@@ -58,13 +58,13 @@ TEST_CASE("drag refit: moving or turning one sample takes the bordered solve and
   auto first = refit.fit(scene);
   REQUIRE(first->ok());
   CHECK(refit.borderedFits() == 0);
-  CHECK(first->fit2->report.solver != "bordered-lu");
+  CHECK(first->as<SceneFit<2>>()->report.solver != "bordered-lu");
 
   for (int step = 1; step <= 3; ++step) {
     scene = moved<2>(scene, 7, Vec<2>(0.02, -0.01), step == 3);
     auto fast = refit.fit(scene);
     REQUIRE(fast->ok());
-    CHECK(fast->fit2->report.solver == "bordered-lu");
+    CHECK(fast->as<SceneFit<2>>()->report.solver == "bordered-lu");
     CHECK(fieldDifference<2>(*fast, *fitOutcome(scene)) < 1e-9);
   }
   CHECK(refit.borderedFits() == 3);
@@ -72,19 +72,19 @@ TEST_CASE("drag refit: moving or turning one sample takes the bordered solve and
 
   // Another sample: a new factorisation, still bordered.
   scene = moved<2>(scene, 30, Vec<2>(-0.03, 0.01));
-  CHECK(refit.fit(scene)->fit2->report.solver == "bordered-lu");
+  CHECK(refit.fit(scene)->as<SceneFit<2>>()->report.solver == "bordered-lu");
   CHECK(refit.factorisations() == 2);
 
   // A changed setting, two samples at once, a partition of unity: from scratch.
   scene.fit.radius *= 2;
-  CHECK(refit.fit(scene)->fit2->report.solver != "bordered-lu");
+  CHECK(refit.fit(scene)->as<SceneFit<2>>()->report.solver != "bordered-lu");
   scene = moved<2>(moved<2>(scene, 3, Vec<2>(0.01, 0.0)), 4, Vec<2>(0.0, 0.01));
-  CHECK(refit.fit(scene)->fit2->report.solver != "bordered-lu");
+  CHECK(refit.fit(scene)->as<SceneFit<2>>()->report.solver != "bordered-lu");
   scene.fit.partition.enabled = true;
   scene = moved<2>(scene, 5, Vec<2>(0.01, 0.0));
   auto pu = refit.fit(scene);
   REQUIRE(pu->ok());
-  CHECK(pu->fit2->pu != nullptr);
+  CHECK(pu->as<SceneFit<2>>()->pu() != nullptr);
   CHECK(refit.borderedFits() == 4);
 }
 
@@ -95,7 +95,7 @@ TEST_CASE("drag refit: 3D, and bad data still gets the error of the fit from scr
   scene = moved<3>(scene, 11, Vec<3>(0.03, -0.02, 0.05));
   auto fast = refit.fit(scene);
   REQUIRE(fast->ok());
-  CHECK(fast->fit3->report.solver == "bordered-lu");
+  CHECK(fast->as<SceneFit<3>>()->report.solver == "bordered-lu");
   CHECK(fieldDifference<3>(*fast, *fitOutcome(scene)) < 1e-9);
 
   // A non-finite coordinate: not a drag refit, the validation's error.
@@ -117,7 +117,7 @@ TEST_CASE("drag refit: a prepared drag refits its very first move through the bo
   scene = moved<2>(scene, 12, Vec<2>(0.01, 0.02));
   auto first = refit.fit(scene);
   REQUIRE(first->ok());
-  CHECK(first->fit2->report.solver == "bordered-lu");
+  CHECK(first->as<SceneFit<2>>()->report.solver == "bordered-lu");
   CHECK(fieldDifference<2>(*first, *fitOutcome(scene)) < 1e-9);
   CHECK(refit.factorisations() == 1);
 }

@@ -127,8 +127,8 @@ TEST_CASE("UI: dragging a 2D sample moves it and the field is refitted through i
   CHECK((moved - expected).norm() < 1e-9);
   REQUIRE(h.app->shownVersion() == h.app->document().version());
   const FitOutcome* fit = h.app->shownFit();
-  REQUIRE(fit->fit2);
-  CHECK(std::abs(fit->fit2->field().value(moved)) < 1e-9);
+  REQUIRE(fit->as<SceneFit<2>>());
+  CHECK(std::abs(fit->as<SceneFit<2>>()->field().value(moved)) < 1e-9);
   // One undo step for the whole drag, and it restores the exact previous document.
   h.key(GLFW_KEY_Z, true);
   CHECK(h.app->document().scene() == scene2d());
@@ -155,7 +155,7 @@ TEST_CASE("UI: dragging the normal's tip rotates the normal; N flips it; Del del
   // The new normal points at the dragged tip: world direction = screen direction with y flipped.
   const Vec<2> want = Vec<2>(rotated.x() - p.x(), -(rotated.y() - p.y())).normalized();
   CHECK(Vec<2>(n[0], n[1]).dot(want) > 1 - 1e-9);
-  CHECK(h.app->shownFit()->fit2->field().gradient(Vec<2>(s.data.points[i][0], s.data.points[i][1])).normalized().dot(want) >
+  CHECK(h.app->shownFit()->as<SceneFit<2>>()->field().gradient(Vec<2>(s.data.points[i][0], s.data.points[i][1])).normalized().dot(want) >
         1 - 1e-6);
   const Scene afterRotate = s;
   h.key(GLFW_KEY_N);
@@ -311,7 +311,7 @@ TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel kee
   h.app->worker().waitIdle(120);
   h.frames(3);
   CHECK(h.app->shownVersion() == good);  // the cancelled fit never replaces the shown one
-  CHECK(h.app->shownFit()->fit3->samples.size() < 1500);
+  CHECK(h.app->shownFit()->as<SceneFit<3>>()->samples.size() < 1500);
 }
 
 TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier form shows the same edit") {
@@ -325,7 +325,7 @@ TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier 
   Harness h(s, true, 1000, 700);
   h.frames(2);
   REQUIRE(h.app->shownFit());
-  REQUIRE(h.app->shownFit()->patch);
+  REQUIRE(h.app->shownFit()->as<PatchDisplay>());
   // The u-tangent handle of the middle knot (1, 0), shared by both patches.
   const PatchHandle tangent{PatchHandle::TangentU, 1, 0, 0, 0};
   const auto at = h.app->patchHandleScreenPosition(tangent);
@@ -352,7 +352,7 @@ TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier 
   const auto control = h.app->patchHandleScreenPosition(b10);
   REQUIRE(control);
   CHECK((*control + h.app->viewOrigin() - to).norm() < 0.5);
-  CHECK(h.app->shownFit()->patch->mesh.positions.isApprox(buildPatchDisplay(edited).mesh.positions, 1e-14));
+  CHECK(h.app->shownFit()->as<PatchDisplay>()->mesh.positions.isApprox(buildPatchDisplay(edited).mesh.positions, 1e-14));
   // Undo twice: the form, then the drag — the original document.
   h.key(GLFW_KEY_Z, true);
   h.key(GLFW_KEY_Z, true);
@@ -366,8 +366,8 @@ TEST_CASE("UI: a partition-of-unity fit shows its boxes; Flip all normals is one
   Harness h(s, true, 1000, 700);
   h.frames(2);
   REQUIRE(h.app->shownFit());
-  REQUIRE(h.app->shownFit()->fit2);
-  REQUIRE(h.app->shownFit()->fit2->pu);
+  REQUIRE(h.app->shownFit()->as<SceneFit<2>>());
+  REQUIRE(h.app->shownFit()->as<SceneFit<2>>()->pu());
   const ImageRgba8 without = h.target->read();
   const auto box = h.app->widgetRect("view.partition_boxes");
   REQUIRE(box);
@@ -400,7 +400,7 @@ TEST_CASE("UI: the transform gizmo translates and rotates the fitted model by co
   REQUIRE(h.app->shownFit());
   const Vec<2> o = h.app->viewOrigin();
   const Camera cam = sceneCamera(h.app->document().scene(), 1000 - int(kLeftPanelWidth), 700 - int(kStatusBarHeight));
-  const auto shownCentroid = [&] { return Vec<3>(h.app->shownFit()->fit3->data.points.rowwise().mean()); };
+  const auto shownCentroid = [&] { return Vec<3>(h.app->shownFit()->as<SceneFit<3>>()->data.points.rowwise().mean()); };
   const Vec<3> c0 = shownCentroid();
   // The x arrow starts at the pivot (the centroid) along +x: grab it 40 px out, pull along it.
   const Vec<2> dir = (cam.project(Vec<3>(c0 + Vec<3>(0.3, 0, 0))) - cam.project(c0)).normalized();
@@ -412,9 +412,9 @@ TEST_CASE("UI: the transform gizmo translates and rotates the fitted model by co
   CHECK(std::abs(t.translate[1]) < 1e-12);
   CHECK(std::abs(t.translate[2]) < 1e-12);
   const FitOutcome* f = h.app->shownFit();
-  REQUIRE(f->fit3->transformed);
-  CHECK(f->fit3->transform.method == "coefficient-update");
-  CHECK(fitResiduals(*f->fit3).maxAbsF < 1e-9);  // the updated model interpolates the moved data
+  REQUIRE(f->as<SceneFit<3>>()->transformed);
+  CHECK(f->as<SceneFit<3>>()->transform.method == "coefficient-update");
+  CHECK(fitResiduals(*f->as<SceneFit<3>>()).maxAbsF < 1e-9);  // the updated model interpolates the moved data
   CHECK((shownCentroid() - c0 - Vec<3>(t.translate[0], 0, 0)).norm() < 1e-9);
   // Switching the model to the re-solve keeps the transform and refits.
   Scene resolve = h.app->document().scene();
@@ -422,9 +422,9 @@ TEST_CASE("UI: the transform gizmo translates and rotates the fitted model by co
   resolve.transform.verify = true;
   h.app->document().apply(resolve, "model");
   h.frames(2);
-  CHECK(h.app->shownFit()->fit3->transform.method == "re-solve");
-  REQUIRE(h.app->shownFit()->fit3->transform.maxAbsDf);
-  CHECK(*h.app->shownFit()->fit3->transform.maxAbsDf < 1e-8);  // exact conditions: update == re-solve
+  CHECK(h.app->shownFit()->as<SceneFit<3>>()->transform.method == "re-solve");
+  REQUIRE(h.app->shownFit()->as<SceneFit<3>>()->transform.maxAbsDf);
+  CHECK(*h.app->shownFit()->as<SceneFit<3>>()->transform.maxAbsDf < 1e-8);  // exact conditions: update == re-solve
   h.key(GLFW_KEY_Z, true);
   h.key(GLFW_KEY_Z, true);
   CHECK(h.app->document().scene() == s);
@@ -433,18 +433,18 @@ TEST_CASE("UI: the transform gizmo translates and rotates the fitted model by co
 TEST_CASE("UI: right after a mode switch the previous mode's fit stays on screen and nothing reads it as the new one") {
   Harness h(scene3d("sphere", 40), true, 900, 600);
   h.frames(2);
-  REQUIRE(h.app->shownFit()->fit3);
+  REQUIRE(h.app->shownFit()->as<SceneFit<3>>());
   // Switch to 2D outside the panels: the next frame draws the panels before the new fit runs.
   h.app->document().apply(scene2d(), "to 2D");
   h.frame();
-  REQUIRE(h.app->shownFit()->fit2);
+  REQUIRE(h.app->shownFit()->as<SceneFit<2>>());
   h.key(GLFW_KEY_DELETE);  // no sample selected: nothing happens, nothing crashes
   Scene patch = h.app->document().scene();
   patch.mode = SceneMode::Patch;
   h.app->document().apply(patch, "to patch");
   CHECK(h.app->currentFit() == nullptr);  // the 2D fit is still shown but is not the patch's
   h.frame();
-  REQUIRE(h.app->shownFit()->patch);
+  REQUIRE(h.app->shownFit()->as<PatchDisplay>());
   CHECK(h.app->currentFit() == h.app->shownFit());
 }
 
@@ -456,7 +456,7 @@ TEST_CASE("UI: a mesh dropped in hole-fill mode is the mesh to fill; each hole's
   Harness h(s, true, 900, 650);
   h.frames(2);
   REQUIRE(h.app->shownFit());
-  REQUIRE(h.app->shownFit()->holefill);
+  REQUIRE(h.app->shownFit()->as<HoleFillStages>());
   // A sphere with one hole, written as PLY (which also reads as a point file outside this mode).
   TriMesh holed = hermite::testing::cutBall(hermite::holeFillPresetMesh("sphere"), Vec<3>(0, 0, -1), 0.3);
   holed.normals.resize(3, 0);
@@ -467,8 +467,8 @@ TEST_CASE("UI: a mesh dropped in hole-fill mode is the mesh to fill; each hole's
   CHECK(h.app->document().scene().mode == SceneMode::HoleFill);
   CHECK(h.app->document().scene().holefill.mesh == path);
   REQUIRE(h.app->shownFit());
-  REQUIRE(h.app->shownFit()->holefill);
-  const HoleFillStages& st = *h.app->shownFit()->holefill;
+  REQUIRE(h.app->shownFit()->as<HoleFillStages>());
+  const HoleFillStages& st = *h.app->shownFit()->as<HoleFillStages>();
   CHECK(st.input.triangleCount() == holed.triangleCount());
   CHECK(st.holes.size() >= 1);
   for (const auto& hole : st.holes) {

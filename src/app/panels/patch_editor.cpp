@@ -11,7 +11,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "app/gui/gui_app.h"
+#include "app/panels/patch_editor.h"
 #include "app/gui/gui_widgets.h"
 
 namespace hermite::app {
@@ -44,19 +44,19 @@ const char* handleName(const PatchHandle& h) {
 
 }  // namespace
 
-std::optional<Vec<2>> GuiApp::patchHandleScreenPosition(const PatchHandle& h) const {
-  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
-  const Vec<3> p = patchHandlePosition(scene().patch, patchKnotData(scene().patch), h);
+std::optional<Vec<2>> PatchEditor::handlePosition(const PatchHandle& h) const {
+  const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
+  const Vec<3> p = patchHandlePosition(ctx_.scene().patch, patchKnotData(ctx_.scene().patch), h);
   if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) return std::nullopt;
   return cam.project(p);
 }
 
-bool GuiApp::pressPatchHandle(const Vec<2>& mouse) {
-  if (!scene().patch.showHandles) return false;
-  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+bool PatchEditor::press(const Vec<2>& mouse) {
+  if (!ctx_.scene().patch.showHandles) return false;
+  const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
   double best = kHandlePickPx;
   std::optional<std::pair<PatchHandle, Vec<3>>> hit;
-  for (const auto& [h, p] : patchHandles(scene().patch)) {
+  for (const auto& [h, p] : patchHandles(ctx_.scene().patch)) {
     if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) continue;
     const double d = (cam.project(p) - mouse).norm();
     // Ties (shared corners, coincident tips): the first in the list wins — points before tips.
@@ -66,51 +66,51 @@ bool GuiApp::pressPatchHandle(const Vec<2>& mouse) {
     }
   }
   if (!hit) return false;
-  patchHandle_ = hit->first;
-  patchGrabStart_ = hit->second;
-  document_.begin(std::string("move ") + handleName(patchHandle_));
-  setStatus(std::string("moving the ") + handleName(patchHandle_) + " (hold X, Y or Z to constrain)");
+  grabbed_ = hit->first;
+  grabStart_ = hit->second;
+  ctx_.document.begin(std::string("move ") + handleName(grabbed_));
+  ctx_.setStatus(std::string("moving the ") + handleName(grabbed_) + " (hold X, Y or Z to constrain)");
   return true;
 }
 
-void GuiApp::dragPatchHandle(const Vec<2>& mouse, const FrameInput& in) {
-  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
+void PatchEditor::drag(const Vec<2>& mouse, const FrameInput& in) {
+  const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
   const Ray ray = cam.ray(mouse.x(), mouse.y());
   const double denom = ray.direction.dot(cam.forward());
   if (std::abs(denom) < 1e-12) return;
-  const double t = (patchGrabStart_ - ray.origin).dot(cam.forward()) / denom;
+  const double t = (grabStart_ - ray.origin).dot(cam.forward()) / denom;
   if (!(t > 0)) return;
   Vec<3> target = ray.at(t);
   // Axis constraint: the closest point of the axis line through the grab point to the ray.
   for (int axis = 0; axis < 3; ++axis) {
     if (!in.keysDown[GLFW_KEY_X + axis]) continue;
     const Vec<3> e = Vec<3>::Unit(axis);
-    const Vec<3> w = patchGrabStart_ - ray.origin;
+    const Vec<3> w = grabStart_ - ray.origin;
     const double b = e.dot(ray.direction), d = e.dot(w), f = ray.direction.dot(w);
     const double den = 1 - b * b;
     if (den < 1e-9) break;  // the axis points at the eye: no motion along it is visible
     const double s = (b * f - d) / den;
-    target = patchGrabStart_ + s * e;
+    target = grabStart_ + s * e;
     break;
   }
-  Scene s = scene();
-  s.patch = movePatchHandle(s.patch, patchHandle_, target);
-  document_.update(s);
+  Scene s = ctx_.scene();
+  s.patch = movePatchHandle(s.patch, grabbed_, target);
+  ctx_.document.update(s);
 }
 
-void GuiApp::drawPatchHandles() {
-  const PatchSpec& spec = scene().patch;
-  if (!spec.showHandles || scene().mode != SceneMode::Patch) return;
+void PatchEditor::drawHandles() const {
+  const PatchSpec& spec = ctx_.scene().patch;
+  if (!spec.showHandles || ctx_.scene().mode != SceneMode::Patch) return;
   ImDrawList* dl = ImGui::GetBackgroundDrawList();
-  const Camera cam = sceneCamera(scene(), viewW_, viewH_);
-  const Vec<2> o = viewOrigin();
+  const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
+  const Vec<2> o = ctx_.view.origin();
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (const auto& [h, p] : patchHandles(spec)) {
     if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) continue;
     const Vec<2> q = cam.project(p) + o;
     const ImVec2 at(float(q.x()), float(q.y()));
-    const bool grabbed = drag_ == Drag::PatchHandle && h.kind == patchHandle_.kind && h.a == patchHandle_.a &&
-                         h.b == patchHandle_.b && h.p == patchHandle_.p && h.q == patchHandle_.q;
+    const bool grabbed = ctx_.drag == Drag::PatchHandle && h.kind == grabbed_.kind && h.a == grabbed_.a &&
+                         h.b == grabbed_.b && h.p == grabbed_.p && h.q == grabbed_.q;
     const bool hover = std::hypot(mouse.x - at.x, mouse.y - at.y) < kHandlePickPx;
     const float r = h.kind == PatchHandle::Point ? 5.0f : 4.0f;
     dl->AddCircleFilled(at, r + (hover || grabbed ? 2.0f : 0.0f), handleColour(h));
@@ -118,8 +118,8 @@ void GuiApp::drawPatchHandles() {
   }
 }
 
-void GuiApp::drawPatchPanel() {
-  Scene s = scene();
+void PatchEditor::drawPanel() {
+  Scene s = ctx_.scene();
   PatchSpec& p = s.patch;
   bool changed = false;
   std::string label = "patch";
@@ -164,7 +164,7 @@ void GuiApp::drawPatchPanel() {
     changed = true;
     label = "form";
   }
-  recordWidget("patch.form");
+  ctx_.recordWidget("patch.form");
   helpMarker("Hermite: corner points, u/v tangents (red/green) and twists (blue) per knot. Bezier: the 16 "
               "control points per patch. Both edit the same knot data, so the surface never jumps when you switch.");
   changed |= ImGui::Checkbox("error colour", &p.showError);
@@ -182,14 +182,14 @@ void GuiApp::drawPatchPanel() {
     changed = true;
     label = "reset patch";
   }
-  if (changed) document_.apply(s, label);
+  if (changed) ctx_.document.apply(s, label);
 
-  const FitOutcome* f = shown_.get();
-  if (f && f->patch) {
+  const FitOutcome* f = ctx_.fits.shown().get();
+  if (const PatchDisplay* shownPatch = f ? f->as<PatchDisplay>() : nullptr) {
     ImGui::Separator();
-    const PatchDisplay& v = *f->patch;
+    const PatchDisplay& v = *shownPatch;
     ImGui::Text("%d x %d patches, %d triangles", v.grid.patchesU(), v.grid.patchesV(), int(v.mesh.triangles.cols()));
-    if (options_.showTimings) ImGui::Text("tessellation %.2f ms", v.tessellateMs);
+    if (ctx_.options.showTimings) ImGui::Text("tessellation %.2f ms", v.tessellateMs);
     if (!v.vertexError.empty()) ImGui::Text("max |X - torus| %.3g", v.maxError);
     if (!v.table.empty() && ImGui::BeginTable("torus error", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
       ImGui::TableSetupColumn("splits");

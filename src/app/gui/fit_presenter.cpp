@@ -1,0 +1,66 @@
+#include "app/gui/fit_presenter.h"
+
+namespace hermite::app {
+
+namespace {
+
+// A fit expected to take less than this (the last one did) is waited for within the frame that
+// submitted it (ms).
+constexpr double kSameFrameFitMs = 12.0;
+
+bool sameCompare(const CompareSettings& a, const CompareSettings& b) {
+  return a.enabled == b.enabled &&
+         (!a.enabled || (a.with == b.with && a.kernel == b.kernel && a.radius == b.radius));
+}
+
+}  // namespace
+
+std::optional<Scene> compareScene(const Scene& s, const CompareSettings& compare) {
+  if (!compare.enabled || (s.mode != SceneMode::Implicit2d && s.mode != SceneMode::Implicit3d)) return std::nullopt;
+  Scene c = s;
+  switch (compare.with) {
+    case CompareWith::RbfOffset: c.fit.method = FitMethod::RbfOffset; break;
+    case CompareWith::Hrbf: c.fit.method = FitMethod::Hrbf; break;
+    case CompareWith::OtherKernel: c.fit.kernel = compare.kernel; break;
+    case CompareWith::OtherRadius: c.fit.radius = compare.radius; break;
+  }
+  return c;
+}
+
+void FitPresenter::submitIfStale(const Scene& scene, std::uint64_t version, const CompareSettings& compare,
+                                 bool synchronous) {
+  if (version == submittedVersion_ && sameCompare(compare, submittedCompare_)) return;
+  submittedVersion_ = version;
+  submittedCompare_ = compare;
+  worker_.submit(scene, version, compareScene(scene, compare));
+  if (synchronous)
+    worker_.waitIdle(600);
+  else if (lastWallMs_ < kSameFrameFitMs)
+    // Fits as quick as the last one (a drag's bordered refits) show in this very frame: one
+    // short wait instead of a frame of latency. Slower ones stay on the worker.
+    worker_.waitIdle(kSameFrameFitMs / 1000.0);
+}
+
+void FitPresenter::adoptFinished(GuiStatus& status) {
+  std::optional<FitJobResult> r = worker_.poll();
+  if (!r) return;
+  lastWallMs_ = r->main->wallMs + (r->compare ? r->compare->wallMs : 0.0);
+  if (r->main->ok()) {
+    shown_ = r->main;
+    shownVersion_ = r->version;
+    lastError_.clear();
+  } else {
+    // Keep the last good model on screen and say why the new one is not there.
+    lastError_ = r->main->error;
+    status.set("fit failed: " + r->main->error, true);
+  }
+  shownCompare_ = r->compare && r->compare->ok() ? r->compare : nullptr;
+  if (r->compare && !r->compare->ok()) status.set("compare fit failed: " + r->compare->error, true);
+}
+
+void FitPresenter::cancel(std::uint64_t version) {
+  worker_.cancel();
+  submittedVersion_ = version;  // do not resubmit what was cancelled
+}
+
+}  // namespace hermite::app

@@ -1,0 +1,123 @@
+#include "app/gui/view_image.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include "app/gui/gui_context.h"
+#include "render/legend.h"
+
+namespace hermite::app {
+
+namespace {
+
+// Frames after the last interaction before the view is redrawn at full quality.
+constexpr int kSettleFrames = 3;
+
+ImTextureID textureId(const render::Texture& t) {
+  return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(t.id()));
+}
+
+// Uploads an image into `texture`, (re)creating it when the size changed.
+void uploadImage(render::Texture& texture, const ImageRgba8& image) {
+  if (!texture.valid() || texture.width() != image.width || texture.height() != image.height) {
+    texture = render::Texture::create2D(GL_RGBA8, image.width, image.height);
+    texture.setFilter(GL_LINEAR, GL_LINEAR);
+    texture.setWrap(GL_CLAMP_TO_EDGE);
+  }
+  texture.upload2D(GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
+}
+
+}  // namespace
+
+void ViewImage::redrawIfStale(GuiContext& ctx) {
+  const auto& shown = ctx.fits.shown();
+  if (!shown) return;
+  const auto& shownCompare = ctx.fits.shownCompare();
+  const bool interacting = ctx.drag != Drag::None || ctx.document.inGesture();
+  interactFrames_ = interacting ? 0 : interactFrames_ + 1;
+  const ViewQuality quality = interactFrames_ > kSettleFrames ? ViewQuality::Settled : ViewQuality::Interactive;
+  const bool split = ctx.compare.enabled && shownCompare && !ctx.panels.hideUi;
+  const int viewW = ctx.view.w, viewH = ctx.view.h;
+  const int w = split ? std::max(1, viewW / 2) : viewW;
+  const Drawn now{shown.get(), split ? shownCompare.get() : nullptr, ctx.scene().view, viewW, viewH,
+                  ctx.colourRange, quality, split};
+  if (drawn_ && *drawn_ == now) return;
+  renderer_.colourRange = compareRenderer_.colourRange = ctx.colourRange;
+  // A drag draws the 3D view at half resolution (the texture is stretched): ~4× fewer rays.
+  const bool half = quality == ViewQuality::Interactive && ctx.dimension() == 3;
+  const int rw = half ? std::max(1, w / 2) : w, rh = half ? std::max(1, viewH / 2) : viewH;
+  try {
+    // 2D views stay on the GPU (no read-back and re-upload per frame); 3D ones are read back.
+    view_ = renderer_.render(shown, ctx.scene(), rw, rh, quality, true);
+    if (!view_.gpuImage) uploadImage(viewTexture_, view_.image);
+    if (split) {
+      compareView_ = compareRenderer_.render(shownCompare, ctx.scene(), rw, rh, quality, true);
+      if (!compareView_.gpuImage) uploadImage(compareTexture_, compareView_.image);
+    }
+  } catch (const std::exception& e) {
+    ctx.setStatus(std::string("drawing failed: ") + e.what(), true);
+  }
+  drawn_ = now;
+  ctx.view.split = split;
+}
+
+void ViewImage::draw(const GuiContext& ctx) const {
+  ImDrawList* bg = ImGui::GetBackgroundDrawList();
+  if (!drawn_ || (!view_.gpuImage && !viewTexture_.valid())) return;
+  const float x0 = float(ctx.view.x), y0 = float(ctx.view.y), y1 = float(ctx.view.y + ctx.view.h);
+  const float w = float(ctx.view.primaryWidth());
+  // A GPU-kept view has GL rows bottom-up: flip v.
+  auto addView = [&](const SceneViewResult& r, const render::Texture& uploaded, float left) {
+    if (r.gpuImage)
+      bg->AddImage(textureId(*r.gpuImage), ImVec2(left, y0), ImVec2(left + w, y1), ImVec2(0, 1), ImVec2(1, 0));
+    else
+      bg->AddImage(textureId(uploaded), ImVec2(left, y0), ImVec2(left + w, y1));
+  };
+  // The view images are opaque: drawn without blending (a blended full-view quad reads the
+  // framebuffer back, which software rasterisers pay for every frame), then ImGui's state again.
+  bg->AddCallback([](const ImDrawList*, const ImDrawCmd*) { glDisable(GL_BLEND); }, nullptr);
+  addView(view_, viewTexture_, x0);
+  const bool compareShown = drawn_->compareOn && (compareView_.gpuImage || compareTexture_.valid());
+  if (compareShown) addView(compareView_, compareTexture_, x0 + w);
+  bg->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+  if (compareShown) drawCompareLabels(ctx, x0, w);
+  if (ctx.dimension() == 2 && view_.colourRange > 0) drawLegend(ctx);
+}
+
+// A line between the halves and, at the bottom of each, what it fitted.
+void ViewImage::drawCompareLabels(const GuiContext& ctx, float x0, float w) const {
+  ImDrawList* bg = ImGui::GetBackgroundDrawList();
+  const float y0 = float(ctx.view.y), y1 = float(ctx.view.y + ctx.view.h);
+  bg->AddLine(ImVec2(x0 + w, y0), ImVec2(x0 + w, y1), IM_COL32(60, 60, 60, 255), 2.0f);
+  const auto label = [&](float x, const FitOutcome* f) {
+    if (!f) return;
+    const Scene& s = f->scene;
+    char text[160];
+    std::snprintf(text, sizeof text, "%s  %s%s", std::string(fitMethodName(s.fit.method)).c_str(),
+                  std::string(kernelName(s.fit.kernel)).c_str(),
+                  Kernel{s.fit.kernel, s.fit.radius}.usesRadius() ? ("  r = " + std::to_string(s.fit.radius)).c_str() : "");
+    bg->AddRectFilled(ImVec2(x + 4, y1 - 26), ImVec2(x + 8 + ImGui::CalcTextSize(text).x + 6, y1 - 6),
+                      IM_COL32(0, 0, 0, 170));
+    bg->AddText(ImVec2(x + 9, y1 - 24), IM_COL32(255, 255, 255, 255), text);
+  };
+  label(x0, ctx.fits.shown().get());
+  label(x0 + w, ctx.fits.shownCompare().get());
+}
+
+// The 2D heat map's colour legend in the primary view's lower-right corner.
+void ViewImage::drawLegend(const GuiContext& ctx) const {
+  render::LegendOptions legend;
+  legend.range = view_.colourRange;
+  legend.isoSpacing = view_.isoSpacing;
+  legend.cornerX = float(ctx.view.x + ctx.view.primaryWidth());
+  legend.cornerY = float(ctx.view.y + ctx.view.h);
+  render::drawColorLegend(ImGui::GetBackgroundDrawList(), legend);
+}
+
+ImageRgba8 ViewImage::pixels() const { return view_.gpuImage ? renderer_.readGpuImage() : view_.image; }
+
+}  // namespace hermite::app

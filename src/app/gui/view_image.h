@@ -1,0 +1,51 @@
+#pragma once
+// The view's image: the shown fit drawn by a SceneViewRenderer (and the compare fit in the right
+// half), redrawn only when the fit, the view, the size or the quality changed — interactive
+// (half-resolution 3D, coarse 2D grid) during a gesture, settled a few frames after — and put on
+// screen as ImGui background images with the compare labels and the 2D colour legend.
+
+#include <optional>
+
+#include "app/gui/scene_view.h"
+#include "render/gl/gl_objects.h"
+
+namespace hermite::app {
+
+struct GuiContext;
+
+class ViewImage {
+ public:
+  // Redraws when something it shows changed; failures go to the status line.
+  void redrawIfStale(GuiContext& ctx);
+  // Adds the images (and labels, legend) to ImGui's background draw list.
+  void draw(const GuiContext& ctx) const;
+  // The primary image last drawn (without panels) and how long it took.
+  const SceneViewResult& result() const { return view_; }
+  // Its pixels (row 0 = top), read back when it stayed on the GPU.
+  ImageRgba8 pixels() const;
+  // The image on screen was drawn from `fit`.
+  bool shows(const FitOutcome* fit) const { return drawn_ && drawn_->fit == fit; }
+
+ private:
+  // What the images on screen were drawn from.
+  struct Drawn {
+    const FitOutcome* fit = nullptr;
+    const FitOutcome* compare = nullptr;
+    ViewSpec view;
+    int width = 0, height = 0;
+    double colourRange = 0;
+    ViewQuality quality = ViewQuality::Settled;
+    bool compareOn = false;
+    bool operator==(const Drawn&) const = default;
+  };
+  void drawCompareLabels(const GuiContext& ctx, float x0, float w) const;
+  void drawLegend(const GuiContext& ctx) const;
+
+  SceneViewRenderer renderer_, compareRenderer_;  // left / whole, right half
+  SceneViewResult view_, compareView_;
+  render::Texture viewTexture_, compareTexture_;
+  std::optional<Drawn> drawn_;
+  int interactFrames_ = 1 << 20;  // frames since the last camera / drag gesture (settled after a few)
+};
+
+}  // namespace hermite::app

@@ -1,0 +1,159 @@
+#include "app/panels/data_panel.h"
+
+#include <imgui.h>
+
+#include <filesystem>
+#include <type_traits>
+
+#include "app/commands/commands.h"
+#include "app/gui/document_actions.h"
+#include "app/gui/gui_widgets.h"
+#include "core/base/errors.h"
+#include "core/points/normal_estimation.h"
+#include "core/shapes/presets.h"
+#include "io/atomic_file.h"
+#include "io/point_file.h"
+#include "scene/scene_fit.h"
+
+#ifndef HERMITE_SCENES_DIR
+#define HERMITE_SCENES_DIR "assets/scenes"
+#endif
+
+namespace hermite::app {
+
+namespace {
+
+std::vector<std::filesystem::path> teachingScenes() {
+  std::vector<std::filesystem::path> out;
+  std::error_code ec;
+  for (const auto& e : std::filesystem::directory_iterator(HERMITE_SCENES_DIR, ec))
+    if (e.path().extension() == ".json") out.push_back(e.path());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+DataPanel::DataPanel(GuiContext& ctx)
+    : ctx_(ctx), openPath_(ctx.document.path()), exportPath_(ctx.dimension() == 2 ? "samples.xyn" : "samples.xyzn") {}
+
+void DataPanel::draw() {
+  const Scene& s = ctx_.scene();
+  const int dim = s.dimension();
+  const std::string current = !s.data.preset.empty() ? s.data.preset : !s.data.file.empty() ? s.data.file : "inline samples";
+  if (ImGui::BeginCombo("preset", current.c_str())) {
+    for (const PresetInfo& p : allPresets()) {
+      const std::string label = p.name + (p.dimension == 2 ? "  (2D)" : "  (3D)");
+      if (ImGui::Selectable(label.c_str(), p.name == s.data.preset))
+        loadPreset(ctx_, p.name, p.dimension == 2 ? SceneMode::Implicit2d : SceneMode::Implicit3d);
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.description.c_str());
+    }
+    ImGui::EndCombo();
+  }
+  if (ImGui::BeginCombo("teaching scene", "open...")) {
+    for (const auto& path : teachingScenes())
+      if (ImGui::Selectable(path.stem().string().c_str())) openScene(ctx_, path.string());
+    ImGui::EndCombo();
+  }
+  if (!s.data.preset.empty()) {
+    int count = s.data.count;
+    const PresetInfo& info = presetInfo(s.data.preset);
+    ImGui::SetNextItemWidth(120);
+    if (ImGui::InputInt("count (0 = own)", &count, 10, 100, ImGuiInputTextFlags_EnterReturnsTrue)) {
+      count = count == 0 ? 0 : std::clamp(count, info.minCount, info.maxCount);
+      Scene n = s;
+      n.data.count = count;
+      ctx_.document.apply(n, "sample count");
+    }
+  }
+  inputText("##open", openPath_);
+  ImGui::SameLine();
+  if (ImGui::Button("Open")) {
+    openFile(ctx_, openPath_);
+  }
+  helpMarker("A scene (.json) or a point file (.xyz .pwn .xyzn .xyn ...). Files can also be dropped onto the window.");
+  inputText("##save", ctx_.savePath);
+  ImGui::SameLine();
+  if (ImGui::Button("Save scene")) saveScene(ctx_, ctx_.savePath);
+  inputText("##export", exportPath_);
+  ImGui::SameLine();
+  if (ImGui::Button("Export samples")) {
+    try {
+      const FitOutcome* fit = ctx_.currentFit();
+      if (!fit) throw InputError("no samples to export yet");
+      if (!fit->visitImplicit([&](const auto& f) { savePointFile(exportPath_, f.data); }))
+        throw InputError("no samples to export in this mode");
+      ctx_.setStatus("exported samples to " + exportPath_);
+    } catch (const std::exception& e) {
+      ctx_.setStatus(e.what(), true);
+    }
+  }
+  inputText("##zeroset", zeroSetPath_);
+  ImGui::SameLine();
+  if (ImGui::Button("Export mesh")) {
+    try {
+      if (!ctx_.currentFit()) throw InputError("no fitted model yet");
+      ctx_.setStatus(exportZeroSet(*ctx_.currentFit(), zeroSetPath_, 96));
+    } catch (const std::exception& e) {
+      ctx_.setStatus(e.what(), true);
+    }
+  }
+  helpMarker("The zero set over view.bounds by marching cubes (3D: .glb .gltf .ply .obj) or squares (2D: .obj .svg).");
+  if (ImGui::Button("Export model (JSON)")) {
+    try {
+      if (!ctx_.currentFit()) throw InputError("no fitted model yet");
+      const std::string path = std::filesystem::path(ctx_.savePath).replace_extension(".model.json").string();
+      writeFileAtomically(path, fittedModelJson(*ctx_.currentFit()) + "\n");
+      ctx_.setStatus("exported the model to " + path);
+    } catch (const std::exception& e) {
+      ctx_.setStatus(e.what(), true);
+    }
+  }
+  if (ImGui::Button("Re-estimate normals")) {
+    try {
+      std::vector<std::string> warnings;
+      Scene n = dim == 2 ? withInlineSamples<2>(ctx_.scene(), warnings) : withInlineSamples<3>(ctx_.scene(), warnings);
+      if (dim == 2) {
+        HermiteSamples<2> d = inlineSamples<2>(n);
+        d.normals = estimateNormals<2>(d.points);
+        setInlineSamples<2>(n, d);
+      } else {
+        HermiteSamples<3> d = inlineSamples<3>(n);
+        d.normals = estimateNormals<3>(d.points);
+        setInlineSamples<3>(n, d);
+      }
+      ctx_.document.apply(n, "re-estimate normals");
+      ctx_.setStatus("normals re-estimated (PCA over 10 neighbours, oriented along a spanning tree)");
+    } catch (const std::exception& e) {
+      ctx_.setStatus(e.what(), true);
+    }
+  }
+  helpMarker("Replace every normal by the PCA estimate over its nearest neighbours, oriented consistently "
+             "(minimum spanning tree) and outward.");
+  ImGui::SameLine();
+  const bool flipAll = ImGui::Button("Flip all normals");
+  ctx_.recordWidget("data.flip_all");
+  if (flipAll) {
+    std::vector<std::string> warnings;
+    Scene n = dim == 2 ? withInlineSamples<2>(ctx_.scene(), warnings) : withInlineSamples<3>(ctx_.scene(), warnings);
+    for (auto& normal : n.data.normals)
+      for (double& c : normal) c = -c;
+    ctx_.document.apply(n, "flip all normals");
+  }
+  ImGui::Separator();
+  const FitOutcome* f = ctx_.currentFit();
+  if (f && f->ok()) {
+    int n = 0;
+    double spacing = 0;
+    f->visitImplicit([&](const auto& fit) {
+      n = fit.samples.size();
+      spacing = meanSampleSpacing<std::decay_t<decltype(fit)>::kDim>(fit.samples.points);
+    });
+    ImGui::Text("%d samples (%dD), mean spacing %.4g", n, dim, spacing);
+    if (ctx_.selected >= 0) ImGui::Text("selected: sample %d (N flips, Del deletes)", ctx_.selected);
+    for (const std::string& w : f->warnings())
+      ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", w.c_str());
+  }
+}
+
+}  // namespace hermite::app

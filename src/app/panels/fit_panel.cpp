@@ -1,0 +1,110 @@
+#include "app/panels/fit_panel.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "app/gui/document_actions.h"
+#include "app/gui/gui_widgets.h"
+#include "scene/scene_fit.h"
+
+namespace hermite::app {
+
+namespace {
+
+const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
+
+}  // namespace
+
+void drawFitPanel(GuiContext& ctx) {
+  FitSpec fit = ctx.scene().fit;
+  const FitMethod methods[] = {FitMethod::Hrbf, FitMethod::RbfOffset};
+  if (comboOf("method", fit.method, methods, fitMethodName)) editFit(ctx, fit, "method");
+  if (comboOf("kernel", fit.kernel, allKernelTypes(), kernelName)) editFit(ctx, fit, "kernel");
+  ctx.recordWidget("fit.kernel");
+
+  // r: logarithmic slider (one undo step per drag) and exact text entry.
+  const Kernel kernel{fit.kernel, fit.radius};
+  double spacing = 0;
+  if (ctx.fits.shown())
+    ctx.fits.shown()->visitImplicit([&](const auto& f) {
+      spacing = meanSampleSpacing<std::decay_t<decltype(f)>::kDim>(f.samples.points);
+    });
+  ImGui::BeginDisabled(!kernel.usesRadius());
+  double r = fit.radius;
+  const double rMin = 1e-4, rMax = 100.0;
+  if (ImGui::SliderScalar("r", ImGuiDataType_Double, &r, &rMin, &rMax, "%.4g", ImGuiSliderFlags_Logarithmic)) {
+    if (!ctx.document.inGesture()) ctx.document.begin("radius");
+    Scene s = ctx.scene();
+    s.fit.radius = std::clamp(r, rMin, rMax);
+    ctx.document.update(s);
+  }
+  ctx.recordWidget("fit.radius");
+  if (ImGui::IsItemDeactivated() && ctx.document.inGesture()) ctx.document.end();  // one undo step per drag
+  double typed = fit.radius;
+  if (ImGui::InputDouble("r exact", &typed, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue) && typed > 0 &&
+      std::isfinite(typed)) {
+    FitSpec f = fit;
+    f.radius = typed;
+    editFit(ctx, f, "radius");
+  }
+  if (spacing > 0 && kernel.usesRadius()) ImGui::Text("r = %.3g x mean spacing (%.3g)", fit.radius / spacing, spacing);
+  ImGui::EndDisabled();
+  if (!kernel.usesRadius()) {
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("%s has no radius (scale-free): r is ignored", toString(kernelName(fit.kernel)).c_str());
+    ImGui::PopStyleColor();
+  }
+
+  if (comboOf("polynomial", fit.polynomial, kPolys, polynomialName)) editFit(ctx, fit, "polynomial");
+  double lambda = fit.smoothing;
+  if (ImGui::InputDouble("smoothing", &lambda, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && lambda >= 0) {
+    fit.smoothing = lambda;
+    editFit(ctx, fit, "smoothing");
+    fit = ctx.scene().fit;
+  }
+  helpMarker("lambda >= 0: approximation instead of interpolation (0 interpolates).");
+  if (fit.method == FitMethod::RbfOffset) {
+    double shift = fit.shift;
+    if (ImGui::InputDouble("shift", &shift, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && shift > 0) {
+      fit.shift = shift;
+      editFit(ctx, fit, "shift");
+      fit = ctx.scene().fit;
+    }
+  }
+  ImGui::Separator();
+  ImGui::TextDisabled("partition of unity");
+  bool pu = fit.partition.enabled;
+  if (ImGui::Checkbox("enabled", &pu)) {
+    fit.partition.enabled = pu;
+    editFit(ctx, fit, pu ? "partition on" : "partition off");
+    fit = ctx.scene().fit;
+  }
+  ImGui::BeginDisabled(!fit.partition.enabled);
+  int maxPoints = fit.partition.maxPointsPerBox;
+  if (ImGui::InputInt("max points / box", &maxPoints, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue) && maxPoints >= 1) {
+    fit.partition.maxPointsPerBox = maxPoints;
+    editFit(ctx, fit, "max points per box");
+    fit = ctx.scene().fit;
+  }
+  double box = fit.partition.boxSize;
+  if (ImGui::InputDouble("box size", &box, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && box >= 0) {
+    fit.partition.boxSize = box;
+    editFit(ctx, fit, "box size");
+    fit = ctx.scene().fit;
+  }
+  double overlap = fit.partition.overlap;
+  if (ImGui::InputDouble("overlap", &overlap, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && overlap >= 1) {
+    fit.partition.overlap = overlap;
+    editFit(ctx, fit, "overlap");
+  }
+  ImGui::EndDisabled();
+  if (!ctx.fits.lastError().empty()) {
+    ImGui::PushTextWrapPos(0);
+    ImGui::TextColored(ImVec4(1, 0.4f, 0.35f, 1), "last fit failed: %s", ctx.fits.lastError().c_str());
+    ImGui::PopTextWrapPos();
+  }
+}
+
+}  // namespace hermite::app

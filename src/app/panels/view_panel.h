@@ -1,0 +1,24 @@
+#pragma once
+// The View section: the mode, projection, trace mode, slice plane, what is drawn (points,
+// normals, bounds, partition boxes), the 2D colour range, the background, fit / reset and stored
+// camera views.
+
+#include <vector>
+
+#include "app/gui/gui_context.h"
+#include "app/tools/camera_tool.h"
+
+namespace hermite::app {
+
+class ViewPanel {
+ public:
+  ViewPanel(GuiContext& ctx, CameraTool& camera) : ctx_(ctx), camera_(camera) {}
+  void draw();
+
+ private:
+  GuiContext& ctx_;
+  CameraTool& camera_;
+  std::vector<CameraSpec> savedViews_;  // "Store view": numbered buttons return to them
+};
+
+}  // namespace hermite::app
