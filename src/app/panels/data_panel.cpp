@@ -38,8 +38,16 @@ DataPanel::DataPanel(GuiContext& ctx)
     : ctx_(ctx), openPath_(ctx.document.path()), exportPath_(ctx.dimension() == 2 ? "samples.xyn" : "samples.xyzn") {}
 
 void DataPanel::draw() {
+  drawSource();
+  drawFiles();
+  drawNormals();
+  ImGui::Separator();
+  drawSummary();
+}
+
+// The preset (and its sample count) or a teaching scene.
+void DataPanel::drawSource() {
   const Scene& s = ctx_.scene();
-  const int dim = s.dimension();
   const std::string current = !s.data.preset.empty() ? s.data.preset : !s.data.file.empty() ? s.data.file : "inline samples";
   if (ImGui::BeginCombo("preset", current.c_str())) {
     for (const PresetInfo& p : allPresets()) {
@@ -66,6 +74,10 @@ void DataPanel::draw() {
       ctx_.document.apply(n, "sample count");
     }
   }
+}
+
+// Open, save, and export of the samples, the zero set and the model.
+void DataPanel::drawFiles() {
   inputText("##open", openPath_);
   ImGui::SameLine();
   if (ImGui::Button("Open")) {
@@ -109,6 +121,11 @@ void DataPanel::draw() {
       ctx_.setStatus(e.what(), true);
     }
   }
+}
+
+// Every normal re-estimated (PCA + spanning-tree orientation) or flipped.
+void DataPanel::drawNormals() {
+  const int dim = ctx_.dimension();
   if (ImGui::Button("Re-estimate normals")) {
     try {
       std::vector<std::string> warnings;
@@ -140,7 +157,11 @@ void DataPanel::draw() {
       for (double& c : normal) c = -c;
     ctx_.document.apply(n, "flip all normals");
   }
-  ImGui::Separator();
+}
+
+// How many samples, their spacing, the selection and the data warnings.
+void DataPanel::drawSummary() {
+  const int dim = ctx_.dimension();
   const FitOutcome* f = ctx_.currentFit();
   if (f && f->ok()) {
     int n = 0;
@@ -155,5 +176,6 @@ void DataPanel::draw() {
       ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", w.c_str());
   }
 }
+
 
 }  // namespace hermite::app

@@ -15,6 +15,11 @@ class DataPanel {
   void draw();
 
  private:
+  void drawSource();
+  void drawFiles();
+  void drawNormals();
+  void drawSummary();
+
   GuiContext& ctx_;
   std::string openPath_, exportPath_, zeroSetPath_ = "zero-set.glb";
 };

@@ -35,6 +35,20 @@ void ExplorePanel::draw() {
     ImGui::End();
     return;
   }
+  drawControls();
+  const std::vector<ExplorerEntry> entries = explorer_.entries();
+  std::vector<RadiusSweepRow> rows;
+  for (const auto& e : entries) rows.push_back(e.row);
+  drawCsvExport(rows);
+  updateThumbnails(entries);
+  const int best = suggestedRadiusIndex(rows);
+  drawEntries(entries, best);
+  if (!rows.empty()) drawPlots(rows, best);
+  ImGui::End();
+}
+
+// k, the radius range, Run / Restart and Stop with the progress.
+void ExplorePanel::drawControls() {
   ImGui::SetNextItemWidth(80);
   ImGui::InputInt("k", &explorer_.count, 1, 2);
   explorer_.count = std::clamp(explorer_.count, 1, 24);
@@ -66,41 +80,43 @@ void ExplorePanel::draw() {
     ImGui::SameLine();
     if (ImGui::Button("Stop")) explorer_.cancel();
   }
-  const std::vector<ExplorerEntry> entries = explorer_.entries();
+}
+
+void ExplorePanel::drawCsvExport(const std::vector<RadiusSweepRow>& rows) {
   ImGui::SameLine();
   ImGui::SetNextItemWidth(140);
   inputText("##csv", csvPath_);
   ImGui::SameLine();
   if (ImGui::Button("Export CSV")) {
     try {
-      std::vector<RadiusSweepRow> rows;
-      for (const auto& e : entries) rows.push_back(e.row);
       writeFileAtomically(csvPath_, radiusSweepCsv(rows));
       ctx_.setStatus("wrote " + csvPath_);
     } catch (const std::exception& e) {
       ctx_.setStatus(e.what(), true);
     }
   }
+}
 
-  // Thumbnails (drawn on this thread: GL) when new entries arrived.
-  if (thumbnailGeneration_ != explorer_.generation()) {
-    thumbnailGeneration_ = explorer_.generation();
-    thumbnails_.resize(entries.size());
-    for (std::size_t k = 0; k < entries.size(); ++k) {
-      if (!entries[k].fit || thumbnails_[k].valid()) continue;
-      try {
-        const SceneViewResult t = thumbnailRenderer_.render(entries[k].fit, ctx_.scene(), 128, 96, ViewQuality::Settled);
-        thumbnails_[k] = render::Texture::create2D(GL_RGBA8, t.image.width, t.image.height);
-        thumbnails_[k].setFilter(GL_LINEAR, GL_LINEAR);
-        thumbnails_[k].upload2D(GL_RGBA, GL_UNSIGNED_BYTE, t.image.pixels.data());
-      } catch (const std::exception&) {
-        // The entry shows its error text instead.
-      }
+// Thumbnails (drawn on this thread: GL) when new entries arrived.
+void ExplorePanel::updateThumbnails(const std::vector<ExplorerEntry>& entries) {
+  if (thumbnailGeneration_ == explorer_.generation()) return;
+  thumbnailGeneration_ = explorer_.generation();
+  thumbnails_.resize(entries.size());
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    if (!entries[k].fit || thumbnails_[k].valid()) continue;
+    try {
+      const SceneViewResult t = thumbnailRenderer_.render(entries[k].fit, ctx_.scene(), 128, 96, ViewQuality::Settled);
+      thumbnails_[k] = render::Texture::create2D(GL_RGBA8, t.image.width, t.image.height);
+      thumbnails_[k].setFilter(GL_LINEAR, GL_LINEAR);
+      thumbnails_[k].upload2D(GL_RGBA, GL_UNSIGNED_BYTE, t.image.pixels.data());
+    } catch (const std::exception&) {
+      // The entry shows its error text instead.
     }
   }
-  std::vector<RadiusSweepRow> rows;
-  for (const auto& e : entries) rows.push_back(e.row);
-  const int best = suggestedRadiusIndex(rows);
+}
+
+// One thumbnail per radius (a click adopts it), its r (* = suggested) and condition.
+void ExplorePanel::drawEntries(const std::vector<ExplorerEntry>& entries, int best) {
   for (std::size_t k = 0; k < entries.size(); ++k) {
     ImGui::BeginGroup();
     const RadiusSweepRow& row = entries[k].row;
@@ -126,23 +142,23 @@ void ExplorePanel::draw() {
                         row.looCombined, row.error.empty() ? "" : "\n", row.error.c_str());
     ImGui::SameLine();
   }
-  // Plots of the diagnostics against r (log10 of each, in radius order), minimum marked.
-  if (!rows.empty()) {
-    ImGui::BeginGroup();
-    std::vector<float> cond, loo, res;
-    for (const auto& r : rows) {
-      cond.push_back(r.ok() ? float(std::log10(std::max(r.conditionEstimate, 1e-300))) : 0.0f);
-      loo.push_back(std::isfinite(r.looCombined) ? float(std::log10(std::max(r.looCombined, 1e-300))) : 0.0f);
-      res.push_back(r.ok() ? float(std::log10(std::max(r.maxAbsF + r.maxGradError, 1e-300))) : 0.0f);
-    }
-    ImGui::PlotLines("log10 condition", cond.data(), int(cond.size()), 0, nullptr, FLT_MAX, FLT_MAX, ImVec2(180, 40));
-    char overlay[64] = "";
-    if (best >= 0) std::snprintf(overlay, sizeof overlay, "min at r = %.3g", rows[best].radius);
-    ImGui::PlotLines("log10 leave-one-out", loo.data(), int(loo.size()), 0, overlay, FLT_MAX, FLT_MAX, ImVec2(180, 40));
-    ImGui::PlotLines("log10 residual", res.data(), int(res.size()), 0, nullptr, FLT_MAX, FLT_MAX, ImVec2(180, 40));
-    ImGui::EndGroup();
+}
+
+// Plots of the diagnostics against r (log10 of each, in radius order), minimum marked.
+void ExplorePanel::drawPlots(const std::vector<RadiusSweepRow>& rows, int best) const {
+  ImGui::BeginGroup();
+  std::vector<float> cond, loo, res;
+  for (const auto& r : rows) {
+    cond.push_back(r.ok() ? float(std::log10(std::max(r.conditionEstimate, 1e-300))) : 0.0f);
+    loo.push_back(std::isfinite(r.looCombined) ? float(std::log10(std::max(r.looCombined, 1e-300))) : 0.0f);
+    res.push_back(r.ok() ? float(std::log10(std::max(r.maxAbsF + r.maxGradError, 1e-300))) : 0.0f);
   }
-  ImGui::End();
+  ImGui::PlotLines("log10 condition", cond.data(), int(cond.size()), 0, nullptr, FLT_MAX, FLT_MAX, ImVec2(180, 40));
+  char overlay[64] = "";
+  if (best >= 0) std::snprintf(overlay, sizeof overlay, "min at r = %.3g", rows[best].radius);
+  ImGui::PlotLines("log10 leave-one-out", loo.data(), int(loo.size()), 0, overlay, FLT_MAX, FLT_MAX, ImVec2(180, 40));
+  ImGui::PlotLines("log10 residual", res.data(), int(res.size()), 0, nullptr, FLT_MAX, FLT_MAX, ImVec2(180, 40));
+  ImGui::EndGroup();
 }
 
 }  // namespace hermite::app

@@ -22,6 +22,12 @@ class ExplorePanel {
   RadiusExplorer& explorer() { return explorer_; }
 
  private:
+  void drawControls();
+  void drawCsvExport(const std::vector<RadiusSweepRow>& rows);
+  void updateThumbnails(const std::vector<ExplorerEntry>& entries);
+  void drawEntries(const std::vector<ExplorerEntry>& entries, int best);
+  void drawPlots(const std::vector<RadiusSweepRow>& rows, int best) const;
+
   GuiContext& ctx_;
   RadiusExplorer explorer_;
   SceneViewRenderer thumbnailRenderer_;

@@ -15,16 +15,9 @@ namespace {
 
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
 
-}  // namespace
-
-void drawFitPanel(GuiContext& ctx) {
-  FitSpec fit = ctx.scene().fit;
-  const FitMethod methods[] = {FitMethod::Hrbf, FitMethod::RbfOffset};
-  if (comboOf("method", fit.method, methods, fitMethodName)) editFit(ctx, fit, "method");
-  if (comboOf("kernel", fit.kernel, allKernelTypes(), kernelName)) editFit(ctx, fit, "kernel");
-  ctx.recordWidget("fit.kernel");
-
-  // r: logarithmic slider (one undo step per drag) and exact text entry.
+// r: a logarithmic slider (one undo step per drag) and exact entry, with r in units of the mean
+// sample spacing; disabled for scale-free kernels.
+void drawRadius(GuiContext& ctx, const FitSpec& fit) {
   const Kernel kernel{fit.kernel, fit.radius};
   double spacing = 0;
   if (ctx.fits.shown())
@@ -56,23 +49,10 @@ void drawFitPanel(GuiContext& ctx) {
     ImGui::TextWrapped("%s has no radius (scale-free): r is ignored", toString(kernelName(fit.kernel)).c_str());
     ImGui::PopStyleColor();
   }
+}
 
-  if (comboOf("polynomial", fit.polynomial, kPolys, polynomialName)) editFit(ctx, fit, "polynomial");
-  double lambda = fit.smoothing;
-  if (ImGui::InputDouble("smoothing", &lambda, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && lambda >= 0) {
-    fit.smoothing = lambda;
-    editFit(ctx, fit, "smoothing");
-    fit = ctx.scene().fit;
-  }
-  helpMarker("lambda >= 0: approximation instead of interpolation (0 interpolates).");
-  if (fit.method == FitMethod::RbfOffset) {
-    double shift = fit.shift;
-    if (ImGui::InputDouble("shift", &shift, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && shift > 0) {
-      fit.shift = shift;
-      editFit(ctx, fit, "shift");
-      fit = ctx.scene().fit;
-    }
-  }
+// The partition-of-unity settings (fit.partition).
+void drawPartition(GuiContext& ctx, FitSpec fit) {
   ImGui::Separator();
   ImGui::TextDisabled("partition of unity");
   bool pu = fit.partition.enabled;
@@ -100,6 +80,35 @@ void drawFitPanel(GuiContext& ctx) {
     editFit(ctx, fit, "overlap");
   }
   ImGui::EndDisabled();
+}
+
+}  // namespace
+
+void drawFitPanel(GuiContext& ctx) {
+  FitSpec fit = ctx.scene().fit;
+  const FitMethod methods[] = {FitMethod::Hrbf, FitMethod::RbfOffset};
+  if (comboOf("method", fit.method, methods, fitMethodName)) editFit(ctx, fit, "method");
+  if (comboOf("kernel", fit.kernel, allKernelTypes(), kernelName)) editFit(ctx, fit, "kernel");
+  ctx.recordWidget("fit.kernel");
+  drawRadius(ctx, fit);
+
+  if (comboOf("polynomial", fit.polynomial, kPolys, polynomialName)) editFit(ctx, fit, "polynomial");
+  double lambda = fit.smoothing;
+  if (ImGui::InputDouble("smoothing", &lambda, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && lambda >= 0) {
+    fit.smoothing = lambda;
+    editFit(ctx, fit, "smoothing");
+    fit = ctx.scene().fit;
+  }
+  helpMarker("lambda >= 0: approximation instead of interpolation (0 interpolates).");
+  if (fit.method == FitMethod::RbfOffset) {
+    double shift = fit.shift;
+    if (ImGui::InputDouble("shift", &shift, 0, 0, "%.4g", ImGuiInputTextFlags_EnterReturnsTrue) && shift > 0) {
+      fit.shift = shift;
+      editFit(ctx, fit, "shift");
+      fit = ctx.scene().fit;
+    }
+  }
+  drawPartition(ctx, fit);
   if (!ctx.fits.lastError().empty()) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextColored(ImVec4(1, 0.4f, 0.35f, 1), "last fit failed: %s", ctx.fits.lastError().c_str());

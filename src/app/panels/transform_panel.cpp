@@ -13,6 +13,55 @@
 #include "scene/scene_fit.h"
 
 namespace hermite::app {
+namespace {
+
+// The angle and scale sliders: one undo step per drag, each move an update of the document
+// (`s` follows it).
+void drawRotateScale(GuiContext& ctx, Scene& s, int dim) {
+  double angle = dim == 3 ? s.transform.rotateAxisAngleDeg[3] : s.transform.rotateDeg;
+  const double lo = -180, hi = 180;
+  if (ImGui::SliderScalar("angle (deg)", ImGuiDataType_Double, &angle, &lo, &hi, "%.2f")) {
+    if (!ctx.document.inGesture()) ctx.document.begin("rotate");
+    Scene n = ctx.scene();
+    if (dim == 3) n.transform.rotateAxisAngleDeg[3] = angle;
+    else n.transform.rotateDeg = angle;
+    ctx.document.update(n);
+    s = ctx.scene();
+  }
+  if (ImGui::IsItemDeactivated() && ctx.document.inGesture()) ctx.document.end();
+  double q = s.transform.scale;
+  const double qlo = 0.05, qhi = 20;
+  if (ImGui::SliderScalar("scale", ImGuiDataType_Double, &q, &qlo, &qhi, "%.4g", ImGuiSliderFlags_Logarithmic)) {
+    if (!ctx.document.inGesture()) ctx.document.begin("scale");
+    Scene n = ctx.scene();
+    n.transform.scale = q;
+    ctx.document.update(n);
+    s = ctx.scene();
+  }
+  if (ImGui::IsItemDeactivated() && ctx.document.inGesture()) ctx.document.end();
+}
+
+// What the shown fit did with the transform: the method, times and, when verified, the
+// difference from the re-solve.
+void drawTransformReport(const GuiContext& ctx) {
+  const FitOutcome* f = ctx.fits.shown().get();
+  const SceneFitReport* fitted = f ? f->implicitFit() : nullptr;
+  if (fitted && fitted->transformed) {
+    const TransformReport& r = fitted->transform;
+    ImGui::Separator();
+    ImGui::Text("shown: %s%s", r.method.c_str(), r.exact ? " (= the re-solve)" : "");
+    if (ctx.options.showTimings) ImGui::Text("update %.3f ms", r.updateMs);
+    if (r.resolveMs) {
+      if (ctx.options.showTimings) ImGui::Text("re-solve %.2f ms", *r.resolveMs);
+      ImGui::Text("max |f_update - f_resolve|  %.2e", *r.maxAbsDf);
+      ImGui::Text("max |grad difference|       %.2e", *r.maxGradDiff);
+    }
+    if (r.method == "composition")
+      ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "composition f(T^-1 x): not the re-solved interpolant");
+  }
+}
+
+}  // namespace
 
 void drawTransformPanel(GuiContext& ctx) {
   Scene s = ctx.scene();
@@ -40,27 +89,7 @@ void drawTransformPanel(GuiContext& ctx) {
       label = "rotation axis";
     }
   }
-  double angle = dim == 3 ? t.rotateAxisAngleDeg[3] : t.rotateDeg;
-  const double lo = -180, hi = 180;
-  if (ImGui::SliderScalar("angle (deg)", ImGuiDataType_Double, &angle, &lo, &hi, "%.2f")) {
-    if (!ctx.document.inGesture()) ctx.document.begin("rotate");
-    Scene n = ctx.scene();
-    if (dim == 3) n.transform.rotateAxisAngleDeg[3] = angle;
-    else n.transform.rotateDeg = angle;
-    ctx.document.update(n);
-    s = ctx.scene();
-  }
-  if (ImGui::IsItemDeactivated() && ctx.document.inGesture()) ctx.document.end();
-  double q = t.scale;
-  const double qlo = 0.05, qhi = 20;
-  if (ImGui::SliderScalar("scale", ImGuiDataType_Double, &q, &qlo, &qhi, "%.4g", ImGuiSliderFlags_Logarithmic)) {
-    if (!ctx.document.inGesture()) ctx.document.begin("scale");
-    Scene n = ctx.scene();
-    n.transform.scale = q;
-    ctx.document.update(n);
-    s = ctx.scene();
-  }
-  if (ImGui::IsItemDeactivated() && ctx.document.inGesture()) ctx.document.end();
+  drawRotateScale(ctx, s, dim);
   int method = int(t.method);
   ImGui::TextUnformatted("model");
   ImGui::SameLine();
@@ -105,22 +134,7 @@ void drawTransformPanel(GuiContext& ctx) {
     label = "reset transform";
   }
   if (changed) ctx.document.apply(s, label);
-
-  const FitOutcome* f = ctx.fits.shown().get();
-  const SceneFitReport* fitted = f ? f->implicitFit() : nullptr;
-  if (fitted && fitted->transformed) {
-    const TransformReport& r = fitted->transform;
-    ImGui::Separator();
-    ImGui::Text("shown: %s%s", r.method.c_str(), r.exact ? " (= the re-solve)" : "");
-    if (ctx.options.showTimings) ImGui::Text("update %.3f ms", r.updateMs);
-    if (r.resolveMs) {
-      if (ctx.options.showTimings) ImGui::Text("re-solve %.2f ms", *r.resolveMs);
-      ImGui::Text("max |f_update - f_resolve|  %.2e", *r.maxAbsDf);
-      ImGui::Text("max |grad difference|       %.2e", *r.maxGradDiff);
-    }
-    if (r.method == "composition")
-      ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "composition f(T^-1 x): not the re-solved interpolant");
-  }
+  drawTransformReport(ctx);
 }
 
 }  // namespace hermite::app

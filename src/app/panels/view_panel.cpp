@@ -9,66 +9,11 @@
 namespace hermite::app {
 
 void ViewPanel::draw() {
+  if (drawModeChoice()) return;
   Scene s = ctx_.scene();
   ViewSpec& v = s.view;
-  bool changed = false;
+  bool changed = s.mode == SceneMode::Implicit3d && draw3dOptions(v);
   std::string label = "view";
-  const char* modes[] = {"2D (implicit2d)", "3D (implicit3d)", "patch editor", "hole filling"};
-  const int current = s.mode == SceneMode::Implicit2d ? 0 : s.mode == SceneMode::Patch ? 2 : s.mode == SceneMode::HoleFill ? 3 : 1;
-  int mode = current;
-  if (ImGui::Combo("mode", &mode, modes, 4) && mode != current) {
-    if (mode == 3) {
-      Scene n = ctx_.scene();
-      n.mode = SceneMode::HoleFill;
-      n.view.camera.eye = {1.2, -1.6, 1.4};
-      n.view.camera.target = {0, 0, 0};
-      n.view.camera.up = {0, 0, 1};
-      ctx_.document.apply(n, "hole filling");
-    } else if (mode == 2) {
-      Scene n = ctx_.scene();
-      n.mode = SceneMode::Patch;
-      // A view of the default torus piece.
-      n.view.camera.eye = {5.0, 3.5, 3.5};
-      n.view.camera.target = {2.2, 1.3, 0.4};
-      n.view.camera.up = {0, 0, 1};
-      ctx_.document.apply(n, "patch editor");
-    } else {
-      loadPreset(ctx_, mode == 0 ? "curve2d" : "sphere6", mode == 0 ? SceneMode::Implicit2d : SceneMode::Implicit3d);
-    }
-    return;
-  }
-  if (s.mode == SceneMode::Implicit3d) {
-    const Projection projections[] = {Projection::Perspective, Projection::Orthographic};
-    changed |= comboOf("projection", v.projection, projections, projectionName);
-    const TraceMode traces[] = {TraceMode::Auto, TraceMode::Baked, TraceMode::Exact};
-    changed |= comboOf("trace", v.trace, traces, traceModeName);
-    helpMarker("baked: f on a 3D grid, hits refined against the true field when the view settles. exact: the "
-               "model summed per pixel in the shader (slow without a GPU).");
-    changed |= ImGui::Checkbox("slice plane", &v.slice.enabled);
-    if (v.slice.enabled) {
-      const char* axes[] = {"x", "y", "z"};
-      int axis = v.slice.normal[0] != 0 ? 0 : v.slice.normal[1] != 0 ? 1 : 2;
-      if (ImGui::Combo("slice normal", &axis, axes, 3)) {
-        v.slice.normal = {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
-        changed = true;
-      }
-      double offset = v.slice.offset;
-      const double extent = sliceOffsetExtent(ctx_);  // offsets that cut the bounds
-      const double lo = -extent, hi = extent;
-      if (ImGui::SliderScalar("slice offset", ImGuiDataType_Double, &offset, &lo, &hi, "%.3f")) {
-        if (!ctx_.document.inGesture()) ctx_.document.begin("slice offset");
-        v.slice.offset = offset;
-        Scene n = ctx_.scene();
-        n.view.slice.offset = offset;
-        ctx_.document.update(n);
-      }
-      if (ImGui::IsItemDeactivated() && ctx_.document.inGesture()) ctx_.document.end();
-      ImGui::SameLine();
-      helpMarker("or Alt + drag in the view: the plane follows the mouse along its normal.");
-    }
-    changed |= ImGui::Checkbox("bounds box", &v.showBounds);
-    ImGui::SameLine();
-  }
   if (s.mode == SceneMode::Implicit2d || s.mode == SceneMode::Implicit3d) {
     changed |= ImGui::Checkbox("points", &v.showPoints);
     ImGui::SameLine();
@@ -95,7 +40,83 @@ void ViewPanel::draw() {
     label = "background";
   }
   if (changed) ctx_.document.apply(s, label);
+  drawCameraButtons();
+}
 
+// The mode switch; true when it switched (the rest of the panel waits for the next frame).
+bool ViewPanel::drawModeChoice() {
+  const SceneMode m = ctx_.scene().mode;
+  const char* modes[] = {"2D (implicit2d)", "3D (implicit3d)", "patch editor", "hole filling"};
+  const int current = m == SceneMode::Implicit2d ? 0 : m == SceneMode::Patch ? 2 : m == SceneMode::HoleFill ? 3 : 1;
+  int mode = current;
+  if (ImGui::Combo("mode", &mode, modes, 4) && mode != current) {
+    if (mode == 3) {
+      Scene n = ctx_.scene();
+      n.mode = SceneMode::HoleFill;
+      n.view.camera.eye = {1.2, -1.6, 1.4};
+      n.view.camera.target = {0, 0, 0};
+      n.view.camera.up = {0, 0, 1};
+      ctx_.document.apply(n, "hole filling");
+    } else if (mode == 2) {
+      Scene n = ctx_.scene();
+      n.mode = SceneMode::Patch;
+      // A view of the default torus piece.
+      n.view.camera.eye = {5.0, 3.5, 3.5};
+      n.view.camera.target = {2.2, 1.3, 0.4};
+      n.view.camera.up = {0, 0, 1};
+      ctx_.document.apply(n, "patch editor");
+    } else {
+      loadPreset(ctx_, mode == 0 ? "curve2d" : "sphere6", mode == 0 ? SceneMode::Implicit2d : SceneMode::Implicit3d);
+    }
+    return true;
+  }
+  return false;
+}
+
+// Projection, trace mode, slice plane, bounds box: true when `v` changed.
+bool ViewPanel::draw3dOptions(ViewSpec& v) {
+  bool changed = false;
+  const Projection projections[] = {Projection::Perspective, Projection::Orthographic};
+  changed |= comboOf("projection", v.projection, projections, projectionName);
+  const TraceMode traces[] = {TraceMode::Auto, TraceMode::Baked, TraceMode::Exact};
+  changed |= comboOf("trace", v.trace, traces, traceModeName);
+  helpMarker("baked: f on a 3D grid, hits refined against the true field when the view settles. exact: the "
+             "model summed per pixel in the shader (slow without a GPU).");
+  changed |= ImGui::Checkbox("slice plane", &v.slice.enabled);
+  if (v.slice.enabled) changed |= drawSliceOptions(v);
+  changed |= ImGui::Checkbox("bounds box", &v.showBounds);
+  ImGui::SameLine();
+  return changed;
+}
+
+// The slice normal (an axis) and offset (a slider, one undo step per drag): true when the normal changed.
+bool ViewPanel::drawSliceOptions(ViewSpec& v) {
+  bool changed = false;
+  const char* axes[] = {"x", "y", "z"};
+  int axis = v.slice.normal[0] != 0 ? 0 : v.slice.normal[1] != 0 ? 1 : 2;
+  if (ImGui::Combo("slice normal", &axis, axes, 3)) {
+    v.slice.normal = {axis == 0 ? 1.0 : 0.0, axis == 1 ? 1.0 : 0.0, axis == 2 ? 1.0 : 0.0};
+    changed = true;
+  }
+  double offset = v.slice.offset;
+  const double extent = sliceOffsetExtent(ctx_);  // offsets that cut the bounds
+  const double lo = -extent, hi = extent;
+  if (ImGui::SliderScalar("slice offset", ImGuiDataType_Double, &offset, &lo, &hi, "%.3f")) {
+    if (!ctx_.document.inGesture()) ctx_.document.begin("slice offset");
+    v.slice.offset = offset;
+    Scene n = ctx_.scene();
+    n.view.slice.offset = offset;
+    ctx_.document.update(n);
+  }
+  if (ImGui::IsItemDeactivated() && ctx_.document.inGesture()) ctx_.document.end();
+  ImGui::SameLine();
+  helpMarker("or Alt + drag in the view: the plane follows the mouse along its normal.");
+  return changed;
+}
+
+// Fit to view, reset, stored views and screenshots.
+void ViewPanel::drawCameraButtons() {
+  const Scene& s = ctx_.scene();
   if (ImGui::Button("Fit to view (F)")) camera_.fitToView();
   ImGui::SameLine();
   if (ImGui::Button("Reset (Home)")) camera_.resetView();

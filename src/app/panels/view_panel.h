@@ -16,6 +16,11 @@ class ViewPanel {
   void draw();
 
  private:
+  bool drawModeChoice();
+  bool draw3dOptions(ViewSpec& v);
+  bool drawSliceOptions(ViewSpec& v);
+  void drawCameraButtons();
+
   GuiContext& ctx_;
   CameraTool& camera_;
   std::vector<CameraSpec> savedViews_;  // "Store view": numbered buttons return to them
