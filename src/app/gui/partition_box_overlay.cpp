@@ -3,6 +3,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <optional>
 
 #include "scene/scene_fit.h"
 
@@ -10,46 +11,29 @@ namespace hermite::app {
 
 namespace {
 
-const ImU32 kBoxColour = IM_COL32(90, 60, 160, 170);
 constexpr std::size_t kMaxBoxes = 4000;  // beyond this the lines only hide the view
 
-// o: the view's origin in the window (pixels).
-void drawBoxes(const GuiContext& ctx, const PuModel<2>& pu, ImDrawList* dl, const Vec<2>& o) {
-  const ImU32 colour = kBoxColour;
-  const View2d view = sceneView2d(ctx.scene(), ctx.view.primaryWidth(), ctx.view.h);
+// Each leaf's box edges (corners i and i | bit, in the model's frame mapped to the world),
+// through `toView` (world → view pixels, none when not visible), as lines offset by `o`.
+template <int Dim, class ToView>
+void drawBoxes(const PuModel<Dim>& pu, ToView toView, const Vec<2>& o) {
+  ImDrawList* dl = ImGui::GetBackgroundDrawList();
+  const ImU32 colour = IM_COL32(90, 60, 160, 170);
   for (std::size_t k = 0; k < std::min(pu.leaves().size(), kMaxBoxes); ++k) {
     const auto& leaf = pu.leaves()[k];
-    const Vec<2> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;
-    ImVec2 pts[4];
-    const Vec<2> corners[4] = {c + Vec<2>(-h.x(), -h.y()), c + Vec<2>(h.x(), -h.y()), c + Vec<2>(h.x(), h.y()),
-                               c + Vec<2>(-h.x(), h.y())};
-    for (int i = 0; i < 4; ++i) {
-      const Vec<2> q = view.worldToPixel(pu.frame().apply(corners[i])) + o;
-      pts[i] = ImVec2(float(q.x()), float(q.y()));
-    }
-    dl->AddPolyline(pts, 4, colour, ImDrawFlags_Closed, 1.0f);
-  }
-}
-
-void drawBoxes(const GuiContext& ctx, const PuModel<3>& pu, ImDrawList* dl, const Vec<2>& o) {
-  const ImU32 colour = kBoxColour;
-  const Camera cam = sceneCamera(ctx.scene(), ctx.view.primaryWidth(), ctx.view.h);
-  for (std::size_t k = 0; k < std::min(pu.leaves().size(), kMaxBoxes); ++k) {
-    const auto& leaf = pu.leaves()[k];
-    const Vec<3> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;
+    const Vec<Dim> c = leaf.support.center(), h = 0.5 * leaf.support.extent() / leaf.factor;
     const auto corner = [&](int i) {
-      return pu.frame().apply(Vec<3>(c.x() + ((i & 1) ? h.x() : -h.x()), c.y() + ((i & 2) ? h.y() : -h.y()),
-                                     c.z() + ((i & 4) ? h.z() : -h.z())));
+      Vec<Dim> x = c;
+      for (int d = 0; d < Dim; ++d) x(d) += (i >> d & 1) ? h(d) : -h(d);
+      return toView(pu.frame().apply(x));
     };
-    for (int i = 0; i < 8; ++i)
-      for (int bit = 1; bit <= 4; bit <<= 1) {
+    for (int i = 0; i < (1 << Dim); ++i)
+      for (int bit = 1; bit < (1 << Dim); bit <<= 1) {
         if (i & bit) continue;
-        const Vec<3> a = corner(i), b = corner(i | bit);
-        if (cam.projection() == Projection::Perspective &&
-            ((a - cam.eye()).dot(cam.forward()) <= 0 || (b - cam.eye()).dot(cam.forward()) <= 0))
-          continue;
-        const Vec<2> pa = cam.project(a) + o, pb = cam.project(b) + o;
-        dl->AddLine(ImVec2(float(pa.x()), float(pa.y())), ImVec2(float(pb.x()), float(pb.y())), colour, 1.0f);
+        const std::optional<Vec<2>> a = corner(i), b = corner(i | bit);
+        if (!a || !b) continue;
+        dl->AddLine(ImVec2(float(a->x() + o.x()), float(a->y() + o.y())),
+                    ImVec2(float(b->x() + o.x()), float(b->y() + o.y())), colour, 1.0f);
       }
   }
 }
@@ -59,9 +43,14 @@ void drawBoxes(const GuiContext& ctx, const PuModel<3>& pu, ImDrawList* dl, cons
 void drawPartitionBoxes(const GuiContext& ctx) {
   const FitOutcome* f = ctx.fits.shown().get();
   if (!f) return;
-  f->visitImplicit([&](const auto& fit) {
-    if (fit.pu()) drawBoxes(ctx, *fit.pu(), ImGui::GetBackgroundDrawList(), ctx.view.origin());
-  });
+  const int w = ctx.view.primaryWidth(), h = ctx.view.h;
+  if (const auto* f2 = f->as<SceneFit<2>>(); f2 && f2->pu()) {
+    const View2d view = sceneView2d(ctx.scene(), w, h);
+    drawBoxes<2>(*f2->pu(), [&](const Vec<2>& x) { return std::optional<Vec<2>>(view.worldToPixel(x)); }, ctx.view.origin());
+  } else if (const auto* f3 = f->as<SceneFit<3>>(); f3 && f3->pu()) {
+    const Camera cam = sceneCamera(ctx.scene(), w, h);
+    drawBoxes<3>(*f3->pu(), [&](const Vec<3>& x) { return cam.projectVisible(x); }, ctx.view.origin());
+  }
 }
 
 }  // namespace hermite::app

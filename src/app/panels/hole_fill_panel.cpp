@@ -28,8 +28,9 @@ void HoleFillPanel::drawLabels() const {
     Vec<3> centre = Vec<3>::Zero();
     for (int v : loop) centre += st.input.vertices.col(v);
     centre /= double(loop.size());
-    if (cam.projection() == Projection::Perspective && (centre - cam.eye()).dot(cam.forward()) <= 0) continue;
-    const Vec<2> q = cam.project(centre) + o;
+    const std::optional<Vec<2>> shown = cam.projectVisible(centre);
+    if (!shown) continue;
+    const Vec<2> q = *shown + o;
     const std::string text = std::to_string(k);
     const ImVec2 size = ImGui::CalcTextSize(text.c_str());
     const ImVec2 at(float(q.x()) - 0.5f * size.x, float(q.y()) - 0.5f * size.y);

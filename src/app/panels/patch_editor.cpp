@@ -47,8 +47,7 @@ const char* handleName(const PatchHandle& h) {
 std::optional<Vec<2>> PatchEditor::handlePosition(const PatchHandle& h) const {
   const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
   const Vec<3> p = patchHandlePosition(ctx_.scene().patch, patchKnotData(ctx_.scene().patch), h);
-  if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) return std::nullopt;
-  return cam.project(p);
+  return cam.projectVisible(p);
 }
 
 bool PatchEditor::press(const Vec<2>& mouse) {
@@ -57,8 +56,9 @@ bool PatchEditor::press(const Vec<2>& mouse) {
   double best = kHandlePickPx;
   std::optional<std::pair<PatchHandle, Vec<3>>> hit;
   for (const auto& [h, p] : patchHandles(ctx_.scene().patch)) {
-    if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) continue;
-    const double d = (cam.project(p) - mouse).norm();
+    const std::optional<Vec<2>> at = cam.projectVisible(p);
+    if (!at) continue;
+    const double d = (*at - mouse).norm();
     // Ties (shared corners, coincident tips): the first in the list wins — points before tips.
     if (d < best) {
       best = d;
@@ -106,8 +106,9 @@ void PatchEditor::drawHandles() const {
   const Vec<2> o = ctx_.view.origin();
   const ImVec2 mouse = ImGui::GetIO().MousePos;
   for (const auto& [h, p] : patchHandles(spec)) {
-    if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) continue;
-    const Vec<2> q = cam.project(p) + o;
+    const std::optional<Vec<2>> shown = cam.projectVisible(p);
+    if (!shown) continue;
+    const Vec<2> q = *shown + o;
     const ImVec2 at(float(q.x()), float(q.y()));
     const bool grabbed = ctx_.drag == Drag::PatchHandle && h.kind == grabbed_.kind && h.a == grabbed_.a &&
                          h.b == grabbed_.b && h.p == grabbed_.p && h.q == grabbed_.q;

@@ -17,6 +17,12 @@ namespace {
 constexpr double kPickRadiusPx = 9.0;
 constexpr double kNormalLength3d = 0.05;  // of the bounds diagonal, as the tracer draws normals
 
+// The tip of sample i's normal as the 3D view draws it (world units).
+Vec<3> normalTip3d(const Scene& scene, const SceneFit<3>& fit, int i) {
+  const Box<3> b = viewBounds<3>(scene.view, fit.data.points);
+  return fit.data.points.col(i) + kNormalLength3d * b.extent().norm() * fit.data.normals.col(i).normalized();
+}
+
 template <int Dim>
 Scene editSample(const Scene& scene, int index, bool remove) {
   std::vector<std::string> warnings;
@@ -42,43 +48,23 @@ Scene editSample(const Scene& scene, int index, bool remove) {
 
 }  // namespace
 
-std::optional<Vec<2>> SampleTool::samplePosition(int i) const {
-  const FitOutcome* f = ctx_.fits.shown().get();
-  if (!f || i < 0) return std::nullopt;
-  const int w = ctx_.view.primaryWidth();
-  if (const auto* f2 = f->as<SceneFit<2>>()) {
-    if (i >= f2->data.size()) return std::nullopt;
-    return sceneView2d(ctx_.scene(), w, ctx_.view.h).worldToPixel(f2->data.points.col(i));
-  }
-  if (const auto* f3 = f->as<SceneFit<3>>()) {
-    if (i >= f3->data.size()) return std::nullopt;
-    const Camera cam = sceneCamera(ctx_.scene(), w, ctx_.view.h);
-    const Vec<3> p = f3->data.points.col(i);
-    if (cam.projection() == Projection::Perspective && (p - cam.eye()).dot(cam.forward()) <= 0) return std::nullopt;
-    return cam.project(p);
-  }
-  return std::nullopt;
-}
+std::optional<Vec<2>> SampleTool::samplePosition(int i) const { return position(i, false); }
 
-std::optional<Vec<2>> SampleTool::normalTipPosition(int i) const {
+std::optional<Vec<2>> SampleTool::normalTipPosition(int i) const { return position(i, true); }
+
+std::optional<Vec<2>> SampleTool::position(int i, bool tip) const {
   const FitOutcome* f = ctx_.fits.shown().get();
-  if (!f || i < 0) return std::nullopt;
+  if (!f || i < 0 || i >= f->dataCount()) return std::nullopt;
   const int w = ctx_.view.primaryWidth();
   if (const auto* f2 = f->as<SceneFit<2>>()) {
-    if (i >= f2->data.size()) return std::nullopt;
     const Vec<2> p = sceneView2d(ctx_.scene(), w, ctx_.view.h).worldToPixel(f2->data.points.col(i));
+    if (!tip) return p;
     const Vec<2> n = f2->data.normals.col(i).normalized();
     return Vec<2>(p + Field2dStyle{}.normalLengthPx * Vec<2>(n.x(), -n.y()));
   }
-  if (const auto* f3 = f->as<SceneFit<3>>()) {
-    if (i >= f3->data.size()) return std::nullopt;
-    const Box<3> b = viewBounds<3>(ctx_.scene().view, f3->data.points);
-    const Vec<3> tip = f3->data.points.col(i) + kNormalLength3d * b.extent().norm() * f3->data.normals.col(i).normalized();
-    const Camera cam = sceneCamera(ctx_.scene(), w, ctx_.view.h);
-    if (cam.projection() == Projection::Perspective && (tip - cam.eye()).dot(cam.forward()) <= 0) return std::nullopt;
-    return cam.project(tip);
-  }
-  return std::nullopt;
+  const SceneFit<3>& f3 = *f->as<SceneFit<3>>();
+  const Vec<3> p = tip ? normalTip3d(ctx_.scene(), f3, i) : Vec<3>(f3.data.points.col(i));
+  return sceneCamera(ctx_.scene(), w, ctx_.view.h).projectVisible(p);
 }
 
 int SampleTool::pick(const Vec<2>& mouse, bool* onTip) const {
@@ -115,9 +101,7 @@ bool SampleTool::press(const Vec<2>& mouse) {
   ctx_.selected = hit;
   ctx_.drag = tip ? Drag::NormalTip : Drag::Sample;
   if (const SceneFit<3>* f3 = ctx_.dimension() == 3 && ctx_.fits.shown() ? ctx_.fits.shown()->as<SceneFit<3>>() : nullptr) {
-    const Vec<3> p = f3->data.points.col(hit);
-    const Box<3> b = viewBounds<3>(ctx_.scene().view, f3->data.points);
-    dragPlanePoint_ = tip ? Vec<3>(p + kNormalLength3d * b.extent().norm() * f3->data.normals.col(hit).normalized()) : p;
+    dragPlanePoint_ = tip ? normalTip3d(ctx_.scene(), *f3, hit) : Vec<3>(f3->data.points.col(hit));
   }
   ctx_.document.begin(tip ? "rotate normal" : "move sample");
   {

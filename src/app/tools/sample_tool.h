@@ -28,6 +28,7 @@ class SampleTool {
   void drawSelection() const;
 
  private:
+  std::optional<Vec<2>> position(int i, bool tip) const;
   int pick(const Vec<2>& mouse, bool* onTip) const;
   void move(const Vec<2>& mouse, bool tip);
   template <int Dim, class Target>

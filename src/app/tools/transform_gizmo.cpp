@@ -54,9 +54,7 @@ void setPose(TransformSpec& s, const Pose& p, int dim) {
 // The view's mapping of world points to view pixels (2D points have z = 0).
 std::optional<Vec<2>> TransformGizmo::worldToView(const Vec<3>& x) const {
   if (ctx_.dimension() == 2) return sceneView2d(ctx_.scene(), ctx_.view.w, ctx_.view.h).worldToPixel(x.head<2>());
-  const Camera cam = sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h);
-  if (cam.projection() == Projection::Perspective && (x - cam.eye()).dot(cam.forward()) <= 0) return std::nullopt;
-  return cam.project(x);
+  return sceneCamera(ctx_.scene(), ctx_.view.w, ctx_.view.h).projectVisible(x);
 }
 
 // Pivot (the transformed centroid) and the gizmo's size in world units; false without a fit.

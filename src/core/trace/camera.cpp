@@ -64,6 +64,11 @@ Ray Camera::ray(double px, double py) const {
   return ray;
 }
 
+std::optional<Vec<2>> Camera::projectVisible(const Vec<3>& x) const {
+  if (projection_ == Projection::Perspective && (x - eye_).dot(f_) <= 0) return std::nullopt;
+  return project(x);
+}
+
 Vec<2> Camera::project(const Vec<3>& x) const {
   const Vec<3> d = x - eye_;
   const double cx = r_.dot(d), cy = u_.dot(d), cz = f_.dot(d);

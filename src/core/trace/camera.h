@@ -6,6 +6,7 @@
 // put the centre of pixel (i, j) at (i + ½, j + ½).
 
 #include <array>
+#include <optional>
 
 #include <Eigen/Core>
 
@@ -51,6 +52,8 @@ class Camera {
   // Continuous pixel coordinates (px, py) of a world point (inverse of ray()); for perspective
   // the point must be in front of the eye (dot(x − eye, f) > 0).
   Vec<2> project(const Vec<3>& x) const;
+  // project(x), or none when a perspective camera has x behind (or at) its eye.
+  std::optional<Vec<2>> projectVisible(const Vec<3>& x) const;
 
   // OpenGL matrices consistent with the rays: clip = P·V·x; NDC (x, y) ∈ [−1, 1]² maps to
   // window (px, H − py), i.e. glViewport(0, 0, W, H) with rows flipped (GL row 0 = bottom).
