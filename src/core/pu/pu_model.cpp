@@ -266,7 +266,7 @@ class LeafFitter {
 // Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
 // than is available: each holds a system of at most min(n, limits.max) samples, as the
 // in-process path (kernel block and saddle matrix: 2 square matrices) or fitHrbf's, plus each
-// thread's BLAS buffer.
+// thread's BLAS buffer when the fits themselves reach kUncheckedBytes.
 template <int Dim>
 void checkLocalFitMemory(int samples, const SupportLimits& limits, const HrbfOptions& local) {
   const std::int64_t k = std::min<std::int64_t>(samples, limits.max);
@@ -277,7 +277,8 @@ void checkLocalFitMemory(int samples, const SupportLimits& limits, const HrbfOpt
   const std::uint64_t perFit = std::max(denseFitBytes(unknowns, path, m),
                                         saturatingProduct({2, std::uint64_t(unknowns), std::uint64_t(unknowns), 8}));
   const int threads = omp_get_max_threads();
-  checkMemory({saturatingSum({saturatingProduct({perFit, std::uint64_t(threads)}), blasBufferBytes(threads)}),
+  const std::uint64_t fits = saturatingProduct({perFit, std::uint64_t(threads)});
+  checkMemory({fits < kUncheckedBytes ? fits : saturatingSum({fits, blasBufferBytes(threads)}),
                "the partition-of-unity fit (" + std::to_string(threads) + " local fits at once, each of up to " +
                    std::to_string(unknowns) + " unknowns)"},
               "lower fit.partition.max_points_per_box or use fewer --threads");

@@ -41,11 +41,16 @@ PlannedAllocation denseFitPlan(std::int64_t unknowns, SolverChoice solver, std::
   const int matrices = squareMatrices(solver, polynomialTerms > 0);
   const std::string path = solver == SolverChoice::Auto ? std::string("ldlt") : std::string(solverName(solver));
   const std::string size = std::to_string(unknowns);
+  const std::uint64_t bytes = denseFitBytes(unknowns, solver, polynomialTerms);
+  std::string what = "the dense fit of " + size + " unknowns (" + path + ": " +
+                     (matrices == 1 ? std::string("its system matrix") : std::to_string(matrices) + " matrices") +
+                     " of " + size + " x " + size + " doubles";
+  // Small fits (hole filling, local fits) run by the thousand once the buffers exist: counting
+  // them again would refuse a few-megabyte fit under a tight limit.
+  if (bytes < kUncheckedBytes) return {bytes, what + ")"};
   const int threads = threadCount();
-  return {saturatingSum({denseFitBytes(unknowns, solver, polynomialTerms), blasBufferBytes(threads)}),
-          "the dense fit of " + size + " unknowns (" + path + ": " +
-              (matrices == 1 ? std::string("its system matrix") : std::to_string(matrices) + " matrices") + " of " +
-              size + " x " + size + " doubles, and the BLAS buffers of " + std::to_string(threads) + " threads)"};
+  return {saturatingSum({bytes, blasBufferBytes(threads)}),
+          what + ", and the BLAS buffers of " + std::to_string(threads) + " threads)"};
 }
 
 void checkDenseFitMemory(std::int64_t unknowns, SolverChoice solver, std::int64_t polynomialTerms) {

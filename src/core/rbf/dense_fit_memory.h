@@ -28,8 +28,9 @@ inline constexpr std::uint64_t kBlasBufferBytes = 128ull << 20;
 // The buffers of `threads` BLAS threads.
 std::uint64_t blasBufferBytes(int threads);
 
-// The plan of a dense fit: denseFitBytes plus the BLAS buffers of the current thread count
-// (threading.h), its purpose naming the unknowns and the solver path.
+// The plan of a dense fit: denseFitBytes, plus the BLAS buffers of the current thread count
+// (threading.h) when the matrices reach kUncheckedBytes; its purpose names the unknowns and the
+// solver path.
 PlannedAllocation denseFitPlan(std::int64_t unknowns, SolverChoice solver, std::int64_t polynomialTerms = 0);
 
 // What a refused global fit suggests.

@@ -10,6 +10,7 @@
 #include "core/pu/pu_model.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/hrbf.h"
+#include "core/rbf/hrbf_bordered_refit.h"
 #include "core/rbf/rbf_offset.h"
 #include "support/test_data.h"
 
@@ -103,6 +104,7 @@ TEST_CASE("a global fit too large for the available memory is refused before ass
     CHECK(contains(m, "fit.partition.enabled"));
   }
   CHECK_THROWS_AS(fitRbfOffset<3>(s, RbfOffsetOptions{}), MemoryLimitError);
+  CHECK_THROWS_AS(HrbfBorderedRefit<3>(s, HrbfOptions{}, 0), MemoryLimitError);
   CHECK(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() < 1.0);
   // The same data fit by partition of unity: local systems of a few hundred unknowns.
   PuOptions pu;
