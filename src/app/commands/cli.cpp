@@ -10,9 +10,12 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands/commands.h"
+#include "app/commands/fatal_exit.h"
 #include "app/commands/output.h"
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
 #include "core/base/threading.h"
+#include "io/system_memory.h"
 
 namespace hermite::app {
 
@@ -42,8 +45,18 @@ void addSceneOptions(CLI::App& cmd, SceneArgs& scene, bool required) {
       ->allow_extra_args(false);
 }
 
+// N in [1, 4096]; above the cores this process may use it is lowered to them, with a note (more
+// threads than cores only add memory and contention: OpenBLAS gives each its own buffers).
 void addThreads(CLI::App& cmd, int& threads) {
-  cmd.add_option("--threads", threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  cmd.add_option("--threads", threads, "worker threads (default: all cores; at most the cores available)")
+      ->check(CLI::Range(1, 4096))
+      ->transform([](std::string value) {
+        const int cores = availableCores();
+        if (std::stol(value) <= cores) return value;
+        std::fprintf(stderr, "note: --threads %s is more than the %d cores available to this process; using %d\n",
+                     value.c_str(), cores, cores);
+        return std::to_string(cores);
+      });
 }
 
 // Parses with CLI11; returns -1 to go on, or the exit code (0 for --help, 2 for usage errors).
@@ -184,6 +197,8 @@ int dispatch(int argc, char** argv) {
 }  // namespace
 
 int runCli(int argc, char** argv) {
+  installFatalHandlers();
+  setAvailableMemorySource(querySystemMemory);
   try {
     const int rc = dispatch(argc, argv);
     finishStdout();
@@ -201,8 +216,7 @@ int runCli(int argc, char** argv) {
     std::fprintf(stderr, "environment error: %s\n", e.what());
     return 4;
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "environment error: out of memory\n");
-    return 4;
+    exitOutOfMemory("");
   } catch (const std::exception& e) {
     std::fprintf(stderr, "internal error: %s\n", e.what());
     return 4;

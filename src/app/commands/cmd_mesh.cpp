@@ -11,7 +11,9 @@
 #include "app/gui/fit_worker.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
 #include "core/mesh/marching_cubes.h"
+#include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_squares.h"
 #include "io/atomic_file.h"
 #include "io/mesh_file.h"
@@ -77,6 +79,23 @@ std::string cellsText(const MarchingReport& r, int dim) {
   return s;
 }
 
+// Before the fit: the grid over view.bounds when the scene gives them; otherwise over the
+// smallest box the default bounds can be (each side at least 1/3 of the longest: the samples'
+// box grown by 25 % of its longest side on every side), so that no mesh that would fit is refused.
+// marchingCubes checks the exact grid again once the bounds are known.
+template <int Dim>
+void checkMeshGrid(const Scene& scene, int resolution) {
+  Box<Dim> box;
+  if (scene.view.bounds) {
+    box = viewBounds<Dim>(scene.view, Points<Dim>(Dim, 0));
+  } else {
+    box.lo.setZero();
+    box.hi.setConstant(1.0);
+    box.hi[0] = 3.0;
+  }
+  checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
+}
+
 }  // namespace
 
 std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution) {
@@ -125,6 +144,8 @@ int runMesh(const MeshArgs& args) {
   if (scene.dimension() == 3) requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"});
   else requireExtension("mesh", args.output, {"obj", "svg"});
   requireWritableLocation("mesh", args.output);
+  if (scene.mode == SceneMode::Implicit3d) checkMeshGrid<3>(scene, args.resolution);
+  if (scene.mode == SceneMode::Implicit2d) checkMeshGrid<2>(scene, args.resolution);
   writeStdout(exportZeroSet(*fitOutcomeOrThrow(scene), args.output, args.resolution) + "\n");
   return 0;
 }

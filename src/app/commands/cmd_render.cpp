@@ -18,6 +18,7 @@
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
 #include "core/trace/image.h"
 #include "io/png_file.h"
 #include "render/field2d_view.h"
@@ -27,6 +28,7 @@
 #include "render/imgui_renderer.h"
 #include "render/implicit_tracer.h"
 #include "render/legend.h"
+#include "render/render_memory.h"
 #include "scene/scene_fit.h"
 #include "scene/view_bounds.h"
 
@@ -178,6 +180,7 @@ int runRender(const RenderArgs& args) {
   Scene scene = loadCommandScene(args.scene);
   if (size) scene.view.size = *size;
   checkOutputPath(args.output);
+  checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
   const ImageRgba8 image = args.ui ? renderWithPanels(scene, args) : renderView(scene, args);
   writePng(args.output, image);
   return 0;

@@ -13,10 +13,15 @@
 #include "app/gui/scene_loading.h"
 #include "app/gui/scene_view.h"
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
+#include "core/rbf/dense_fit_memory.h"
 #include "core/trace/image.h"
 #include "io/atomic_file.h"
 #include "io/png_file.h"
+#include "render/render_memory.h"
 #include "scene/radius_sweep.h"
+#include "scene/scene_fit.h"
+#include "scene/scene_fit_memory.h"
 
 namespace hermite::app {
 
@@ -39,6 +44,15 @@ std::string imageName(int k, double r) {
   return buf;
 }
 
+// One radius's work, before the first: the fit (the same size at every radius; radii run one
+// after another) and the image buffers. Leave-one-out, larger, reports its own refusal per row.
+template <int Dim>
+void checkSweepMemory(const Scene& scene) {
+  std::vector<std::string> warnings;
+  const HermiteSamples<Dim> samples = sceneSamples<Dim>(scene, warnings);
+  if (const auto plan = sceneFitPlan(scene, samples.size())) checkMemory(*plan, kDenseFitRemedy);
+}
+
 }  // namespace
 
 int runSweep(const SweepArgs& args) {
@@ -50,6 +64,9 @@ int runSweep(const SweepArgs& args) {
                      "' has no radius (it is scale-free): nothing to sweep");
   const std::vector<double> radii = parseRadiiArgument(args.radii);
   if (!args.size.empty()) scene.view.size = parseImageSize(args.size);
+  checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
+  if (scene.mode == SceneMode::Implicit2d) checkSweepMemory<2>(scene);
+  else checkSweepMemory<3>(scene);
   prepareDirectory(args.outputDirectory);
   const std::filesystem::path dir(args.outputDirectory);
 

@@ -1,6 +1,7 @@
 #include "core/base/threading.h"
 
 #include <omp.h>
+#include <sched.h>
 
 #include <thread>
 
@@ -19,6 +20,10 @@ void setBlasThreadCount(int n) { openblas_set_num_threads(n < 1 ? 1 : n); }
 int threadCount() { return omp_get_max_threads(); }
 
 int availableCores() {
+  // The CPUs this process may run on (taskset, cgroup cpusets), else all of the machine's.
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
   const unsigned n = std::thread::hardware_concurrency();
   return n == 0 ? 1 : static_cast<int>(n);
 }

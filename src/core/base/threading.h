@@ -11,7 +11,8 @@ void setThreadCount(int n);
 void setBlasThreadCount(int n);
 // The current OpenMP worker count.
 int threadCount();
-// Hardware threads available to this process.
+// Hardware threads available to this process: its CPU affinity mask (sched_getaffinity), else
+// std::thread::hardware_concurrency.
 int availableCores();
 
 }  // namespace hermite

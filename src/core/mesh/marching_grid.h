@@ -12,6 +12,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_options.h"
 
 namespace hermite::detail {
@@ -166,10 +167,10 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
   const auto t0 = std::chrono::steady_clock::now();
   MarchingGrid<Dim> g;
   g.lo = box.lo;
-  const double cell = ext.maxCoeff() / options.resolution;
+  checkMemory(marchingGridPlan<Dim>(box, options.resolution), kMarchingRemedy);
+  g.n = marchingCells<Dim>(box, options.resolution);
   std::int64_t s = 1;
   for (int a = 0; a < Dim; ++a) {
-    g.n[a] = std::max(1, static_cast<int>(std::ceil(ext[a] / cell - 1e-9)));
     g.h[a] = ext[a] / g.n[a];
     g.stride[a] = s;
     s *= g.n[a] + 1;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
 
 #include <Eigen/SVD>
 
@@ -11,8 +13,16 @@
 
 namespace hermite {
 
+PlannedAllocation patchStudyPlan(int samples) {
+  const std::uint64_t N = samples > 0 ? std::uint64_t(samples) : 0;
+  return {saturatingProduct({4, N, N, sizeof(double)}), "the patch study with " + std::to_string(samples) + " x " +
+                                                            std::to_string(samples) +
+                                                            " samples per patch (4 matrices of that size)"};
+}
+
 std::vector<PatchStudyRow> torusPatchStudy(const PatchStudyOptions& o) {
   if (o.samples < 2) throw InputError("patch-table: --samples must be ≥ 2");
+  checkMemory(patchStudyPlan(o.samples), "use fewer samples per patch (patch-table --samples)");
   const auto [U0, U1, V0, V1] = o.domain;
   if (!(U0 < U1) || !(V0 < V1) || !std::isfinite(U0 + U1 + V0 + V1))
     throw InputError("patch-table: --domain needs U0 < U1 and V0 < V1");

@@ -9,6 +9,8 @@
 #include <array>
 #include <vector>
 
+#include "core/base/memory_check.h"
+
 namespace hermite {
 
 struct PatchStudyOptions {
@@ -23,7 +25,12 @@ struct PatchStudyRow {
   double hermiteBezierMaxDiff;    // max |Hermite − de Casteljau| over every sample and coordinate
 };
 
-// Throws InputError for N < 2, an empty domain or a split < 1.
+// Peak memory of the study with N samples: the three N × N error matrices and the SVD's
+// working copy of one of them, 4 N² doubles (core/base/memory_check.h).
+PlannedAllocation patchStudyPlan(int samples);
+
+// Throws InputError for N < 2, an empty domain or a split < 1; MemoryLimitError when
+// patchStudyPlan does not fit in the available memory.
 std::vector<PatchStudyRow> torusPatchStudy(const PatchStudyOptions& options);
 
 }  // namespace hermite

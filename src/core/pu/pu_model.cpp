@@ -15,6 +15,8 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/base/memory_check.h"
+#include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/dense_solver.h"
 
 extern "C" int openblas_get_num_threads(void);
@@ -260,6 +262,27 @@ class LeafFitter {
   const HrbfOptions& local_;
   SupportLimits limits_;
 };
+
+// Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
+// than is available: each holds a system of at most min(n, limits.max) samples, as the
+// in-process path (kernel block and saddle matrix: 2 square matrices) or fitHrbf's, plus each
+// thread's BLAS buffer when the fits themselves reach kUncheckedBytes.
+template <int Dim>
+void checkLocalFitMemory(int samples, const SupportLimits& limits, const HrbfOptions& local) {
+  const std::int64_t k = std::min<std::int64_t>(samples, limits.max);
+  const std::int64_t m = monomialCount<Dim>(local.polynomial);
+  const std::int64_t unknowns = k * (Dim + 1) + m;
+  const SolverChoice path =
+      plannedSolverPath(local.solver, m, kernelDefiniteSign(local.kernel, local.polynomial, local.smoothing));
+  const std::uint64_t perFit = std::max(denseFitBytes(unknowns, path, m),
+                                        saturatingProduct({2, std::uint64_t(unknowns), std::uint64_t(unknowns), 8}));
+  const int threads = omp_get_max_threads();
+  const std::uint64_t fits = saturatingProduct({perFit, std::uint64_t(threads)});
+  checkMemory({fits < kUncheckedBytes ? fits : saturatingSum({fits, blasBufferBytes(threads)}),
+               "the partition-of-unity fit (" + std::to_string(threads) + " local fits at once, each of up to " +
+                   std::to_string(unknowns) + " unknowns)"},
+              "lower fit.partition.max_points_per_box or use fewer --threads");
+}
 
 // Fits every leaf, in parallel over boxes with one BLAS thread each (the local systems are
 // small); rethrows the first failure after all threads are done.
@@ -595,6 +618,7 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   std::vector<FitReport> reports(leafCount);
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;
+  checkLocalFitMemory<Dim>(n, limits, local);
   fitLeaves<Dim>(LeafFitter<Dim>(samples, frameY, tree, options, local, limits), leaves, reports);
   if (report) {
     *report = summariseFits<Dim>(tree, leaves, reports, options, local);

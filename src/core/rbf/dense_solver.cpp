@@ -11,6 +11,8 @@
 #include <lapacke.h>
 
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
+#include "core/rbf/dense_fit_memory.h"
 
 // LAPACK's reverse-communication 1-norm estimator (no LAPACKE wrapper exists for it).
 extern "C" void dlacn2_(const int* n, double* v, double* x, int* isgn, double* est, int* kase, int* isave);
@@ -205,6 +207,14 @@ SolverChoice parseSolverChoice(std::string_view name) {
                    namesIn<SolverChoice>(kSolverChoiceNames));
 }
 
+SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definiteSign) {
+  if (choice == SolverChoice::Auto)
+    choice = definiteSign == 0 ? SolverChoice::Ldlt : m == 0 ? SolverChoice::Cholesky : SolverChoice::NullspaceCholesky;
+  if (choice == SolverChoice::Cholesky && m > 0) return SolverChoice::NullspaceCholesky;
+  if (choice == SolverChoice::NullspaceCholesky && m == 0) return SolverChoice::Cholesky;
+  return choice;
+}
+
 SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   const Index n = sys.A.rows(), m = sys.P.cols();
   if (sys.A.cols() != n || sys.P.rows() != n || sys.b.size() != n)
@@ -224,17 +234,9 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     clock.lap("qr");
   }
 
-  if (choice == SolverChoice::Auto) {
-    if (sys.definiteSign != 0)
-      choice = m == 0 ? SolverChoice::Cholesky : SolverChoice::NullspaceCholesky;
-    else
-      choice = SolverChoice::Ldlt;
-  }
-  if (choice == SolverChoice::Cholesky && m > 0) {
+  if (choice == SolverChoice::Cholesky && m > 0)
     out.warnings.push_back("cholesky needs a system without polynomial term; using nullspace-cholesky");
-    choice = SolverChoice::NullspaceCholesky;
-  }
-  if (choice == SolverChoice::NullspaceCholesky && m == 0) choice = SolverChoice::Cholesky;
+  choice = plannedSolverPath(choice, m, sys.definiteSign);
   const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
 
   const Eigen::VectorXd diagonal = sys.A.diagonal();  // for restoring A after a failed Cholesky
@@ -275,6 +277,13 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     choice = SolverChoice::Lu;
   }
   if (choice == SolverChoice::Ldlt || choice == SolverChoice::Lu) {
+    // The copies made here (the saddle matrix when m > 0, the one kept for the LU fallback of
+    // ldlt) on top of A: sized before they are made, also when a Cholesky path fell back.
+    const std::uint64_t copies = (m > 0 ? 1u : 0u) + (choice == SolverChoice::Ldlt ? 1u : 0u);
+    checkMemory({saturatingProduct({copies, std::uint64_t(n + m), std::uint64_t(n + m), sizeof(double)}),
+                 "the " + std::string(solverName(choice)) + " factorisation of " + std::to_string(n + m) +
+                     " unknowns (" + std::to_string(copies) + " more matrices of that size)"},
+                kDenseFitRemedy);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
     rhs.head(n) = sys.b;
     Eigen::MatrixXd K = m > 0 ? saddleMatrix(sys.A, sys.P) : std::move(sys.A);

@@ -55,6 +55,12 @@ struct SaddleSolution {
   std::vector<std::pair<std::string, double>> phaseMs;
 };
 
+// The path solveSaddle tries first for `choice` on a system with m polynomial terms and the
+// kernel block's `definiteSign` (SaddleSystem::definiteSign): auto picks cholesky (m = 0) or
+// nullspace-cholesky for a definite block, else ldlt; cholesky with m > 0 becomes
+// nullspace-cholesky and nullspace-cholesky with m = 0 cholesky.
+SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definiteSign);
+
 // Solves the system; A may be overwritten (it is taken by value where the caller moves it).
 SaddleSolution solveSaddle(SaddleSystem system, SolverChoice choice = SolverChoice::Auto);
 

@@ -5,6 +5,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/rbf/dense_fit_memory.h"
 
 namespace hermite {
 
@@ -112,6 +113,9 @@ Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial pol
 template <int Dim>
 HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options, FitReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
+  const int m = monomialCount<Dim>(options.polynomial);
+  const int sign = kernelDefiniteSign(options.kernel, options.polynomial, options.smoothing);
+  checkDenseFitMemory(std::int64_t(samples.size()) * (Dim + 1) + m, plannedSolverPath(options.solver, m, sign), m);
   SaddleSystem sys = assembleHrbf(samples, options);
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;

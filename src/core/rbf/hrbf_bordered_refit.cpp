@@ -6,7 +6,9 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
 #include "core/base/ms_since.h"
+#include "core/rbf/dense_fit_memory.h"
 
 namespace hermite {
 
@@ -33,6 +35,12 @@ HrbfBorderedRefit<Dim>::HrbfBorderedRefit(const HermiteSamples<Dim>& samples, co
   if (moved < 0 || moved >= N)
     throw InputError("HRBF drag refit: sample " + std::to_string(moved) + " is not one of the " +
                      std::to_string(N) + " samples");
+  // Peak: the kernel block, K_RR and its LU, 3 square matrices of the unknowns left.
+  const std::uint64_t unknowns = std::uint64_t(N - 1) * B + monomialCount<Dim>(options.polynomial);
+  checkMemory({saturatingProduct({3, unknowns, unknowns, sizeof(double)}),
+               "the drag refit's kept factorisation of " + std::to_string(unknowns) +
+                   " unknowns (3 matrices of that size squared)"},
+              kDenseFitRemedy);
   const SaddleSystem system = assembleHrbf(withoutSample(samples, moved), options);
   Krr_ = saddleMatrix(system);
   bR_ = Eigen::VectorXd::Zero(Krr_.rows());

@@ -4,6 +4,8 @@
 #include <cmath>
 
 #include "core/base/errors.h"
+#include "core/base/memory_check.h"
+#include "core/rbf/dense_fit_memory.h"
 
 namespace hermite {
 
@@ -35,6 +37,11 @@ template <int Dim>
 LeaveOneOutResult hrbfLeaveOneOut(const HermiteSamples<Dim>& samples, const HrbfOptions& options) {
   requireTwo(samples);
   constexpr int B = Dim + 1;
+  // Peak: the kernel block, the saddle matrix, its LU and its inverse (4 square matrices).
+  const std::uint64_t unknowns = std::uint64_t(samples.size()) * B + monomialCount<Dim>(options.polynomial);
+  checkMemory({saturatingProduct({4, unknowns, unknowns, sizeof(double)}),
+               "leave-one-out of " + std::to_string(unknowns) + " unknowns (4 matrices of that size squared)"},
+              kDenseFitRemedy);
   const SaddleSystem sys = assembleHrbf(samples, options);
   const Eigen::Index n = sys.A.rows(), m = sys.P.cols();
   // The whole symmetric saddle matrix (assembleHrbf fills A's lower triangle only).

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/base/errors.h"
+#include "core/rbf/dense_fit_memory.h"
 
 namespace hermite {
 
@@ -29,9 +30,10 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
     sys.b.template segment<3>(3 * i) << 0.0, delta, -delta;
   }
   const int m = monomialCount<Dim>(options.polynomial);
+  sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
+  checkDenseFitMemory(n + m, plannedSolverPath(options.solver, m, sys.definiteSign), m);
   sys.A.resize(n, n);
   sys.P.resize(n, m);
-  sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
 #pragma omp parallel for schedule(dynamic, 16)
   for (Eigen::Index j = 0; j < n; ++j)
     for (Eigen::Index i = j; i < n; ++i) sys.A(i, j) = kernel.phi((centres.col(i) - centres.col(j)).norm());

@@ -1,0 +1,39 @@
+#include "core/mesh/marching_memory.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <string>
+
+namespace hermite {
+
+template <int Dim>
+std::array<int, Dim> marchingCells(const Box<Dim>& box, int resolution) {
+  const Vec<Dim> ext = box.extent();
+  const double cell = ext.maxCoeff() / resolution;
+  std::array<int, Dim> n{};
+  for (int a = 0; a < Dim; ++a) n[a] = std::max(1, static_cast<int>(std::ceil(ext[a] / cell - 1e-9)));
+  return n;
+}
+
+template <int Dim>
+PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution) {
+  const std::array<int, Dim> n = marchingCells<Dim>(box, resolution);
+  std::uint64_t points = 1;
+  std::string grid;
+  for (int a = 0; a < Dim; ++a) {
+    points = saturatingProduct({points, std::uint64_t(n[a]) + 1});
+    grid += (a ? " x " : "") + std::to_string(n[a] + 1);
+  }
+  return {saturatingProduct({points, kMarchingBytesPerPoint}),
+          std::string(Dim == 3 ? "marching cubes" : "marching squares") + " at resolution " +
+              std::to_string(resolution) + " (a grid of " + grid + " points, " +
+              std::to_string(kMarchingBytesPerPoint) + " bytes each)"};
+}
+
+template std::array<int, 2> marchingCells<2>(const Box<2>&, int);
+template std::array<int, 3> marchingCells<3>(const Box<3>&, int);
+template PlannedAllocation marchingGridPlan<2>(const Box<2>&, int);
+template PlannedAllocation marchingGridPlan<3>(const Box<3>&, int);
+
+}  // namespace hermite

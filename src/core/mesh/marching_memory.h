@@ -1,0 +1,26 @@
+#pragma once
+// The grid of marching squares / cubes sized before it is allocated (core/base/memory_check.h).
+// Each grid point holds f (8 bytes) and a flag saying whether f is evaluated (1 byte): 9 bytes
+// per point, (cells + 1) points per axis. The contour's vertices grow with the surface, not the
+// volume, and are not counted: the plan is a lower bound of the peak.
+
+#include <array>
+
+#include "core/base/geometry.h"
+#include "core/base/memory_check.h"
+
+namespace hermite {
+
+inline constexpr int kMarchingBytesPerPoint = 9;
+inline constexpr const char* kMarchingRemedy = "use a lower resolution (mesh --resolution)";
+
+// Cells per axis over `box` at `resolution` cells along its longest side (the others in
+// proportion, at least 1): the layout marchingCubes / marchingSquares sample.
+template <int Dim>
+std::array<int, Dim> marchingCells(const Box<Dim>& box, int resolution);
+
+// The grid's plan: "marching cubes at resolution 4096 (a 4097 x 4097 x 4097 grid)".
+template <int Dim>
+PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution);
+
+}  // namespace hermite
