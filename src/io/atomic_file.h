@@ -1,7 +1,11 @@
 #pragma once
 // Crash- and failure-safe file replacement: the bytes go to a temporary "<path>.tmp-XXXXXX" in
 // the same directory, which is flushed, synced and closed before std::rename moves it over
-// `path`. Any failure removes the temporary and leaves an existing `path` untouched.
+// `path`; the directory is then synced so the rename is durable. Any failure removes the
+// temporary and leaves an existing `path` untouched; so does SIGINT or SIGTERM
+// (temporary_file_registry.h). An existing file keeps its permission bits. When `path` is a
+// symbolic link, the link stays and the file it points to is replaced (the temporary sits next
+// to that file).
 
 #include <string>
 #include <string_view>
@@ -30,6 +34,7 @@ class AtomicFileWriter {
   [[noreturn]] void fail(const std::string& what, int error);
 
   std::string path_;
+  std::string target_;  // path_ with its symbolic links resolved: the file that is replaced
   std::string tempPath_;
   std::string buffer_;
   int fd_ = -1;

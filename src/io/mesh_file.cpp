@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 
 #include "core/base/errors.h"
@@ -61,6 +62,13 @@ void saveMesh(const std::string& path, const TriMesh& mesh) {
   TriMesh checked = mesh;
   checkAndNormalizeMesh(checked, path);
 
+  if (ext == ".glb" || ext == ".gltf")
+    if (const auto beyond = firstBeyondFloatRange(checked.vertices)) {
+      char value[32];
+      std::snprintf(value, sizeof value, "%.9g", checked.vertices(beyond->second, beyond->first));
+      throw InputError(path + ": vertex " + std::to_string(beyond->first) + " has the coordinate " + value +
+                       ", beyond the 32-bit float range of glTF (about ±3.4e38); write .ply or .obj, which keep it");
+    }
   std::string bytes;
   if (ext == ".obj")
     bytes = writeObj(checked);

@@ -130,4 +130,11 @@ void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path) {
   }
 }
 
+std::optional<std::pair<Eigen::Index, int>> firstBeyondFloatRange(const Eigen::Matrix3Xd& points) {
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    for (int c = 0; c < 3; ++c)
+      if (std::isinf(static_cast<float>(points(c, i)))) return std::make_pair(i, c);
+  return std::nullopt;
+}
+
 }  // namespace hermite

@@ -5,6 +5,8 @@
 // InputError whose message starts with the file name.
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <string>
 #include <string_view>
 
@@ -65,6 +67,10 @@ bool isBlankChar(char c);
 //  - every triangle index in [0, V) ("triangle T refers to vertex I, but there are V vertices");
 //  - normals: 3 × V or 3 × 0; each finite and non-zero, then normalised to unit length.
 void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path);
+
+// The first coordinate (column, row) of `points` (3 × N) that a float cannot hold (its float
+// rounding is infinite: |v| ≥ about 3.4028236e38); nullopt when all fit.
+std::optional<std::pair<Eigen::Index, int>> firstBeyondFloatRange(const Eigen::Matrix3Xd& points);
 
 // Largest element count a reader accepts in one file (TriMesh indexes with int).
 constexpr std::int64_t kMaxMeshElements = 2'000'000'000;

@@ -489,28 +489,43 @@ TriMesh readPly(std::string_view bytes, const std::string& path) {
   return std::move(out.mesh);
 }
 
+namespace {
+
+// The vertex rows of the body: x y z [nx ny nz], as T (float, or double where a coordinate lies
+// beyond the float range).
+template <class T>
+char* writeVertexRows(const TriMesh& mesh, bool normals, char* p) {
+  const std::size_t vertexBytes = (normals ? 6 : 3) * sizeof(T);
+  for (int i = 0; i < mesh.vertexCount(); ++i) {
+    T row[6];
+    for (int c = 0; c < 3; ++c) row[c] = static_cast<T>(mesh.vertices(c, i));
+    if (normals)
+      for (int c = 0; c < 3; ++c) row[3 + c] = static_cast<T>(mesh.normals(c, i));
+    std::memcpy(p, row, vertexBytes);
+    p += vertexBytes;
+  }
+  return p;
+}
+
+}  // namespace
+
 std::string writePly(const TriMesh& mesh) {
   const bool normals = mesh.hasNormals();
+  const bool doubles = firstBeyondFloatRange(mesh.vertices).has_value();
+  const std::string type = doubles ? "double" : "float";
   std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by Hermite Lab\n";
   out += "element vertex " + std::to_string(mesh.vertexCount()) + "\n";
-  out += "property float x\nproperty float y\nproperty float z\n";
-  if (normals) out += "property float nx\nproperty float ny\nproperty float nz\n";
+  out += "property " + type + " x\nproperty " + type + " y\nproperty " + type + " z\n";
+  if (normals) out += "property " + type + " nx\nproperty " + type + " ny\nproperty " + type + " nz\n";
   out += "element face " + std::to_string(mesh.triangleCount()) + "\n";
   out += "property list uchar int vertex_indices\nend_header\n";
 
-  const std::size_t vertexBytes = (normals ? 6 : 3) * sizeof(float);
+  const std::size_t vertexBytes = (normals ? 6 : 3) * (doubles ? sizeof(double) : sizeof(float));
   const std::size_t headerSize = out.size();
   out.resize(headerSize + static_cast<std::size_t>(mesh.vertexCount()) * vertexBytes +
              static_cast<std::size_t>(mesh.triangleCount()) * (1 + 3 * sizeof(std::int32_t)));
   char* p = out.data() + headerSize;
-  for (int i = 0; i < mesh.vertexCount(); ++i) {
-    float row[6];
-    for (int c = 0; c < 3; ++c) row[c] = static_cast<float>(mesh.vertices(c, i));
-    if (normals)
-      for (int c = 0; c < 3; ++c) row[3 + c] = static_cast<float>(mesh.normals(c, i));
-    std::memcpy(p, row, vertexBytes);
-    p += vertexBytes;
-  }
+  p = doubles ? writeVertexRows<double>(mesh, normals, p) : writeVertexRows<float>(mesh, normals, p);
   for (int t = 0; t < mesh.triangleCount(); ++t) {
     *p++ = 3;
     const std::int32_t tri[3] = {mesh.triangles(0, t), mesh.triangles(1, t), mesh.triangles(2, t)};

@@ -19,7 +19,8 @@ namespace hermite {
 // `face` element gives a mesh with no triangles (a point set).
 TriMesh readPly(std::string_view bytes, const std::string& path);
 
-// The bytes of `mesh` as binary little-endian PLY (coordinates and normals as 32-bit floats).
+// The bytes of `mesh` as binary little-endian PLY: coordinates and normals as 32-bit floats, or
+// all as 64-bit doubles when a coordinate lies beyond the float range.
 std::string writePly(const TriMesh& mesh);
 
 }  // namespace hermite

@@ -7,6 +7,7 @@
 
 #include "core/base/errors.h"
 #include "io/atomic_file.h"
+#include "io/mesh_file.h"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wmissing-field-initializers"
@@ -37,6 +38,9 @@ std::string encodePng(const ImageRgba8& image) {
 }
 
 void writePng(const std::string& path, const ImageRgba8& image) {
+  if (lowercaseExtension(path) != ".png")
+    throw InputError(path + ": cannot write an image with the extension '" + lowercaseExtension(path) +
+                     "' (supported: .png)");
   std::string bytes;
   try {
     bytes = encodePng(image);

@@ -9,7 +9,8 @@ namespace hermite {
 
 // PNG bytes of the image (stb_image_write). EnvironmentError if encoding fails.
 std::string encodePng(const ImageRgba8& image);
-// Writes a PNG through writeFileAtomically; EnvironmentError naming the path on failure.
+// Writes a PNG through writeFileAtomically; InputError for a path not ending in .png (any case),
+// EnvironmentError naming the path on failure.
 void writePng(const std::string& path, const ImageRgba8& image);
 // Reads any PNG as RGBA8. EnvironmentError naming the path when it cannot be read or decoded.
 ImageRgba8 readPng(const std::string& path);

@@ -204,6 +204,9 @@ void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
   if (samples.points.cols() != samples.normals.cols())
     throw InputError(path + ": cannot save " + std::to_string(samples.points.cols()) + " points with " +
                      std::to_string(samples.normals.cols()) + " normals");
+  for (Eigen::Index i = 0; i < samples.points.cols(); ++i)
+    if (!samples.points.col(i).allFinite() || !samples.normals.col(i).allFinite())
+      throw InputError(path + ": cannot save point " + std::to_string(i) + ": it has a non-finite coordinate or normal");
   AtomicFileWriter writer(path);
   // Shortest representation that reads back to the same double (as exact as %.17g, shorter).
   char line[2 * Dim * 32];

@@ -717,7 +717,7 @@ void ImplicitTracer::Gpu::uploadModel(const RadialSum<3>& model, const Vec<3>& c
   betas.setData(betaFloat.data(), betaFloat.size() * sizeof(float), GL_STATIC_DRAW);
   centresDouble.setData(ca.data(), ca.size() * sizeof(double), GL_STATIC_DRAW);
   betasDouble.setData(beta.data(), beta.size() * sizeof(double), GL_STATIC_DRAW);
-  shiftedPoly = shiftPolynomial(model.polynomial(), model.poly(), origin);
+  shiftedPoly = shiftPolynomial(model.polynomial(), model.poly(), origin - model.polyOrigin());
 }
 
 // The GPU trace pass: marches every pixel's ray (the bake in baked mode, the model's sum in exact

@@ -205,6 +205,13 @@ Scene loadSceneFile(const std::string& path, const std::vector<std::string>& ove
     const auto [line, column] = lineAndColumn(text, e.byte);
     throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
                      ": JSON syntax error: " + parseErrorReason(e.what()));
+  } catch (const json::out_of_range& e) {
+    // A number beyond the double range (1e400): nlohmann reports no position, so the message
+    // names the key being read and the number itself.
+    std::string where;
+    for (const std::string& part : keyPath) where = childPath(where, part);
+    throw InputError(path + ": " + (where.empty() ? "(document)" : where) + ": " + parseErrorReason(e.what()) +
+                     " (numbers must lie within ±1.8e308)");
   }
   for (const std::string& o : overrides) applySetOverride(document, o);
   const std::string base = std::filesystem::path(path).parent_path().string();

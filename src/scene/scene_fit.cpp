@@ -4,6 +4,7 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
@@ -315,8 +316,10 @@ FitResiduals fitResiduals(const SceneFit<Dim>& fit) {
   Eigen::VectorXd f;
   Points<Dim> G;
   fit.field().evaluateBatch(fit.data.points, f, &G);
-  r.maxAbsF = f.cwiseAbs().maxCoeff();
-  r.maxGradError = (G - fit.data.normals).colwise().norm().maxCoeff();
+  // maxCoeff may skip a NaN: a non-finite field is reported as NaN explicitly.
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  r.maxAbsF = f.allFinite() ? f.cwiseAbs().maxCoeff() : kNaN;
+  r.maxGradError = G.allFinite() ? (G - fit.data.normals).colwise().norm().maxCoeff() : kNaN;
   return r;
 }
 

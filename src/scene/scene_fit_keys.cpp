@@ -2,6 +2,7 @@
 
 #include <climits>
 
+#include "core/rbf/hrbf.h"
 #include "scene/scene_file.h"
 #include "scene/scene_keys.h"
 
@@ -30,7 +31,14 @@ constexpr SceneKey<FitSpec> kFitKeys[] = {
     namedKey<FitSpec, &FitSpec::kernel, parseKernelType, kernelName>("kernel"),
     valueKey<FitSpec, &FitSpec::radius, &Reader::positive>("radius"),
     namedKey<FitSpec, &FitSpec::polynomial, parsePolynomial, polynomialName>("polynomial"),
-    valueKey<FitSpec, &FitSpec::smoothing, &Reader::nonNegative>("smoothing"),
+    {"smoothing",
+     [](const Reader& r, const json& x, const std::string& p, FitSpec& f, int) {
+       f.smoothing = r.nonNegative(x, p);
+       if (f.smoothing > kMaxSmoothing)
+         r.fail(p, "must be <= 1e100 (got " + describeJson(x) + "); larger values overflow the solver, and far "
+                   "smaller ones already leave only the polynomial part");
+     },
+     [](const FitSpec& f, int) -> Written { return json(f.smoothing); }},
     valueKey<FitSpec, &FitSpec::shift, &Reader::positive>("shift"),
     namedKey<FitSpec, &FitSpec::solver, parseSolverChoice, solverName>("solver"),
     {"partition",

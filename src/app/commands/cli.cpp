@@ -30,7 +30,7 @@ constexpr const char* kUsage =
     "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
     "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
-    "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--size WxH] [--set KEY=VALUE ...]\n"
+    "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--overwrite] [--size WxH] [--set KEY=VALUE ...]\n"
     "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
     "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
@@ -121,6 +121,8 @@ int dispatch(int argc, char** argv) {
     addSceneOptions(cmd, a.scene, true);
     cmd.add_option("--radii", a.radii, "A:B:K — K radii spaced logarithmically from A to B")->required();
     cmd.add_option("-o,--output", a.outputDirectory, "output directory (created when missing)")->required();
+    cmd.add_flag("--overwrite", a.overwrite,
+                 "reuse a non-empty output directory: remove its earlier sweep images and diagnostics.csv first");
     cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
     cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
         ->check(CLI::IsMember({"osmesa", "egl"}));

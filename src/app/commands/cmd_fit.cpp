@@ -45,6 +45,9 @@ json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
   json poly = json::array();
   for (Eigen::Index k = 0; k < m.poly().size(); ++k) poly.push_back(m.poly()(k));
   out["poly"] = std::move(poly);
+  json polyOrigin = json::array();  // the polynomial is p(x − poly_origin); zero for data near the origin
+  for (int k = 0; k < Dim; ++k) polyOrigin.push_back(m.polyOrigin()(k));
+  out["poly_origin"] = std::move(polyOrigin);
   if (scene.fit.method == FitMethod::RbfOffset) out["shift"] = static_cast<const RbfOffsetModel<Dim>&>(m).shift();
   return out;
 }
@@ -197,10 +200,17 @@ void printReadable(const Scene& scene, const json& j) {
   writeStdout(s);
 }
 
+// The report, or NumericalError (exit 3) when the fitted field is not finite at the samples:
+// a report of NaN residuals would pass for a result.
 template <int Dim>
 json fitAndReport(const Scene& scene, bool coefficients) {
   const SceneFit<Dim> fit = fitScene<Dim>(scene);
-  return fitReportJson<Dim>(scene, fit, coefficients);
+  json report = fitReportJson<Dim>(scene, fit, coefficients);
+  const double maxAbsF = report["max_abs_f"].get<double>(), maxGradError = report["max_grad_error"].get<double>();
+  if (!std::isfinite(maxAbsF) || !std::isfinite(maxGradError))
+    throw NumericalError("fit: the fitted field is not finite at the samples (max |f(p)| = " + sci(maxAbsF) +
+                         ", max |grad f(p) - n| = " + sci(maxGradError) + ")");
+  return report;
 }
 
 }  // namespace

@@ -1,6 +1,7 @@
 // `hermite-lab patch-table [--samples N] [--splits 1x1,2x1,...] [--domain U0,U1,V0,V1] [--json]`:
 // the torus error study of core/patch/torus_patch_study.h as a table or JSON (docs/cli.md).
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <string>
@@ -37,6 +38,8 @@ std::array<double, 4> parseDomain(const std::string& text) {
   char extra = 0;
   if (std::sscanf(text.c_str(), "%lf,%lf,%lf,%lf%c", &d[0], &d[1], &d[2], &d[3], &extra) != 4)
     throw UsageError("patch-table: --domain: '" + text + "' is not U0,U1,V0,V1");
+  for (const double v : d)
+    if (!std::isfinite(v)) throw UsageError("patch-table: --domain: '" + text + "' has a value that is not finite");
   return d;
 }
 
@@ -48,6 +51,11 @@ int runPatchTable(const PatchTableArgs& args) {
   if (!args.splits.empty()) o.splits = parseSplits(args.splits);
   if (!args.domain.empty()) o.domain = parseDomain(args.domain);
   const std::vector<PatchStudyRow> rows = torusPatchStudy(o);
+  for (const PatchStudyRow& r : rows)
+    if (!std::isfinite(r.error[0]) || !std::isfinite(r.error[1]) || !std::isfinite(r.error[2]) ||
+        !std::isfinite(r.hermiteBezierMaxDiff))
+      throw NumericalError("patch-table: the errors of the " + std::to_string(r.splits[0]) + "x" +
+                           std::to_string(r.splits[1]) + " patches are not finite (is --domain finite and moderate?)");
   if (args.json) {
     nlohmann::json out;
     out["rows"] = nlohmann::json::array();

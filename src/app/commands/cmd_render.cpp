@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/commands/commands.h"
+#include "app/commands/output_path.h"
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -48,16 +49,11 @@ std::array<int, 2> parseImageSize(const std::string& text) {
 
 namespace {
 
-// Fails early, before fitting and rendering, when the output's directory does not exist.
+// Fails early, before fitting and rendering: an extension other than .png is a usage error
+// (render writes PNG only), a missing directory an environment error.
 void checkOutputPath(const std::string& path) {
-  namespace fs = std::filesystem;
-  const fs::path p(path);
-  if (p.filename().empty()) throw EnvironmentError("render: cannot write '" + path + "': not a file name");
-  const fs::path dir = p.parent_path();
-  std::error_code ec;
-  if (!dir.empty() && !fs::is_directory(dir, ec))
-    throw EnvironmentError("render: cannot write '" + path + "': directory '" + dir.string() + "' does not exist");
-  if (fs::is_directory(p, ec)) throw EnvironmentError("render: cannot write '" + path + "': it is a directory");
+  requireExtension("render", path, {"png"});
+  requireWritableLocation("render", path);
 }
 
 // A headless ImGui context sized to the image (no ini file, fixed frame time), with the

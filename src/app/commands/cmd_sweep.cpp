@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
@@ -27,8 +28,19 @@ namespace hermite::app {
 
 namespace {
 
-// DIR exists (created when missing) and is a directory; EnvironmentError otherwise.
-void prepareDirectory(const std::string& dir) {
+// True for the files a sweep writes: diagnostics.csv and the images r_NN_R.png.
+bool isSweepOutput(const std::string& name) {
+  if (name == "diagnostics.csv") return true;
+  if (name.size() < 9 || name.compare(0, 2, "r_") != 0 || name.compare(name.size() - 4, 4, ".png") != 0) return false;
+  std::size_t i = 2;
+  while (i < name.size() && name[i] >= '0' && name[i] <= '9') ++i;
+  return i >= 4 && i < name.size() && name[i] == '_';
+}
+
+// DIR exists (created when missing) and is a directory holding nothing; with `overwrite` it may
+// hold anything, and an earlier sweep's files in it are removed (other files stay).
+// EnvironmentError otherwise.
+void prepareDirectory(const std::string& dir, bool overwrite) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (dir.empty()) throw UsageError("sweep: -o DIR is required");
@@ -36,6 +48,19 @@ void prepareDirectory(const std::string& dir) {
     throw EnvironmentError("sweep: '" + dir + "' exists and is not a directory");
   fs::create_directories(dir, ec);
   if (ec) throw EnvironmentError("sweep: cannot create '" + dir + "': " + ec.message());
+  std::vector<fs::path> ours;
+  std::size_t entries = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(dir, ec)) {
+    ++entries;
+    if (isSweepOutput(entry.path().filename().string()) && entry.is_regular_file(ec)) ours.push_back(entry.path());
+  }
+  if (ec) throw EnvironmentError("sweep: cannot list '" + dir + "': " + ec.message());
+  if (entries > 0 && !overwrite)
+    throw EnvironmentError("sweep: '" + dir + "' is not empty (" + std::to_string(entries) +
+                           " entries); choose an empty or new directory, or pass --overwrite to replace an "
+                           "earlier sweep's images and diagnostics.csv there");
+  for (const fs::path& p : ours)
+    if (!fs::remove(p, ec) && ec) throw EnvironmentError("sweep: cannot remove '" + p.string() + "': " + ec.message());
 }
 
 std::string imageName(int k, double r) {
@@ -67,7 +92,7 @@ int runSweep(const SweepArgs& args) {
   checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
   if (scene.mode == SceneMode::Implicit2d) checkSweepMemory<2>(scene);
   else checkSweepMemory<3>(scene);
-  prepareDirectory(args.outputDirectory);
+  prepareDirectory(args.outputDirectory, args.overwrite);
   const std::filesystem::path dir(args.outputDirectory);
 
   const int w = scene.view.size[0], h = scene.view.size[1];

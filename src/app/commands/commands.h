@@ -57,6 +57,7 @@ struct SweepArgs {
   std::string outputDirectory;     // -o DIR (created when missing)
   std::string size;                // --size WxH; empty: the scene's view.size
   std::string backend = "osmesa";
+  bool overwrite = false;          // --overwrite: reuse a folder holding an earlier sweep
 };
 int runSweep(const SweepArgs& args);
 

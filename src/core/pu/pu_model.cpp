@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <climits>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <limits>
 #include <map>
@@ -80,13 +82,16 @@ constexpr int kInProcessUnknowns = 800;
 
 // The local HRBF fit: fitHrbf for large supports, the same system solved in-process for small
 // ones. Throws NumericalError for a singular or non-finite local system (the caller grows it).
+// The polynomial stays in box-frame coordinates (no centring: the frame already puts the data
+// near the origin, and both paths must agree).
 template <int Dim>
 HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& options, FitReport& report) {
   const int N = sub.size();
   const int m = monomialCount<Dim>(options.polynomial);
   constexpr int B = Dim + 1;
   const int n = N * B;
-  if (n + m > kInProcessUnknowns || options.solver != SolverChoice::Auto) return fitHrbf<Dim>(sub, options, &report);
+  if (n + m > kInProcessUnknowns || options.solver != SolverChoice::Auto)
+    return fitHrbfAbout<Dim>(sub, options, Vec<Dim>::Zero(), &report);
   const auto t0 = std::chrono::steady_clock::now();
   SaddleSystem sys = assembleHrbf<Dim>(sub, options);
   Eigen::VectorXd x, c;
@@ -120,9 +125,9 @@ HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& optio
     const double rcond = lu.rcond();
     // Near-singular or non-finite: the LAPACK path decides (pivoted fallbacks, warnings, and a
     // NumericalError only for a failed factorisation — which makes the caller grow the support).
-    if (!(rcond > 1e-15)) return fitHrbf<Dim>(sub, options, &report);
+    if (!(rcond > 1e-15)) return fitHrbfAbout<Dim>(sub, options, Vec<Dim>::Zero(), &report);
     const Eigen::VectorXd sol = lu.solve(rhs);
-    if (!sol.allFinite()) return fitHrbf<Dim>(sub, options, &report);
+    if (!sol.allFinite()) return fitHrbfAbout<Dim>(sub, options, Vec<Dim>::Zero(), &report);
     x = sol.head(n);
     c = sol.tail(m);
     condition = 1.0 / rcond;
@@ -155,8 +160,10 @@ SupportLimits supportLimits(const PuOptions& options) {
   SupportLimits limits;
   limits.min = options.minSamples > 0 ? options.minSamples
                                       : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
-  limits.max = std::max(limits.min, options.maxSupportSamples > 0 ? options.maxSupportSamples
-                                                                  : 6 * options.maxPointsPerBox);
+  // 6·maxPointsPerBox in 64 bits, saturated: a limit beyond INT_MAX means "no limit" (a huge
+  // max_points_per_box would otherwise wrap to a negative limit and split everything).
+  const std::int64_t automatic = std::min<std::int64_t>(6 * std::int64_t(options.maxPointsPerBox), INT_MAX);
+  limits.max = std::max(limits.min, options.maxSupportSamples > 0 ? options.maxSupportSamples : int(automatic));
   return limits;
 }
 

@@ -13,6 +13,7 @@
 #include "core/base/errors.h"
 #include "core/base/memory_check.h"
 #include "core/rbf/dense_fit_memory.h"
+#include "core/rbf/lapack_errors.h"
 
 // LAPACK's reverse-communication 1-norm estimator (no LAPACKE wrapper exists for it).
 extern "C" void dlacn2_(const int* n, double* v, double* x, int* isgn, double* est, int* kase, int* isave);
@@ -61,12 +62,29 @@ struct Factorised {
   double rcond = 0;
 };
 
+// A factorisation whose LAPACK calls all returned: ok unless LAPACK reported an illegal argument
+// through its error handler (lapack_errors.h), which then becomes the failure.
+Factorised checked(Factorised out) {
+  if (auto error = takeLapackError()) {
+    out.ok = false;
+    out.failure = "LAPACK rejected an argument (" + *error + ")";
+    return out;
+  }
+  out.ok = true;
+  return out;
+}
+
 // Cholesky of sign·M in place, M = the k × k block at `M` with leading dimension `ld` (lower
 // triangle only; the upper triangle is left untouched so a failure can be undone). Solves
 // sign·M y = sign·rhs in place of rhs.
 Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs,
                          PhaseClock& clock) {
   Factorised out;
+  if (k == 0) {  // nothing to solve (LAPACK would reject the empty right-hand side's stride)
+    out.ok = true;
+    out.rcond = 1;
+    return out;
+  }
   if (sign < 0)
     for (lapack_int j = 0; j < k; ++j)
       for (lapack_int i = j; i < k; ++i) M[size_t(j) * ld + i] = -M[size_t(j) * ld + i];
@@ -76,15 +94,15 @@ Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Ei
   if (info != 0) {
     out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
                                  " of " + std::to_string(k) + ")"
-                           : "Cholesky: invalid argument " + std::to_string(-info);
+                           : info == -4 ? "Cholesky: the matrix has NaN entries (an overflow, e.g. in the projection)"
+                                        : "Cholesky: invalid argument " + std::to_string(-info);
     return out;
   }
   LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', k, M, ld, anorm, &out.rcond);
   clock.lap("condition");
   if (sign < 0) rhs *= -1.0;
   LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
-  out.ok = true;
-  return out;
+  return checked(out);
 }
 
 // Replaces the lower triangle of the symmetric A (n × n, both triangles valid) by that of
@@ -117,6 +135,7 @@ Eigen::MatrixXd saddleMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& P)
 
 Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
   Factorised out;
+  takeLapackError();  // a failed earlier path reported its own error through info
   const lapack_int n = toLapack(K.rows());
   std::vector<lapack_int> ipiv(n);
   const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, K.data(), n);
@@ -129,12 +148,12 @@ Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
   }
   LAPACKE_dsycon(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data(), anorm, &out.rcond);
   LAPACKE_dsytrs(LAPACK_COL_MAJOR, 'L', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
-  out.ok = true;
-  return out;
+  return checked(out);
 }
 
 Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
   Factorised out;
+  takeLapackError();  // a failed earlier path reported its own error through info
   const lapack_int n = toLapack(K.rows());
   std::vector<lapack_int> ipiv(n);
   const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, K.data(), n);
@@ -147,8 +166,7 @@ Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
   }
   LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, K.data(), n, anorm, &out.rcond);
   LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
-  out.ok = true;
-  return out;
+  return checked(out);
 }
 
 // QR of P (n × m) in place, with a rank check: the polynomial term must be determined by the
@@ -221,6 +239,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     throw NumericalError("solveSaddle: inconsistent shapes");
   SaddleSolution out;
   PhaseClock clock(out.phaseMs);
+  takeLapackError();  // a stale record from an earlier call on this thread is not ours
   mirrorLowerToUpper(sys.A);
   if (!allFinite(sys.A) || !allFinite(sys.P) || !sys.b.allFinite())
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/base/errors.h"
+#include "core/base/exact_centre.h"
 #include "core/base/ms_since.h"
 #include "core/rbf/dense_fit_memory.h"
 
@@ -56,6 +57,7 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   const int N = samples.size();
   if (N < 1) throw InputError("HRBF fit: no samples");
   if (!(options.smoothing >= 0)) throw InputError("HRBF fit: smoothing must be ≥ 0");
+  if (!(options.smoothing <= kMaxSmoothing)) throw InputError("HRBF fit: smoothing must be ≤ 1e100");
   const Kernel& kernel = options.kernel;
   if (kernel.usesRadius() && !(kernel.radius > 0)) throw InputError("HRBF fit: radius must be > 0");
   constexpr int B = Dim + 1;  // unknowns per centre: α, β (Dim); rows per sample: f, ∇f (Dim)
@@ -112,11 +114,28 @@ Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial pol
 
 template <int Dim>
 HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options, FitReport* report) {
+  const Vec<Dim> origin =
+      options.polynomial != Polynomial::None ? exactCentre<Dim>(samples.points) : Vec<Dim>::Zero();
+  return fitHrbfAbout<Dim>(samples, options, origin, report);
+}
+
+template <int Dim>
+HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOptions& options, const Vec<Dim>& origin,
+                            FitReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   const int m = monomialCount<Dim>(options.polynomial);
   const int sign = kernelDefiniteSign(options.kernel, options.polynomial, options.smoothing);
   checkDenseFitMemory(std::int64_t(samples.size()) * (Dim + 1) + m, plannedSolverPath(options.solver, m, sign), m);
-  SaddleSystem sys = assembleHrbf(samples, options);
+  // The polynomial part about `origin` (docs/maths.md, Centring): P is built from the centred
+  // points, the kernel block is unchanged (it sees only exact differences pᵢ − pⱼ).
+  SaddleSystem sys;
+  if (origin.isZero()) {
+    sys = assembleHrbf(samples, options);
+  } else {
+    HermiteSamples<Dim> centred = samples;
+    centred.points.colwise() -= origin;
+    sys = assembleHrbf(centred, options);
+  }
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;
   const int N = samples.size();
@@ -130,7 +149,7 @@ HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& op
     alpha(j) = sol.x(Eigen::Index(j) * B);
     beta.col(j) = sol.x.template segment<Dim>(Eigen::Index(j) * B + 1);
   }
-  HrbfModel<Dim> model(kernel, options.polynomial, p, std::move(alpha), std::move(beta), std::move(sol.c));
+  HrbfModel<Dim> model(kernel, options.polynomial, p, std::move(alpha), std::move(beta), std::move(sol.c), origin);
   return model;
 }
 
@@ -142,5 +161,7 @@ template SaddleSystem assembleHrbf<2>(const HermiteSamples<2>&, const HrbfOption
 template SaddleSystem assembleHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&);
 template HrbfModel<2> fitHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&, FitReport*);
 template HrbfModel<3> fitHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&, FitReport*);
+template HrbfModel<2> fitHrbfAbout<2>(const HermiteSamples<2>&, const HrbfOptions&, const Vec<2>&, FitReport*);
+template HrbfModel<3> fitHrbfAbout<3>(const HermiteSamples<3>&, const HrbfOptions&, const Vec<3>&, FitReport*);
 
 }  // namespace hermite

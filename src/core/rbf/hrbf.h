@@ -15,10 +15,15 @@
 
 namespace hermite {
 
+// Largest accepted smoothing λ. Beyond about 1e154 the solver's products of the kernel block
+// overflow; from far below this bound on the fit is already the polynomial least-squares fit
+// (α, β ≈ b/λ), so nothing is lost by refusing larger values.
+inline constexpr double kMaxSmoothing = 1e100;
+
 struct HrbfOptions {
   Kernel kernel{KernelType::Cubic, 1.0};
   Polynomial polynomial = Polynomial::Linear;  // linear: enough for every kernel but polyharmonic
-  double smoothing = 0.0;                      // λ ≥ 0; 0 = interpolation
+  double smoothing = 0.0;                      // λ in [0, kMaxSmoothing]; 0 = interpolation
   SolverChoice solver = SolverChoice::Auto;    // auto: cheapest path the kernel allows
 };
 
@@ -39,9 +44,9 @@ class HrbfModel : public RadialSum<Dim> {
  public:
   HrbfModel() = default;
   HrbfModel(Kernel kernel, Polynomial polynomial, Points<Dim> centres, Eigen::VectorXd alpha,
-            Points<Dim> beta, Eigen::VectorXd poly)
+            Points<Dim> beta, Eigen::VectorXd poly, Vec<Dim> polyOrigin = Vec<Dim>::Zero())
       : RadialSum<Dim>(kernel, polynomial, std::move(centres), std::move(alpha), std::move(beta),
-                       std::move(poly)) {}
+                       std::move(poly), polyOrigin) {}
 };
 
 // The saddle system of the fit (kernel block with smoothing, polynomial block, right-hand side),
@@ -63,9 +68,16 @@ Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial pol
 
 // Fits the HRBF to validated samples. Throws NumericalError when no solver path succeeds or the
 // coefficients are not finite; warnings (order, conditioning, fallback) go to the report.
+// The polynomial part is written about exactCentre(samples.points) (docs/maths.md, Centring).
 template <int Dim>
 HrbfModel<Dim> fitHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options,
                        FitReport* report = nullptr);
+// fitHrbf with the polynomial about a given origin, whose subtraction from every sample must be
+// exact (a zero origin: the polynomial in the samples' own coordinates, as the partition of
+// unity's local fits in their box frame).
+template <int Dim>
+HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOptions& options, const Vec<Dim>& origin,
+                            FitReport* report = nullptr);
 
 // The part every fit method shares: solves the assembled system, collects the warnings
 // (polynomial order, solver) and fills `report` (may be null); `start` is when assembly began.

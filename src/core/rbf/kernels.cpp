@@ -13,6 +13,7 @@ namespace {
 
 // Each kernel as (x, r) → RadialTerms. Formulas derived by hand from φ; s = x/r.
 RadialTerms gaussianTerms(double x, double r) {
+  if (!std::isfinite(x * x)) return {};  // every factor's limit is 0; the formulas give 0 · inf
   const double r2 = r * r;
   const double p = std::exp(-(x * x) / r2);
   RadialTerms t;
@@ -60,6 +61,7 @@ RadialTerms multiquadricTerms(double x, double r) {
 
 // 1/√(1 + s²): positive definite.
 RadialTerms inverseMultiquadricTerms(double x, double r) {
+  if (!std::isfinite(x * x)) return {};  // every factor's limit is 0; the formulas give 0 · inf
   const double r2 = r * r;
   const double p = 1.0 / std::sqrt(1.0 + x * x / r2);
   const double p3 = p * p * p, p5 = p3 * p * p;

@@ -23,7 +23,8 @@ void radialBlock(const Kernel& k, const double* x2p, int n, double* phip, double
   const double r = k.radius, r2 = r * r, r4 = r2 * r2;
   switch (k.type) {
     case KernelType::Gaussian:
-      phi = (x2 * (-1.0 / r2)).exp();
+      // Beyond x²/r² = 745.2 the exponential is 0 (Eigen's clamped exp gives ~1e-308 instead).
+      phi = (x2 * (-1.0 / r2) >= -745.2).select((x2 * (-1.0 / r2)).exp(), 0.0);
       a = phi * (-2.0 / r2);
       if (wantE) e = phi * (4.0 / r4);
       break;
@@ -33,7 +34,8 @@ void radialBlock(const Kernel& k, const double* x2p, int n, double* phip, double
         const double s = x / r;
         const double u = std::max(1.0 - s, 0.0);
         const double u2 = u * u;
-        phip[i] = u2 * u2 * (4.0 * s + 1.0);
+        // Outside the support φ is 0 even where x² overflowed to inf (u² · (4s + 1) = 0 · inf).
+        phip[i] = u > 0 ? u2 * u2 * (4.0 * s + 1.0) : 0.0;
         ap[i] = -20.0 * u2 * u / r2;
         if (wantE) ep[i] = x > 0 ? 60.0 * u2 / (r2 * r * x) : 0.0;
       }
@@ -45,7 +47,7 @@ void radialBlock(const Kernel& k, const double* x2p, int n, double* phip, double
       if (wantE) e = (-1.0 / r4) / (phi * phi * phi);
       break;
     case KernelType::InverseMultiquadric:
-      phi = (1.0 + x2 * (1.0 / r2)).sqrt().inverse();
+      phi = (1.0 + x2 * (1.0 / r2)).sqrt().inverse();  // 1/√inf = 0: exact where ‖d‖² overflowed
       a = phi.cube() * (-1.0 / r2);
       if (wantE) e = phi.cube() * phi.square() * (3.0 / r4);
       break;
@@ -76,6 +78,7 @@ struct BatchTerms {
   Kernel kernel;
   Polynomial polynomial;
   const Eigen::VectorXd* poly;
+  Vec<Dim> origin;  // the polynomial is p(x − origin)
   const double* c[Dim];
   const double* bc[Dim];
   const double* al;
@@ -94,7 +97,7 @@ void fusedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd&
   for (Eigen::Index i = 0; i < m; ++i) {
     Vec<Dim> gp;
     const Vec<Dim> xi = X.col(i);
-    double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, xi, WG ? &gp : nullptr, nullptr);
+    double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, xi - t.origin, WG ? &gp : nullptr, nullptr);
     double g[Dim] = {};
     fv += detail::fusedSum<Dim, T, B, WG>(xi.data(), r, t.c, t.al, t.bc, t.padded, g);
     f(i) = fv;
@@ -209,7 +212,7 @@ void blockedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorX
 #pragma omp for schedule(dynamic, 16)
     for (Eigen::Index i = 0; i < m; ++i) {
       Vec<Dim> gp;
-      double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, X.col(i), wantG ? &gp : nullptr, nullptr);
+      double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, X.col(i) - t.origin, wantG ? &gp : nullptr, nullptr);
       double gacc[Dim] = {};
       for (int start = 0; start < t.padded; start += kBlock)
         addBlock<Dim>(t, X, i, start, std::min(kBlock, t.padded - start), wantG, d, x2, phi, a, e, fv, gacc);
@@ -224,13 +227,14 @@ void blockedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorX
 
 template <int Dim>
 RadialSum<Dim>::RadialSum(Kernel kernel, Polynomial polynomial, Points<Dim> centres, Eigen::VectorXd alpha,
-                          Points<Dim> beta, Eigen::VectorXd poly)
+                          Points<Dim> beta, Eigen::VectorXd poly, Vec<Dim> polyOrigin)
     : kernel_(kernel),
       polynomial_(polynomial),
       centres_(std::move(centres)),
       alpha_(std::move(alpha)),
       beta_(std::move(beta)),
-      poly_(std::move(poly)) {
+      poly_(std::move(poly)),
+      polyOrigin_(polyOrigin) {
   buildSoA();
 }
 
@@ -251,12 +255,15 @@ template <int Dim>
 double RadialSum<Dim>::evaluate(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H) const {
   Vec<Dim> gp;
   Mat<Dim> Hp;
-  double f = evaluatePolynomial<Dim>(polynomial_, poly_, x, g ? &gp : nullptr, H ? &Hp : nullptr);
+  double f = evaluatePolynomial<Dim>(polynomial_, poly_, x - polyOrigin_, g ? &gp : nullptr, H ? &Hp : nullptr);
   Vec<Dim> gs = Vec<Dim>::Zero();
   Mat<Dim> Hs = Mat<Dim>::Zero();
   const bool beta = hasBeta();
+  const double support = kernel_.supportRadius();  // infinity for global kernels
   for (Eigen::Index j = 0; j < centres_.cols(); ++j) {
     const Vec<Dim> d = x - centres_.col(j);
+    // Outside a compact support every term is 0: skipped before ‖d‖² can overflow.
+    if (d.cwiseAbs().maxCoeff() >= support) continue;
     const RadialTerms t = kernel_.terms(d.norm());
     const double aj = alpha_(j);
     f += aj * t.phi;
@@ -283,7 +290,7 @@ template <int Dim>
 void RadialSum<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
   f.resize(X.cols());
   if (G) G->resize(Dim, X.cols());
-  BatchTerms<Dim> t{kernel_, polynomial_, &poly_, {}, {}, soa_[Dim].data(), padded_, hasBeta()};
+  BatchTerms<Dim> t{kernel_, polynomial_, &poly_, polyOrigin_, {}, {}, soa_[Dim].data(), padded_, hasBeta()};
   for (int k = 0; k < Dim; ++k) {
     t.c[k] = soa_[k].data();
     t.bc[k] = t.beta ? soa_[Dim + 1 + k].data() : nullptr;
@@ -307,7 +314,7 @@ double RadialSum<Dim>::termMagnitude(const Vec<Dim>& x) const {
     const int m = monomialCount<Dim>(polynomial_);
     Eigen::VectorXd values(m);
     Eigen::Matrix<double, Dim, Eigen::Dynamic> gradients(Dim, m);
-    monomials<Dim>(polynomial_, x, values, gradients);
+    monomials<Dim>(polynomial_, x - polyOrigin_, values, gradients);
     sum += (poly_.array() * values.array()).abs().sum();
   }
   return sum;
@@ -356,7 +363,7 @@ double RadialSum<Dim>::lipschitzBound(const Box<Dim>& box) const {
   if (polynomial_ != Polynomial::None) {
     Vec<Dim> gc;
     Mat<Dim> Hc;
-    evaluatePolynomial<Dim>(polynomial_, poly_, box.center(), &gc, &Hc);
+    evaluatePolynomial<Dim>(polynomial_, poly_, box.center() - polyOrigin_, &gc, &Hc);
     // ∇p(x) = ∇p(centre) + Hp (x − centre); ‖Hp‖₂ ≤ ‖Hp‖_F.
     L += gc.norm() + Hc.norm() * 0.5 * box.extent().norm();
   }

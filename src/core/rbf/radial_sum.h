@@ -1,6 +1,6 @@
 #pragma once
 // The evaluator shared by HRBF and RBF-offset models:
-//   f(x) = Σⱼ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x)     (β empty: plain RBF)
+//   f(x) = Σⱼ αⱼ φ(‖x − cⱼ‖) − βⱼ·∇φ(x − cⱼ) + p(x − o)     (β empty: plain RBF; o: polyOrigin)
 // with value / gradient / Hessian at a point, vectorised batch evaluation and Lipschitz bounds.
 
 #include "core/base/implicit_field.h"
@@ -13,8 +13,10 @@ template <int Dim>
 class RadialSum : public ImplicitField<Dim> {
  public:
   RadialSum() = default;
+  // `polyOrigin`: the point the polynomial part is written about, p(x − polyOrigin)
+  // (exact_centre.h; zero for data near the origin).
   RadialSum(Kernel kernel, Polynomial polynomial, Points<Dim> centres, Eigen::VectorXd alpha,
-            Points<Dim> beta, Eigen::VectorXd poly);
+            Points<Dim> beta, Eigen::VectorXd poly, Vec<Dim> polyOrigin = Vec<Dim>::Zero());
 
   double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override;
   void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
@@ -31,6 +33,7 @@ class RadialSum : public ImplicitField<Dim> {
   const Eigen::VectorXd& alpha() const { return alpha_; }   // N
   const Points<Dim>& beta() const { return beta_; }         // Dim × N, or Dim × 0 (plain RBF)
   const Eigen::VectorXd& poly() const { return poly_; }     // m, order of polynomial.h
+  const Vec<Dim>& polyOrigin() const { return polyOrigin_; }  // the polynomial is p(x − polyOrigin)
   bool hasBeta() const { return beta_.cols() > 0; }
 
  private:
@@ -42,6 +45,7 @@ class RadialSum : public ImplicitField<Dim> {
   Eigen::VectorXd alpha_;
   Points<Dim> beta_;
   Eigen::VectorXd poly_;
+  Vec<Dim> polyOrigin_ = Vec<Dim>::Zero();
   // Structure-of-arrays copies padded to a multiple of 8 (padding: zero coefficients) for the
   // vectorised loops: soa_[k] holds coordinate k of every centre, soa_[Dim] α, soa_[Dim+1+k] βₖ.
   std::vector<std::vector<double>> soa_;

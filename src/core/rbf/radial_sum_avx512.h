@@ -12,6 +12,8 @@
 
 #include <immintrin.h>
 
+#include <limits>
+
 #include <Eigen/Core>
 
 #include "core/rbf/kernels.h"
@@ -64,7 +66,11 @@ inline RadialLanes radialLanes(__m512d x2, double r) {
     o.a = _mm512_mul_pd(_mm512_set1_pd(3.0), x);
     o.e = _mm512_mul_pd(_mm512_set1_pd(3.0), y);
   } else if constexpr (T == KernelType::Gaussian) {
-    o.phi = Eigen::internal::pexp<Eigen::internal::Packet8d>(_mm512_mul_pd(x2, _mm512_set1_pd(-1.0 / r2)));
+    const __m512d t = _mm512_mul_pd(x2, _mm512_set1_pd(-1.0 / r2));
+    // Beyond x²/r² = 745.2 exp(−x²/r²) is 0 in double precision, but pexp clamps its argument and
+    // returns about 1e-308, which far away (‖d‖ ≥ 1e100) would multiply ‖d‖² into garbage.
+    const __mmask8 reach = _mm512_cmp_pd_mask(t, _mm512_set1_pd(-745.2), _CMP_GE_OQ);
+    o.phi = _mm512_maskz_mov_pd(reach, Eigen::internal::pexp<Eigen::internal::Packet8d>(t));
     o.a = _mm512_mul_pd(o.phi, _mm512_set1_pd(-2.0 / r2));
     o.e = _mm512_mul_pd(o.phi, _mm512_set1_pd(4.0 / r4));
   } else if constexpr (T == KernelType::Wendland) {
@@ -72,9 +78,13 @@ inline RadialLanes radialLanes(__m512d x2, double r) {
     const __m512d s = _mm512_mul_pd(_mm512_mul_pd(x2, y), _mm512_set1_pd(1.0 / r));
     const __m512d u = _mm512_max_pd(_mm512_sub_pd(_mm512_set1_pd(1.0), s), _mm512_setzero_pd());
     const __m512d u2 = _mm512_mul_pd(u, u);
-    o.phi = _mm512_mul_pd(_mm512_mul_pd(u2, u2), _mm512_fmadd_pd(_mm512_set1_pd(4.0), s, _mm512_set1_pd(1.0)));
+    // Lanes outside the support get exact zeros: where x² overflowed to inf, s is NaN (inf · 0
+    // in invSqrt) and u = 0 (max takes the second operand), and 0 · NaN would poison the sum.
+    const __mmask8 inside = _mm512_cmp_pd_mask(u, _mm512_setzero_pd(), _CMP_GT_OQ);
+    o.phi = _mm512_maskz_mov_pd(
+        inside, _mm512_mul_pd(_mm512_mul_pd(u2, u2), _mm512_fmadd_pd(_mm512_set1_pd(4.0), s, _mm512_set1_pd(1.0))));
     o.a = _mm512_mul_pd(_mm512_mul_pd(u2, u), _mm512_set1_pd(-20.0 / r2));
-    o.e = _mm512_mul_pd(_mm512_mul_pd(u2, y), _mm512_set1_pd(60.0 / (r2 * r)));
+    o.e = _mm512_maskz_mov_pd(inside, _mm512_mul_pd(_mm512_mul_pd(u2, y), _mm512_set1_pd(60.0 / (r2 * r))));
   } else if constexpr (T == KernelType::Multiquadric) {
     const __m512d q = _mm512_fmadd_pd(x2, _mm512_set1_pd(1.0 / r2), _mm512_set1_pd(1.0));
     const __m512d y = invSqrt(q);  // 1/φ
@@ -83,7 +93,9 @@ inline RadialLanes radialLanes(__m512d x2, double r) {
     o.e = _mm512_mul_pd(_mm512_mul_pd(_mm512_mul_pd(y, y), y), _mm512_set1_pd(-1.0 / r4));
   } else if constexpr (T == KernelType::InverseMultiquadric) {
     const __m512d q = _mm512_fmadd_pd(x2, _mm512_set1_pd(1.0 / r2), _mm512_set1_pd(1.0));
-    o.phi = invSqrt(q);
+    // q = inf (‖d‖² overflowed): φ and its factors are 0; invSqrt would give inf · 0 = NaN.
+    const __mmask8 finite = _mm512_cmp_pd_mask(q, _mm512_set1_pd(std::numeric_limits<double>::max()), _CMP_LE_OQ);
+    o.phi = _mm512_maskz_mov_pd(finite, invSqrt(q));
     const __m512d p3 = _mm512_mul_pd(_mm512_mul_pd(o.phi, o.phi), o.phi);
     o.a = _mm512_mul_pd(p3, _mm512_set1_pd(-1.0 / r2));
     o.e = _mm512_mul_pd(_mm512_mul_pd(p3, _mm512_mul_pd(o.phi, o.phi)), _mm512_set1_pd(3.0 / r4));

@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/base/errors.h"
+#include "core/base/exact_centre.h"
 #include "core/rbf/dense_fit_memory.h"
 
 namespace hermite {
@@ -15,6 +16,7 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   if (N < 1) throw InputError("RBF-offset fit: no samples");
   if (!(options.shift > 0)) throw InputError("RBF-offset fit: shift must be > 0");
   if (!(options.smoothing >= 0)) throw InputError("RBF-offset fit: smoothing must be ≥ 0");
+  if (!(options.smoothing <= kMaxSmoothing)) throw InputError("RBF-offset fit: smoothing must be ≤ 1e100");
   const Kernel& kernel = options.kernel;
   const double delta = options.shift;
 
@@ -38,17 +40,20 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   for (Eigen::Index j = 0; j < n; ++j)
     for (Eigen::Index i = j; i < n; ++i) sys.A(i, j) = kernel.phi((centres.col(i) - centres.col(j)).norm());
   if (options.smoothing != 0) sys.A.diagonal().array() += kernel.smoothingSign() * options.smoothing;
+  // The polynomial about an exact centre (zero for data near the origin): docs/maths.md, Centring.
+  const Vec<Dim> origin = m > 0 ? exactCentre<Dim>(centres) : Vec<Dim>::Zero();
   if (m > 0) {
     Eigen::VectorXd q(m);
     Eigen::Matrix<double, Dim, Eigen::Dynamic> gq(Dim, m);
     for (Eigen::Index i = 0; i < n; ++i) {
-      monomials<Dim>(options.polynomial, centres.col(i), q, gq);
+      monomials<Dim>(options.polynomial, centres.col(i) - origin, q, gq);
       sys.P.row(i) = q.transpose();
     }
   }
 
   SaddleSolution sol = solveFitSystem(std::move(sys), options.solver, kernel, options.polynomial, N, t0, report);
-  return RbfOffsetModel<Dim>(kernel, options.polynomial, std::move(centres), std::move(sol.x), std::move(sol.c), delta);
+  return RbfOffsetModel<Dim>(kernel, options.polynomial, std::move(centres), std::move(sol.x), std::move(sol.c), delta,
+                             origin);
 }
 
 template RbfOffsetModel<2> fitRbfOffset<2>(const HermiteSamples<2>&, const RbfOffsetOptions&, FitReport*);

@@ -19,9 +19,9 @@ class RbfOffsetModel : public RadialSum<Dim> {
  public:
   RbfOffsetModel() = default;
   RbfOffsetModel(Kernel kernel, Polynomial polynomial, Points<Dim> centres, Eigen::VectorXd weights,
-                 Eigen::VectorXd poly, double shift)
+                 Eigen::VectorXd poly, double shift, Vec<Dim> polyOrigin = Vec<Dim>::Zero())
       : RadialSum<Dim>(kernel, polynomial, std::move(centres), std::move(weights), Points<Dim>(),
-                       std::move(poly)),
+                       std::move(poly), polyOrigin),
         shift_(shift) {}
   double shift() const { return shift_; }
 

@@ -1,6 +1,7 @@
 #include "core/rbf/similarity_transform.h"
 
 #include <cmath>
+#include <utility>
 
 namespace hermite {
 
@@ -93,17 +94,26 @@ std::pair<double, Vec<Dim>> quarticSumAtOrigin(const Points<Dim>& C, const Eigen
   return {value, grad};
 }
 
+// The transformed polynomial and its origin o′. With origin o, p(T⁻¹x − o) = p(L⁻¹(x − T o)) for
+// L = q·R: the new polynomial is q·p(L⁻¹y) about o′ = T o (the translation moves the origin
+// only). A model without origin keeps the translation in the coefficients, as before.
 template <int Dim>
-Eigen::VectorXd transformedPoly(const RadialSum<Dim>& m, const Similarity<Dim>& T, const Points<Dim>& centres,
-                                const Eigen::VectorXd& alpha, const Points<Dim>* beta) {
-  Eigen::VectorXd poly = transformPolynomial<Dim>(m.polynomial(), m.poly(), T);
+std::pair<Eigen::VectorXd, Vec<Dim>> transformedPoly(const RadialSum<Dim>& m, const Similarity<Dim>& T,
+                                                     const Points<Dim>& centres, const Eigen::VectorXd& alpha,
+                                                     const Points<Dim>* beta) {
+  const bool centred = !m.polyOrigin().isZero();
+  Similarity<Dim> linear = T;
+  if (centred) linear.t.setZero();
+  const Vec<Dim> origin = centred ? T.apply(m.polyOrigin()) : Vec<Dim>::Zero();
+  Eigen::VectorXd poly = transformPolynomial<Dim>(m.polynomial(), m.poly(), linear);
   if (m.kernel().type == KernelType::Polyharmonic && T.q != 1.0 && poly.size() >= 1 + Dim) {
-    const auto [v, g] = quarticSumAtOrigin<Dim>(centres, alpha, beta);
+    const Points<Dim> relative = centres.colwise() - origin;
+    const auto [v, g] = quarticSumAtOrigin<Dim>(relative, alpha, beta);
     const double lnq = std::log(T.q);
     poly(0) -= lnq * v;
     for (int i = 0; i < Dim; ++i) poly(1 + i) -= lnq * g(i);
   }
-  return poly;
+  return {std::move(poly), origin};
 }
 
 }  // namespace
@@ -116,8 +126,8 @@ HrbfModel<Dim> transformModel(const HrbfModel<Dim>& m, const Similarity<Dim>& T)
   const Points<Dim> centres = (T.q * (T.R * m.centres())).colwise() + T.t;
   const Eigen::VectorXd alpha = std::pow(T.q, 1 - k) * m.alpha();
   const Points<Dim> beta = std::pow(T.q, 2 - k) * (T.R * m.beta());
-  Eigen::VectorXd poly = transformedPoly<Dim>(m, T, centres, alpha, &beta);
-  return HrbfModel<Dim>(kernel, m.polynomial(), centres, alpha, beta, std::move(poly));
+  auto [poly, origin] = transformedPoly<Dim>(m, T, centres, alpha, &beta);
+  return HrbfModel<Dim>(kernel, m.polynomial(), centres, alpha, beta, std::move(poly), origin);
 }
 
 template <int Dim>
@@ -127,8 +137,8 @@ RbfOffsetModel<Dim> transformModel(const RbfOffsetModel<Dim>& m, const Similarit
   if (kernel.usesRadius()) kernel.radius *= T.q;
   const Points<Dim> centres = (T.q * (T.R * m.centres())).colwise() + T.t;
   const Eigen::VectorXd w = std::pow(T.q, 1 - k) * m.alpha();
-  Eigen::VectorXd poly = transformedPoly<Dim>(m, T, centres, w, nullptr);
-  return RbfOffsetModel<Dim>(kernel, m.polynomial(), centres, w, std::move(poly), T.q * m.shift());
+  auto [poly, origin] = transformedPoly<Dim>(m, T, centres, w, nullptr);
+  return RbfOffsetModel<Dim>(kernel, m.polynomial(), centres, w, std::move(poly), T.q * m.shift(), origin);
 }
 
 template HermiteSamples<2> transformSamples<2>(const HermiteSamples<2>&, const Similarity<2>&);

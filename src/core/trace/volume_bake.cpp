@@ -75,6 +75,7 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
   for (int i = 0; i < blocks * 8; ++i) xs[i] = bounds.lo.x() + h.x() * std::min(i, R - 1);
   const Polynomial poly = rs->polynomial();
   const Eigen::VectorXd& pc = rs->poly();
+  const Vec<3> po = rs->polyOrigin();  // the polynomial is p(x − po)
   const std::size_t plane = std::size_t(R) * R;
 #pragma omp parallel for schedule(dynamic, 16)
   for (int row = 0; row < R * R; ++row) {
@@ -116,9 +117,10 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
         for (int l = 0; l < 8; ++l) {
           const int i = (b0 + q) * 8 + l;
           if (i >= R) break;
-          const double p = poly == Polynomial::Linear ? pc(0) + pc(1) * xs[i] + pc(2) * y + pc(3) * z
+          const double px = xs[i] - po(0), py = y - po(1), pz = z - po(2);
+          const double p = poly == Polynomial::Linear ? pc(0) + pc(1) * px + pc(2) * py + pc(3) * pz
                            : poly == Polynomial::None ? 0.0
-                                                      : evaluatePolynomial<3>(poly, pc, Vec<3>(xs[i], y, z), nullptr, nullptr);
+                                                      : evaluatePolynomial<3>(poly, pc, Vec<3>(px, py, pz), nullptr, nullptr);
           dst[i] = float(v[l] + p);
         }
       }

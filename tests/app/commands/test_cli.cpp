@@ -26,7 +26,7 @@ struct IndependentModel {
   std::string poly;
   int dim;
   std::vector<std::vector<double>> c, beta;
-  std::vector<double> alpha, pc;
+  std::vector<double> alpha, pc, po;  // po: the polynomial is p(y − po)
 
   explicit IndependentModel(const json& m)
       : kernel(m["kernel"]), r(m["radius"]), poly(m["polynomial"]), dim(m["dimension"]) {
@@ -34,6 +34,7 @@ struct IndependentModel {
     for (const auto& v : m["beta"]) beta.push_back(v.get<std::vector<double>>());
     alpha = m["alpha"].get<std::vector<double>>();
     pc = m["poly"].get<std::vector<double>>();
+    po = m.contains("poly_origin") ? m["poly_origin"].get<std::vector<double>>() : std::vector<double>(dim, 0.0);
   }
   // φ(x) and φ′(x), φ″(x) by the textbook formulas.
   void radial(double x, double& p0, double& p1, double& p2) const {
@@ -72,14 +73,16 @@ struct IndependentModel {
     }
     if (poly != "none") {
       out[0] += pc[0];
-      for (int k = 0; k < dim; ++k) out[0] += pc[1 + k] * y[k], out[1 + k] += pc[1 + k];
+      std::vector<double> yp(dim);
+      for (int k = 0; k < dim; ++k) yp[k] = y[k] - po[k];
+      for (int k = 0; k < dim; ++k) out[0] += pc[1 + k] * yp[k], out[1 + k] += pc[1 + k];
       if (poly == "quadratic") {
         int q = 1 + dim;
         for (int i = 0; i < dim; ++i)
           for (int k = i; k < dim; ++k, ++q) {
-            out[0] += pc[q] * y[i] * y[k];
-            out[1 + i] += pc[q] * y[k];
-            out[1 + k] += pc[q] * y[i];
+            out[0] += pc[q] * yp[i] * yp[k];
+            out[1 + i] += pc[q] * yp[k];
+            out[1 + k] += pc[q] * yp[i];
           }
       }
     }
