@@ -19,8 +19,10 @@ namespace {
 
 using json = nlohmann::json;
 
-template <int Dim>
-json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
+// A global model (or a PU leaf's): its kernel, centres, coefficients and polynomial; an
+// RBF-offset model adds its shift.
+template <int Dim, class Model>
+json modelJson(const Scene& scene, const Model& m) {
   json out;
   out["method"] = std::string(fitMethodName(scene.fit.method));
   out["kernel"] = std::string(kernelName(m.kernel().type));
@@ -48,7 +50,7 @@ json modelJson(const Scene& scene, const RadialSum<Dim>& m) {
   json polyOrigin = json::array();  // the polynomial is p(x − poly_origin); zero for data near the origin
   for (int k = 0; k < Dim; ++k) polyOrigin.push_back(m.polyOrigin()(k));
   out["poly_origin"] = std::move(polyOrigin);
-  if (scene.fit.method == FitMethod::RbfOffset) out["shift"] = static_cast<const RbfOffsetModel<Dim>&>(m).shift();
+  if constexpr (std::is_same_v<Model, RbfOffsetModel<Dim>>) out["shift"] = m.shift();
   return out;
 }
 

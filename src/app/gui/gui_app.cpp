@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <type_traits>
 
 #include "app/gui/document_actions.h"
 #include "app/gui/gui_widgets.h"
@@ -288,3 +289,4 @@ void GuiApp::renderFrame() {
 
 
 }  // namespace hermite::app
+static_assert(!std::is_copy_constructible_v<hermite::app::GuiApp>, "GuiApp parts hold references to its context");

@@ -43,14 +43,12 @@ class GuiApp {
   // Needs a current GL 4.5 context; creates its own ImGui context.
   GuiApp(Document document, GuiOptions options = {});
   ~GuiApp();
-  GuiApp(const GuiApp&) = delete;
-  GuiApp& operator=(const GuiApp&) = delete;
+  // Not copyable: its parts hold references to its context (and FitWorker owns a thread).
 
   // Runs one frame and draws it into the framebuffer bound now (width × height of the input).
   void frame(const FrameInput& input);
 
   Document& document() { return ctx_.document; }
-  const Document& document() const { return ctx_.document; }
   FitWorker& worker() { return ctx_.fits.worker(); }
   // The fit on screen (the last good one), or null.
   const FitOutcome* shownFit() const { return ctx_.fits.shown().get(); }
