@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <unordered_map>
 #include <unordered_set>
@@ -27,8 +28,15 @@ double cornerCosine(const Vec<3>& at, const Vec<3>& b, const Vec<3>& c) {
 // mesh's (< baseId) and the patch's (≥ baseId).
 class EditablePatch {
  public:
-  EditablePatch(const PreparedMesh& prepared, HolePatch& patch) : prepared_(prepared), patch_(patch) {
-    for (Eigen::Index k = 0; k < patch.vertices.cols(); ++k) added_.push_back(patch.vertices.col(k));
+  // `grading` ≥ 0: the target edge length at a vertex is meanEdgeLength + grading × its distance
+  // to the nearest boundary vertex (0: uniform).
+  EditablePatch(const PreparedMesh& prepared, HolePatch& patch, double grading = 0)
+      : prepared_(prepared), patch_(patch), grading_(grading) {
+    for (int v : patch.loop) boundaryPoints_.push_back(prepared.mesh().vertices.col(v));
+    for (Eigen::Index k = 0; k < patch.vertices.cols(); ++k) {
+      added_.push_back(patch.vertices.col(k));
+      distance_.push_back(boundaryDistance(added_.back()));
+    }
     for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t)
       addTriangle({patch.triangles(0, t), patch.triangles(1, t), patch.triangles(2, t)});
     for (std::size_t i = 0; i < patch.loop.size(); ++i)
@@ -41,15 +49,34 @@ class EditablePatch {
     return id < patch_.baseId ? Vec<3>(prepared_.mesh().vertices.col(id)) : added_[std::size_t(id - patch_.baseId)];
   }
 
-  // Interior edges longer than `threshold`, longest first.
-  std::vector<std::uint64_t> longEdges(double threshold) const {
+  // Distance from x to the nearest boundary vertex when grading (else 0). O(boundary) per call:
+  // called once per new vertex.
+  double boundaryDistance(const Vec<3>& x) const {
+    if (!(grading_ > 0)) return 0;
+    double best = std::numeric_limits<double>::infinity();
+    for (const Vec<3>& b : boundaryPoints_) best = std::min(best, (b - x).squaredNorm());
+    return std::sqrt(best);
+  }
+  double distance(int id) const { return id < patch_.baseId ? 0.0 : distance_[std::size_t(id - patch_.baseId)]; }
+
+  // The target edge length at x (see the constructor).
+  double targetLength(const Vec<3>& x) const { return patch_.meanEdgeLength + grading_ * boundaryDistance(x); }
+
+  // Interior edges longer than `factor` × the target length at their midpoint (the mean of their
+  // ends' targets), longest relative to it first.
+  std::vector<std::uint64_t> longEdges(double factor) const {
     std::vector<std::pair<double, std::uint64_t>> found;
+    const double l = patch_.meanEdgeLength;
     for (const auto& [key, tris] : edges_) {
       if (boundary_.count(key)) continue;
-      const double length = (position(int(key >> 32)) - position(int(key & 0xffffffffu))).norm();
-      if (length > threshold) found.emplace_back(length, key);
+      const int a = int(key >> 32), b = int(key & 0xffffffffu);
+      const double target = l + grading_ * 0.5 * (distance(a) + distance(b));
+      const double ratio = (position(a) - position(b)).norm() / target;
+      if (ratio > factor) found.emplace_back(ratio, key);
     }
-    std::sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::sort(found.begin(), found.end(), [](const auto& x, const auto& y) {
+      return x.first != y.first ? x.first > y.first : x.second < y.second;
+    });
     std::vector<std::uint64_t> keys;
     for (const auto& f : found) keys.push_back(f.second);
     return keys;
@@ -63,6 +90,7 @@ class EditablePatch {
     const int a = int(key >> 32), b = int(key & 0xffffffffu);
     const int m = patch_.baseId + int(added_.size());
     added_.push_back(0.5 * (position(a) + position(b)));
+    distance_.push_back(boundaryDistance(added_.back()));
     for (int t : tris) {
       if (t < 0) continue;
       const auto [x, y, o] = rotatedTo(t, a, b);  // t = (x, y, o) with x → y the edge
@@ -72,17 +100,98 @@ class EditablePatch {
     }
   }
 
-  // One sweep of angle-improving flips; returns how many were made.
-  int flipSweep() {
+  // One pass of centroid insertion (Liepa 2003, with the target lengths in place of his averaged
+  // scales): triangle (a, b, c) is split at its centroid m into three when √2 · |m − v| exceeds
+  // both the target at m and the target at v for every corner v, and √2 × m's distance to the
+  // nearest boundary vertex exceeds l. Returns the number of splits.
+  int centroidPass() {
+    const std::size_t count = triangles_.size();
+    int splits = 0;
+    for (std::size_t t = 0; t < count; ++t) {
+      const Triangle tri = triangles_[t];
+      const Vec<3> m = (position(tri[0]) + position(tri[1]) + position(tri[2])) / 3.0;
+      const double dm = boundaryDistance(m), target = patch_.meanEdgeLength + grading_ * dm;
+      bool dense = !(std::sqrt(2.0) * dm > 0.5 * patch_.meanEdgeLength);  // next to a boundary vertex
+      for (int v : tri) {
+        const double r = std::sqrt(2.0) * (m - position(v)).norm();
+        dense = dense || !(r > target && r > patch_.meanEdgeLength + grading_ * distance(v));
+      }
+      if (dense) continue;
+      const int id = patch_.baseId + int(added_.size());
+      added_.push_back(m);
+      distance_.push_back(dm);
+      removeTriangle(int(t));
+      setTriangle(int(t), {tri[0], tri[1], id});
+      addTriangle({tri[1], tri[2], id});
+      addTriangle({tri[2], tri[0], id});
+      ++splits;
+      tick();
+    }
+    return splits;
+  }
+
+  // One pass of smart Laplacian smoothing: each new vertex moves to the mean of its neighbours
+  // when that raises the smallest angle of its triangles and turns none of them over by more than
+  // 90°; only vertices whose sharpest corner has a cosine above `onlyAbove` are tried. Returns the
+  // number of vertices moved.
+  int smoothPass(double onlyAbove = -1) {
+    std::vector<std::vector<int>> around(added_.size());  // triangles at each new vertex
+    for (std::size_t t = 0; t < triangles_.size(); ++t)
+      for (int v : triangles_[t])
+        if (v >= patch_.baseId) around[std::size_t(v - patch_.baseId)].push_back(int(t));
+    int moved = 0;
+    for (std::size_t k = 0; k < added_.size(); ++k) {
+      if (around[k].empty()) continue;
+      const int id = patch_.baseId + int(k);
+      Vec<3> mean = Vec<3>::Zero();
+      double before = -1, after = -1;  // largest corner cosine: the smallest angle, reversed
+      std::vector<Vec<3>> normals;
+      for (int t : around[k]) {
+        const Triangle& tri = triangles_[std::size_t(t)];
+        for (int v : tri) mean += v == id ? Vec<3>::Zero() : Vec<3>(0.5 * position(v));  // each neighbour twice
+        before = std::max(before, sharpestCosine(tri[0], tri[1], tri[2]));
+        normals.push_back((position(tri[1]) - position(tri[0])).cross(position(tri[2]) - position(tri[0])));
+      }
+      mean /= double(around[k].size());
+      if (!(before > onlyAbove)) continue;
+      const Vec<3> old = added_[k];
+      added_[k] = mean;
+      bool turned = false;
+      for (std::size_t i = 0; i < around[k].size(); ++i) {
+        const Triangle& tri = triangles_[std::size_t(around[k][i])];
+        after = std::max(after, sharpestCosine(tri[0], tri[1], tri[2]));
+        turned = turned || !((position(tri[1]) - position(tri[0])).cross(position(tri[2]) - position(tri[0])).dot(normals[i]) > 0);
+      }
+      if (turned || !(after < before - 1e-12)) {
+        added_[k] = old;
+        continue;
+      }
+      distance_[k] = boundaryDistance(mean);
+      ++moved;
+      tick();
+    }
+    return moved;
+  }
+
+  // One sweep of angle-improving flips (delaunay false) or of Delaunay flips (the two angles
+  // opposite the edge sum to more than π); returns how many were made.
+  int flipSweep(bool delaunay = false) {
     std::vector<std::uint64_t> keys;
     keys.reserve(edges_.size());
     for (const auto& [key, tris] : edges_)
       if (!boundary_.count(key) && tris[0] >= 0 && tris[1] >= 0) keys.push_back(key);
     std::sort(keys.begin(), keys.end());  // a fixed order: the result does not depend on hashing
     int flips = 0;
-    for (std::uint64_t key : keys) flips += tryFlip(key);
+    for (std::uint64_t key : keys) {
+      flips += tryFlip(key, delaunay);
+      tick();
+    }
     return flips;
   }
+
+  // Called every 4096 elementary steps (splits, flips tried, vertices moved): the caller's progress
+  // report between the rounds would come too seldom on large patches.
+  std::function<void()> onTick;
 
   void writeBack() {
     patch_.vertices.resize(3, Eigen::Index(added_.size()));
@@ -151,7 +260,7 @@ class EditablePatch {
 
   // Flips edge (a, b) of t1 = (a, b, c), t2 = (b, a, d) to (c, d) when the smaller minimum angle
   // grows and the new triangles face the same way as the old pair.
-  bool tryFlip(std::uint64_t key) {
+  bool tryFlip(std::uint64_t key, bool delaunay) {
     const auto it = edges_.find(key);
     if (it == edges_.end() || it->second[0] < 0 || it->second[1] < 0) return false;
     const int t1 = it->second[0], t2 = it->second[1];
@@ -159,10 +268,16 @@ class EditablePatch {
     const auto [a, b, c] = rotatedTo(t1, u, w);
     const auto [b2, a2, d] = rotatedTo(t2, u, w);
     if (b2 != b || a2 != a || c == d || edgeExists(c, d)) return false;
-    const double before = std::max(sharpestCosine(a, b, c), sharpestCosine(b, a, d));
-    const double after = std::max(sharpestCosine(c, a, d), sharpestCosine(d, b, c));
-    if (!(after < before - 1e-12)) return false;
     const Vec<3> pa = position(a), pb = position(b), pc = position(c), pd = position(d);
+    if (delaunay) {
+      const double opposite = std::acos(std::clamp(cornerCosine(pc, pa, pb), -1.0, 1.0)) +
+                              std::acos(std::clamp(cornerCosine(pd, pa, pb), -1.0, 1.0));
+      if (!(opposite > std::numbers::pi + 1e-9)) return false;
+    } else {
+      const double before = std::max(sharpestCosine(a, b, c), sharpestCosine(b, a, d));
+      const double after = std::max(sharpestCosine(c, a, d), sharpestCosine(d, b, c));
+      if (!(after < before - 1e-12)) return false;
+    }
     const Vec<3> old = (pb - pa).cross(pc - pa) + (pa - pb).cross(pd - pb);
     const Vec<3> n1 = (pa - pc).cross(pd - pc), n2 = (pb - pd).cross(pc - pd);
     if (!(n1.dot(old) > 0 && n2.dot(old) > 0)) return false;
@@ -173,52 +288,95 @@ class EditablePatch {
     return true;
   }
 
+  void tick() {
+    if (onTick && ++ticks_ % 4096 == 0) onTick();
+  }
+
   const PreparedMesh& prepared_;
   HolePatch& patch_;
+  std::uint64_t ticks_ = 0;
+  double grading_ = 0;
+  std::vector<Vec<3>> boundaryPoints_;
   std::vector<Vec<3>> added_;
+  std::vector<double> distance_;  // of each added vertex to the boundary (0 when not grading)
   std::vector<Triangle> triangles_;
   std::unordered_map<std::uint64_t, std::array<int, 2>> edges_;  // → up to two patch triangles
   std::unordered_set<std::uint64_t> boundary_;
 };
 
-double patchArea(const EditablePatch& e, const HolePatch& patch) {
-  double area = 0;
-  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t) {
-    const Vec<3> p0 = e.position(patch.triangles(0, t)), p1 = e.position(patch.triangles(1, t)),
-                 p2 = e.position(patch.triangles(2, t));
-    area += 0.5 * (p1 - p0).cross(p2 - p0).norm();
-  }
-  return area;
-}
-
-}  // namespace
-
-bool refinePatch(const PreparedMesh& prepared, HolePatch& patch, const std::function<bool(double)>& progress) {
-  EditablePatch editable(prepared, patch);
+// refinePatch's rounds on the editable patch (see there).
+bool refineEditable(EditablePatch& editable, HolePatch& patch, double grading,
+                    const std::function<bool(double)>& progress, double& reached) {
   const double l = patch.meanEdgeLength;
   if (!(l > 0)) return true;
-  // Equilateral triangles of side l: the count the refinement heads for.
-  const double expected = std::max(1.0, patchArea(editable, patch) / (std::sqrt(3.0) / 4.0 * l * l));
-  for (int round = 0; round < 64; ++round) {
-    const std::vector<std::uint64_t> tooLong = editable.longEdges(4.0 / 3.0 * l);
+  // Equilateral triangles of the target side at each first triangle's centroid: the count the
+  // refinement heads for.
+  double expected = 0;
+  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t) {
+    const Vec<3> p0 = editable.position(patch.triangles(0, t)), p1 = editable.position(patch.triangles(1, t)),
+                 p2 = editable.position(patch.triangles(2, t));
+    const double h = editable.targetLength((p0 + p1 + p2) / 3.0);
+    expected += 0.5 * (p1 - p0).cross(p2 - p0).norm() / (std::sqrt(3.0) / 4.0 * h * h);
+  }
+  expected = std::max(1.0, expected);
+  // Graded: centroid insertion with Delaunay relaxation (midpoint splits would crowd vertices
+  // where the long edges of the first triangulation's fans meet the boundary).
+  for (int round = 0; grading > 0 && round < 64; ++round) {
+    // Relaxed first: the first triangulation's ears along a gently curved boundary have their
+    // centroids next to the boundary vertex between their ends.
+    for (int pass = 0; round == 0 && pass < 16 && editable.flipSweep(true) > 0; ++pass) {
+    }
+    const int splits = editable.centroidPass();
+    for (int pass = 0; pass < 16 && editable.flipSweep(true) > 0; ++pass) {
+    }
+    for (int pass = 0; pass < 2; ++pass) {
+      editable.smoothPass();
+      editable.flipSweep(true);
+    }
+    reached = std::min(1.0, double(editable.triangleCount()) / expected);
+    if (progress && !progress(reached)) return false;
+    if (splits == 0) break;
+  }
+  for (int round = 0; grading == 0 && round < 64; ++round) {
+    const std::vector<std::uint64_t> tooLong = editable.longEdges(4.0 / 3.0);
     if (tooLong.empty()) break;
     for (std::uint64_t key : tooLong) editable.split(key);
     editable.flipSweep();
-    if (progress && !progress(std::min(1.0, double(editable.triangleCount()) / expected))) return false;
+    reached = std::min(1.0, double(editable.triangleCount()) / expected);
+    if (progress && !progress(reached)) return false;
   }
   for (int pass = 0; pass < 8 && editable.flipSweep() > 0; ++pass) {
+    if (progress && !progress(1.0)) return false;
   }
   editable.writeBack();
   return true;
 }
 
+}  // namespace
+
+bool refinePatch(const PreparedMesh& prepared, HolePatch& patch, const std::function<bool(double)>& progress,
+                 double grading) {
+  EditablePatch editable(prepared, patch, grading);
+  struct Stopped {};  // thrown by onTick when progress says stop
+  double reached = 0;  // the last fraction reported
+  if (progress) editable.onTick = [&] {
+    if (!progress(reached)) throw Stopped{};
+  };
+  try {
+    return refineEditable(editable, patch, grading, progress, reached);
+  } catch (const Stopped&) {
+    return false;
+  }
+}
+
 int improvePatchAngles(const PreparedMesh& prepared, HolePatch& patch, int passes) {
   EditablePatch editable(prepared, patch);
   int flips = 0;
+  const double fiveDegrees = std::cos(5.0 * std::numbers::pi / 180.0);
   for (int pass = 0; pass < passes; ++pass) {
     const int made = editable.flipSweep();
     flips += made;
-    if (made == 0) break;
+    if (made + editable.smoothPass(fiveDegrees) == 0) break;
   }
   editable.writeBack();
   return flips;
