@@ -319,13 +319,14 @@ bool refineEditable(EditablePatch& editable, HolePatch& patch, double grading,
     expected += 0.5 * (p1 - p0).cross(p2 - p0).norm() / (std::sqrt(3.0) / 4.0 * h * h);
   }
   expected = std::max(1.0, expected);
+  // Relaxed first: an ear of the first triangulation along a straight or gently curved run of
+  // the boundary has its centroid, or the midpoint of its long edge, next to (or on) the
+  // boundary vertex between its ends.
+  for (int pass = 0; pass < 16 && editable.flipSweep(true) > 0; ++pass) {
+  }
   // Graded: centroid insertion with Delaunay relaxation (midpoint splits would crowd vertices
   // where the long edges of the first triangulation's fans meet the boundary).
   for (int round = 0; grading > 0 && round < 64; ++round) {
-    // Relaxed first: the first triangulation's ears along a gently curved boundary have their
-    // centroids next to the boundary vertex between their ends.
-    for (int pass = 0; round == 0 && pass < 16 && editable.flipSweep(true) > 0; ++pass) {
-    }
     const int splits = editable.centroidPass();
     for (int pass = 0; pass < 16 && editable.flipSweep(true) > 0; ++pass) {
     }
