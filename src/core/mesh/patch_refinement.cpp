@@ -83,13 +83,19 @@ class EditablePatch {
   }
 
   // Splits the edge at its midpoint: each adjacent patch triangle becomes two.
-  void split(std::uint64_t key) {
+  // Not where the midpoint falls within l/4 of a triangle's opposite corner (a flat triangle: its
+  // Delaunay flip is the fix; the split would start a cluster of ever closer vertices). Returns
+  // whether it split.
+  bool split(std::uint64_t key) {
     const auto it = edges_.find(key);
-    if (it == edges_.end()) return;
+    if (it == edges_.end()) return false;
     const std::array<int, 2> tris = it->second;
     const int a = int(key >> 32), b = int(key & 0xffffffffu);
+    const Vec<3> mid = 0.5 * (position(a) + position(b));
+    for (int t : tris)
+      if (t >= 0 && (position(std::get<2>(rotatedTo(t, a, b))) - mid).norm() < 0.25 * patch_.meanEdgeLength) return false;
     const int m = patch_.baseId + int(added_.size());
-    added_.push_back(0.5 * (position(a) + position(b)));
+    added_.push_back(mid);
     distance_.push_back(boundaryDistance(added_.back()));
     for (int t : tris) {
       if (t < 0) continue;
@@ -98,6 +104,7 @@ class EditablePatch {
       setTriangle(t, {x, m, o});
       addTriangle({m, y, o});
     }
+    return true;
   }
 
   // One pass of centroid insertion (Liepa 2003, with the target lengths in place of his averaged
@@ -341,8 +348,11 @@ bool refineEditable(EditablePatch& editable, HolePatch& patch, double grading,
   for (int round = 0; grading == 0 && round < 64; ++round) {
     const std::vector<std::uint64_t> tooLong = editable.longEdges(4.0 / 3.0);
     if (tooLong.empty()) break;
-    for (std::uint64_t key : tooLong) editable.split(key);
-    editable.flipSweep();
+    int splits = 0;
+    for (std::uint64_t key : tooLong) splits += editable.split(key);
+    for (int pass = 0; pass < 16 && editable.flipSweep(true) > 0; ++pass) {
+    }
+    if (splits == 0) break;
     reached = std::min(1.0, double(editable.triangleCount()) / expected);
     if (progress && !progress(reached)) return false;
   }
