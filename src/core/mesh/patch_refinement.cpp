@@ -32,10 +32,17 @@ class EditablePatch {
   // to the nearest boundary vertex (0: uniform).
   EditablePatch(const PreparedMesh& prepared, HolePatch& patch, double grading = 0)
       : prepared_(prepared), patch_(patch), grading_(grading) {
-    for (int v : patch.loop) boundaryPoints_.push_back(prepared.mesh().vertices.col(v));
+    const std::size_t n = patch.loop.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Vec<3> p = prepared.mesh().vertices.col(patch.loop[i]);
+      boundaryPoints_.push_back(p);
+      boundaryScale_[patch.loop[i]] = 0.5 * ((p - Vec<3>(prepared.mesh().vertices.col(patch.loop[(i + 1) % n]))).norm() +
+                                             (p - Vec<3>(prepared.mesh().vertices.col(patch.loop[(i + n - 1) % n]))).norm());
+    }
     for (Eigen::Index k = 0; k < patch.vertices.cols(); ++k) {
       added_.push_back(patch.vertices.col(k));
       distance_.push_back(boundaryDistance(added_.back()));
+      scale_.push_back(patch.meanEdgeLength);
     }
     for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t)
       addTriangle({patch.triangles(0, t), patch.triangles(1, t), patch.triangles(2, t)});
@@ -57,6 +64,14 @@ class EditablePatch {
     for (const Vec<3>& b : boundaryPoints_) best = std::min(best, (b - x).squaredNorm());
     return std::sqrt(best);
   }
+  // The local edge length at a vertex for uniform refinement: a boundary vertex's is the mean of
+  // its two boundary edges, a midpoint's the mean of its edge's ends (so short boundary edges get
+  // small triangles next to them, not slivers).
+  double scale(int id) const {
+    if (id >= patch_.baseId) return scale_[std::size_t(id - patch_.baseId)];
+    const auto it = boundaryScale_.find(id);
+    return it == boundaryScale_.end() ? patch_.meanEdgeLength : it->second;
+  }
   double distance(int id) const { return id < patch_.baseId ? 0.0 : distance_[std::size_t(id - patch_.baseId)]; }
 
   // The target edge length at x (see the constructor).
@@ -70,7 +85,7 @@ class EditablePatch {
     for (const auto& [key, tris] : edges_) {
       if (boundary_.count(key)) continue;
       const int a = int(key >> 32), b = int(key & 0xffffffffu);
-      const double target = l + grading_ * 0.5 * (distance(a) + distance(b));
+      const double target = grading_ > 0 ? l + grading_ * 0.5 * (distance(a) + distance(b)) : 0.5 * (scale(a) + scale(b));
       const double ratio = (position(a) - position(b)).norm() / target;
       if (ratio > factor) found.emplace_back(ratio, key);
     }
@@ -93,10 +108,11 @@ class EditablePatch {
     const int a = int(key >> 32), b = int(key & 0xffffffffu);
     const Vec<3> mid = 0.5 * (position(a) + position(b));
     for (int t : tris)
-      if (t >= 0 && (position(std::get<2>(rotatedTo(t, a, b))) - mid).norm() < 0.25 * patch_.meanEdgeLength) return false;
+      if (t >= 0 && (position(std::get<2>(rotatedTo(t, a, b))) - mid).norm() < 0.125 * (scale(a) + scale(b))) return false;
     const int m = patch_.baseId + int(added_.size());
     added_.push_back(mid);
     distance_.push_back(boundaryDistance(added_.back()));
+    scale_.push_back(0.5 * (scale(a) + scale(b)));
     for (int t : tris) {
       if (t < 0) continue;
       const auto [x, y, o] = rotatedTo(t, a, b);  // t = (x, y, o) with x → y the edge
@@ -127,6 +143,7 @@ class EditablePatch {
       const int id = patch_.baseId + int(added_.size());
       added_.push_back(m);
       distance_.push_back(dm);
+      scale_.push_back(patch_.meanEdgeLength);
       removeTriangle(int(t));
       setTriangle(int(t), {tri[0], tri[1], id});
       addTriangle({tri[1], tri[2], id});
@@ -306,6 +323,8 @@ class EditablePatch {
   std::vector<Vec<3>> boundaryPoints_;
   std::vector<Vec<3>> added_;
   std::vector<double> distance_;  // of each added vertex to the boundary (0 when not grading)
+  std::vector<double> scale_;     // of each added vertex (see scale)
+  std::unordered_map<int, double> boundaryScale_;
   std::vector<Triangle> triangles_;
   std::unordered_map<std::uint64_t, std::array<int, 2>> edges_;  // → up to two patch triangles
   std::unordered_set<std::uint64_t> boundary_;
