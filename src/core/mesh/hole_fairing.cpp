@@ -14,6 +14,41 @@
 
 namespace hermite {
 
+namespace {
+
+// Mean-value weights tan(θ/2) / |u − v| summed over the triangles on edge v–u (θ their angle at
+// v), from the unfaired positions, keyed (v << 32 | u): for graded patches, where they leave a
+// flat one-ring where it is while uniform weights pull the small triangles near the boundary
+// and the large ones in the middle towards one size, crushing some.
+std::unordered_map<std::uint64_t, double> meanValueWeights(const PreparedMesh& prepared, const HolePatch& patch) {
+  const TriMesh& mesh = prepared.mesh();
+  const auto position = [&](int id) -> Eigen::Vector3d {
+    return id >= patch.baseId ? Eigen::Vector3d(patch.vertices.col(id - patch.baseId)) : Eigen::Vector3d(mesh.vertices.col(id));
+  };
+  std::unordered_map<std::uint64_t, double> meanValue;
+  const auto add = [&](int a, int b, int c) {  // the corner at a of triangle (a, b, c)
+    const Eigen::Vector3d u = position(b) - position(a), w = position(c) - position(a);
+    const double nu = u.norm(), nw = w.norm();
+    if (!(nu > 0 && nw > 0)) return;
+    const double t = std::tan(0.5 * std::acos(std::clamp(u.dot(w) / (nu * nw), -1.0, 1.0)));
+    meanValue[(std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)] += t / nu;
+    meanValue[(std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(c)] += t / nw;
+  };
+  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t) {
+    const int a = patch.triangles(0, t), b = patch.triangles(1, t), c = patch.triangles(2, t);
+    add(a, b, c), add(b, c, a), add(c, a, b);
+  }
+  for (int v : patch.loop)
+    for (const int* t = prepared.trianglesBegin(v); t != prepared.trianglesEnd(v); ++t) {
+      int k = 0;
+      while (mesh.triangles(k, *t) != v) ++k;
+      add(v, mesh.triangles((k + 1) % 3, *t), mesh.triangles((k + 2) % 3, *t));
+    }
+  return meanValue;
+}
+
+}  // namespace
+
 HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
   HolePatch out = patch;
   const int K = static_cast<int>(patch.vertices.cols());
@@ -36,30 +71,9 @@ HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
     const std::vector<int> nb = prepared.neighbours(v);
     ring[v].insert(ring[v].end(), nb.begin(), nb.end());
   }
-  // Graded patches: mean-value weights tan(θ/2)/|u − v| from the unfaired positions (θ the
-  // angle at v of each triangle on edge v–u), which leave a flat one-ring where it is; the
-  // uniform weights would pull the small triangles near the boundary and the large ones in the
-  // middle towards one size, crushing some.
-  std::unordered_map<std::uint64_t, double> meanValue;  // (v << 32 | u) → weight of u in v's row
-  if (patch.graded) {
-    const auto add = [&](int a, int b, int c) {  // the corner at a of triangle (a, b, c)
-      const Eigen::Vector3d u = position(b) - position(a), w = position(c) - position(a);
-      const double nu = u.norm(), nw = w.norm();
-      if (!(nu > 0 && nw > 0)) return;
-      const double t = std::tan(0.5 * std::acos(std::clamp(u.dot(w) / (nu * nw), -1.0, 1.0)));
-      meanValue[(std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)] += t / nu;
-      meanValue[(std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(c)] += t / nw;
-    };
-    const auto corners = [&](int a, int b, int c) { add(a, b, c), add(b, c, a), add(c, a, b); };
-    for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t)
-      corners(patch.triangles(0, t), patch.triangles(1, t), patch.triangles(2, t));
-    for (int v : patch.loop)
-      for (const int* t = prepared.trianglesBegin(v); t != prepared.trianglesEnd(v); ++t) {
-        int k = 0;
-        while (mesh.triangles(k, *t) != v) ++k;
-        add(v, mesh.triangles((k + 1) % 3, *t), mesh.triangles((k + 2) % 3, *t));
-      }
-  }
+  // Graded patches: mean-value weights (see meanValueWeights).
+  const std::unordered_map<std::uint64_t, double> meanValue =
+      patch.graded ? meanValueWeights(prepared, patch) : std::unordered_map<std::uint64_t, double>{};
   // Rows: every vertex of the patch (new and boundary); the unknowns are the new vertices.
   std::vector<int> rows;
   for (auto& [v, nb] : ring) {

@@ -160,6 +160,35 @@ double finishPatch(const PreparedMesh& prepared, const HoleFillOptions& options,
   return smallestPatchAngle(prepared, patch);
 }
 
+// The whole job's progress from the holes' own: each hole weighs its boundary edges squared (its
+// patch grows with its area); a hole's stages report their fraction of it.
+class HolesProgress {
+ public:
+  HolesProgress(const std::vector<BoundaryLoop>& holes, const std::function<bool(double)>& callback)
+      : callback_(callback), weight_(holes.size()), done_(holes.size(), 0.0) {
+    for (size_t h = 0; h < holes.size(); ++h) total_ += weight_[h] = double(holes[h].size()) * double(holes[h].size());
+  }
+
+  // Hole h has done `fraction` of its work; false once the callback has said stop.
+  bool report(size_t h, double fraction) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    fraction = std::max(fraction, done_[h]);  // a retry starts its stages again: never backwards
+    finished_ += weight_[h] * (fraction - done_[h]);
+    done_[h] = fraction;
+    if (!cancelled && !callback_(std::clamp(finished_ / total_, 0.0, 1.0))) cancelled = true;
+    return !cancelled;
+  }
+
+  std::atomic<bool> cancelled{false};
+
+ private:
+  const std::function<bool(double)>& callback_;
+  std::vector<double> weight_, done_;
+  double total_ = 0;
+  double finished_ = 0;  // Σ weight × done, under mutex_
+  std::mutex mutex_;
+};
+
 }  // namespace
 
 HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options,
@@ -249,22 +278,9 @@ HoleFillResult fillHoles(const TriMesh& input, const HoleFillOptions& options) {
   std::vector<HoleOutcome> perHole(holes.size());
   const int threads = threadCount();
   setBlasThreadCount(1);
-  // Progress: each hole weighs its boundary edges squared (its patch grows with its area); a
-  // hole's stages report their fraction of it.
-  std::vector<double> weight(holes.size()), done(holes.size(), 0.0);
-  double total = 0;
-  for (size_t h = 0; h < holes.size(); ++h) total += weight[h] = double(holes[h].size()) * double(holes[h].size());
-  std::atomic<bool> cancelled{false};
-  std::mutex progressMutex;
-  double finished = 0;  // Σ weight × done, under progressMutex
-  const auto report = [&](size_t h, double fraction) {
-    const std::lock_guard<std::mutex> lock(progressMutex);
-    fraction = std::max(fraction, done[h]);  // a retry starts its stages again: never backwards
-    finished += weight[h] * (fraction - done[h]);
-    done[h] = fraction;
-    if (!cancelled && !options.progress(std::clamp(finished / total, 0.0, 1.0))) cancelled = true;
-    return !cancelled;
-  };
+  HolesProgress progress(holes, options.progress);
+  std::atomic<bool>& cancelled = progress.cancelled;
+  const auto report = [&progress](size_t h, double fraction) { return progress.report(h, fraction); };
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t h = 0; h < holes.size(); ++h) {
     if (cancelled) {
