@@ -33,8 +33,9 @@ struct HoleFillOptions {
   double newtonTolerance = 1e-7;      // step length below this × hole diameter: converged
   // Called with the fraction of the work done, in [0, 1] (fillHoles: of all holes, each weighted
   // by its boundary edges squared; fillHole: of that hole), from any thread, one call at a time,
-  // at least every few tens of milliseconds of work; returning false cancels: the hole being
-  // filled stops at its next call and the holes not yet started are skipped. Optional.
+  // from inside every stage except the dense fit and the fairing solve (so the gaps between calls
+  // stay near those two steps' times); returning false cancels: the hole being filled stops at
+  // once and the holes not yet started are skipped. Optional.
   std::function<bool(double)> progress;
 };
 
