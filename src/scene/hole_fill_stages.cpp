@@ -1,5 +1,6 @@
 #include "scene/hole_fill_stages.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -38,7 +39,7 @@ TriMesh holeFillPresetMesh(const std::string& name) {
   throw InputError("holefill.preset: unknown preset '" + name + "' (expected one of: " + names + ")");
 }
 
-HoleFillStages runHoleFillStages(const HoleFillSpec& spec) {
+HoleFillStages runHoleFillStages(const HoleFillSpec& spec, const std::function<bool(double)>& progress) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillStages out;
   MeshRepairReport repair;
@@ -53,10 +54,18 @@ HoleFillStages runHoleFillStages(const HoleFillSpec& spec) {
   const std::vector<BoundaryLoop> loops = detectHoles(out.input);
   out.holes.resize(loops.size());
   std::vector<const HolePatch*> patches;
+  double reached = 0;  // the fraction last reported
   for (std::size_t h = 0; h < loops.size(); ++h) {
     HoleFillStageHole& hole = out.holes[h];
-    static_cast<HoleOutcome&>(hole) = fillHole(prepared, loops[h], options, spec.stage, "hole " + std::to_string(h));
     hole.loop = loops[h];
+    if (h > 0 && out.holes[h - 1].cancelled) {
+      hole.reason = "cancelled";
+      hole.cancelled = true;
+      continue;
+    }
+    if (progress)  // never backwards: a hole's retry starts its stages again
+      options.progress = [&](double f) { return progress(reached = std::max(reached, (double(h) + f) / double(loops.size()))); };
+    static_cast<HoleOutcome&>(hole) = fillHole(prepared, loops[h], options, spec.stage, "hole " + std::to_string(h));
     out.unconverged += hole.unconverged;
     out.maxAbsF = std::max(out.maxAbsF, hole.maxAbsF);
     if (hole.filled) {

@@ -4,6 +4,7 @@
 // per hole the patch as that stage leaves it, plus the ring samples the implicit was fitted to.
 // Built-in holed meshes (`holefill.preset`) let a class start without a file.
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,8 @@ struct HoleFillStages {
 };
 
 // Runs the pipeline up to `spec.stage` on `mesh` (the spec's file or preset when null).
-HoleFillStages runHoleFillStages(const HoleFillSpec& spec);
+// `progress` (optional) receives the fraction done (holes in turn, each through its stages);
+// false from it stops: the hole being filled and the rest are left open with reason "cancelled".
+HoleFillStages runHoleFillStages(const HoleFillSpec& spec, const std::function<bool(double)>& progress = {});
 
 }  // namespace hermite

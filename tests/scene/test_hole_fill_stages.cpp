@@ -3,6 +3,8 @@
 
 #include <doctest/doctest.h>
 
+#include <vector>
+
 #include "core/base/errors.h"
 #include "scene/hole_fill_stages.h"
 
@@ -37,4 +39,25 @@ TEST_CASE("holefill stages: the presets have their holes; every stage closes the
   HoleFillSpec bad;
   bad.preset = "cube";
   CHECK_THROWS_AS(runHoleFillStages(bad), InputError);
+}
+
+TEST_CASE("holefill stages: progress rises to 1, and a false from it leaves the remaining holes cancelled") {
+  HoleFillSpec spec;  // the torus preset
+  std::vector<double> fractions;
+  const HoleFillStages all = runHoleFillStages(spec, [&](double f) { return fractions.push_back(f), true; });
+  REQUIRE(all.holes.size() >= 2);
+  REQUIRE(!fractions.empty());
+  for (std::size_t k = 1; k < fractions.size(); ++k) CHECK(fractions[k] >= fractions[k - 1] - 1e-12);
+  CHECK(fractions.back() <= 1.0);
+  for (const HoleFillStageHole& h : all.holes) CHECK(h.filled);
+
+  const HoleFillStages stopped = runHoleFillStages(spec, [](double) { return false; });
+  REQUIRE(stopped.holes.size() == all.holes.size());
+  for (const HoleFillStageHole& h : stopped.holes) {
+    CHECK_FALSE(h.filled);
+    CHECK(h.cancelled);
+    CHECK(h.reason == "cancelled");
+    CHECK(h.loop.size() > 0);
+  }
+  CHECK(stopped.trianglesAdded == 0);
 }

@@ -12,6 +12,9 @@
 //                            [-1.25, 1.25]³ (ms; params: field-evaluation ms, triangles)
 //   holefill/100k-10holes    fillHoles on a ≈100k-triangle torus with 10 holes of ≈50 boundary
 //                            edges each (ms, whole pipeline; params: holes, edges, |f|)
+//   holefill/100k-100holes   the same with 100 holes of about 10–60 boundary edges (params also:
+//                            progress_gap_ms, the longest time between two progress calls)
+//   holefill/2000-edge-hole  one 2 000-edge non-planar hole in a wavy open sphere (as above)
 
 //   pu3d/two-tori/N=...      partition-of-unity fit (cubic, linear, ≤ 20 per box, overlap 1.5)
 //                            of N random area-uniform points on two interlinked tori with exact
@@ -216,6 +219,37 @@ Result benchHoleFill(bool quick, int repeats) {
           median(times), "ms"};
 }
 
+// fillHoles on `holed` (median of `repeats`), then once more with a progress callback: the
+// longest time between two of its calls is how late a cancellation can be seen (`progress_gap_ms`).
+Result benchHoleFillMesh(const std::string& name, const TriMesh& holed, int repeats) {
+  const std::vector<BoundaryLoop> loops = detectHoles(holed);
+  std::size_t fewest = loops.empty() ? 0 : loops[0].size(), most = 0;
+  for (const BoundaryLoop& l : loops) fewest = std::min(fewest, l.size()), most = std::max(most, l.size());
+  std::vector<double> times;
+  HoleFillResult r;
+  for (int i = 0; i < repeats; ++i) {
+    r = fillHoles(holed);
+    times.push_back(r.ms);
+  }
+  HoleFillOptions watched;
+  auto last = std::chrono::steady_clock::now();
+  double gapMs = 0;
+  watched.progress = [&](double) {
+    const auto now = std::chrono::steady_clock::now();
+    gapMs = std::max(gapMs, std::chrono::duration<double, std::milli>(now - last).count());
+    last = now;
+    return true;
+  };
+  fillHoles(holed, watched);
+  const MeshCheck c = checkMesh(r.mesh);
+  return {name,
+          {{"triangles", holed.triangleCount()}, {"holes_found", r.holesFound}, {"holes_filled", r.holesFilled},
+           {"fewest_boundary_edges", fewest}, {"most_boundary_edges", most}, {"triangles_added", r.trianglesAdded},
+           {"max_abs_f", r.maxAbsF}, {"unconverged", r.unconverged}, {"closed_manifold", c.closedManifold()},
+           {"euler_characteristic", c.eulerCharacteristic}, {"progress_gap_ms", gapMs}, {"repeats", repeats}},
+          median(times), "ms"};
+}
+
 // N area-uniform random points on the two-tori preset's exact tori (rejection on the tube
 // angle: the area element is ∝ R + r cos v), with exact outward normals.
 HermiteSamples<3> randomTwoTori(int N, unsigned seed) {
@@ -326,6 +360,16 @@ int runBench(const BenchArgs& args) {
   }
   jobs.emplace_back("holefill/100k-10holes",
                     [quick = args.quick] { return benchHoleFill(quick, quick ? 1 : 5); });
+  jobs.emplace_back("holefill/100k-100holes", [quick = args.quick] {
+    return benchHoleFillMesh("holefill/100k-100holes",
+                             quick ? holedTorusMesh(100, 50, 10, 3, 0.05, 0.15) : holedTorusMesh(316, 158, 20, 5, 0.015, 0.05),
+                             quick ? 1 : 5);
+  });
+  jobs.emplace_back("holefill/2000-edge-hole", [quick = args.quick] {
+    return benchHoleFillMesh("holefill/2000-edge-hole",
+                             quick ? openWavySphereMesh(200, 20, 6, 0.3) : openWavySphereMesh(2000, 40, 13, 0.3),
+                             quick ? 1 : 3);
+  });
 
   // Rendering, on the OpenGL that OSMesa finds on this machine.
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {

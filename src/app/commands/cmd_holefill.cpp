@@ -62,10 +62,15 @@ std::string textReport(const HoleFillArgs& args, const HoleFillResult& r, const 
   return text;
 }
 
-// Progress on stderr when it is a terminal: "holefill: 40 %", rewritten in place.
+// Progress on stderr when it is a terminal: "holefill: 40 %", rewritten in place when the
+// percentage changes (the stages report hundreds of times per large hole).
 void showProgress(double fraction) {
-  std::fprintf(stderr, "\rholefill: %3d %%", int(fraction * 100.0 + 0.5));
-  if (fraction >= 1.0) std::fputc('\n', stderr);
+  static int shown = -1;
+  const int percent = int(fraction * 100.0 + 0.5);
+  if (percent == shown) return;
+  shown = percent;
+  std::fprintf(stderr, "\rholefill: %3d %%", percent);
+  if (percent >= 100) std::fputc('\n', stderr);
   std::fflush(stderr);
 }
 

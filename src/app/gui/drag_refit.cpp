@@ -54,10 +54,10 @@ void DragRefit::prepareDim(const Scene& scene, int sample) {
   }
 }
 
-std::shared_ptr<const FitOutcome> DragRefit::fit(const Scene& scene) {
+std::shared_ptr<const FitOutcome> DragRefit::fit(const Scene& scene, const std::function<bool(double)>& progress) {
   if (!eligible(scene)) {
     last_ = std::monostate{};
-    return fitOutcome(scene);
+    return fitOutcome(scene, progress);
   }
   return scene.mode == SceneMode::Implicit2d ? fitDim<2>(scene) : fitDim<3>(scene);
 }

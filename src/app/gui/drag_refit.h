@@ -21,8 +21,8 @@ namespace hermite::app {
 class DragRefit {
  public:
   // The fit of `scene`: through the kept factorisation when `scene` differs from the last scene
-  // fitted here in one sample only, else from scratch (fitOutcome). Never throws.
-  std::shared_ptr<const FitOutcome> fit(const Scene& scene);
+  // fitted here in one sample only, else from scratch (fitOutcome, given `progress`). Never throws.
+  std::shared_ptr<const FitOutcome> fit(const Scene& scene, const std::function<bool(double)>& progress = {});
 
   // Factorises for a drag of `sample` about to begin (the GUI calls it when a sample is grabbed),
   // so that the first move is as quick as the next ones. `scene` must be the inline scene the

@@ -23,7 +23,7 @@ std::shared_ptr<const FitOutcome> failedOutcome(const Scene& scene, std::string 
 
 }  // namespace
 
-std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene) {
+std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene, const std::function<bool(double)>& progress) {
   auto out = std::make_shared<FitOutcome>();
   out->scene = scene;
   const auto t0 = std::chrono::steady_clock::now();
@@ -34,14 +34,14 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene) {
   else if (scene.mode == SceneMode::Patch)
     out->result = buildPatchDisplay(scene.patch);
   else
-    out->result = runHoleFillStages(scene.holefill);
+    out->result = runHoleFillStages(scene.holefill, progress);
   out->wallMs = msSince(t0);
   return out;
 }
 
-std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene) {
+std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene, const std::function<bool(double)>& progress) {
   try {
-    return fitOutcomeOrThrow(scene);
+    return fitOutcomeOrThrow(scene, progress);
   } catch (const InputError& e) {
     return failedOutcome(scene, std::string("input: ") + e.what());
   } catch (const NumericalError& e) {
@@ -78,6 +78,7 @@ FitWorker::~FitWorker() {
     std::lock_guard lock(mutex_);
     stop_ = true;
     pending_.reset();
+    abandon_ = true;
   }
   wake_.notify_all();
   thread_.join();  // a running fit finishes first (LAPACK cannot be interrupted)
@@ -87,6 +88,7 @@ void FitWorker::submit(const Scene& scene, std::uint64_t version, std::optional<
   {
     std::lock_guard lock(mutex_);
     pending_ = Job{scene, std::move(compare), version};
+    if (running_) abandon_ = true;
   }
   wake_.notify_all();
 }
@@ -110,7 +112,7 @@ void FitWorker::cancel() {
   std::lock_guard lock(mutex_);
   pending_.reset();
   done_.reset();
-  if (running_) discardUpTo_ = std::max(discardUpTo_, runningVersion_);
+  if (running_) discardUpTo_ = std::max(discardUpTo_, runningVersion_), abandon_ = true;
 }
 
 bool FitWorker::waitIdle(double timeoutSeconds) {
@@ -157,6 +159,7 @@ void FitWorker::loop() {
     Job job = std::move(*pending_);
     pending_.reset();
     running_ = true;
+    abandon_ = false;
     runningVersion_ = job.version;
     runningSince_ = std::chrono::steady_clock::now();
     const double n = sampleCount(job.scene) * (job.scene.dimension() + 1);
@@ -165,7 +168,7 @@ void FitWorker::loop() {
 
     FitJobResult result;
     result.version = job.version;
-    result.main = dragRefit_->fit(job.scene);
+    result.main = dragRefit_->fit(job.scene, [this](double) { return !abandon_; });
     if (job.compare) result.compare = fitOutcome(*job.compare);
 
     lock.lock();

@@ -11,6 +11,7 @@
 // through a kept factorisation (drag_refit.h).
 
 #include <atomic>
+#include <functional>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -61,10 +62,12 @@ struct FitOutcome {
 // The fitted model as `fit --coefficients` prints it (docs/cli.md).
 std::string fittedModelJson(const FitOutcome& fit);
 
-// Fits `scene` (any mode with a fit); exceptions become FitOutcome::error.
-std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene);
+// Fits `scene` (any mode with a fit); exceptions become FitOutcome::error. `progress`
+// (optional) is passed to the long jobs that report it (hole filling: runHoleFillStages).
+std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene, const std::function<bool(double)>& progress = {});
 // The same, throwing the fit's errors (InputError, NumericalError) for the command line.
-std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene);
+std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene,
+                                                    const std::function<bool(double)>& progress = {});
 
 struct FitJobResult {
   std::uint64_t version = 0;
@@ -116,6 +119,9 @@ class FitWorker {
   bool running_ = false;
   std::uint64_t runningVersion_ = 0;
   std::uint64_t discardUpTo_ = 0;  // results of versions ≤ this are dropped
+  // Set by cancel, a newer submit and the destructor while a job runs: the jobs that report
+  // progress (hole filling) stop at their next report.
+  std::atomic<bool> abandon_{false};
   std::chrono::steady_clock::time_point runningSince_;
   double estimateMs_ = 50;         // expected duration of the running job
   double lastMsPerCube_ = 0;       // last job: ms / (unknowns³), for the estimate

@@ -3,6 +3,8 @@
 #include "core/mesh/hole_fairing.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <unordered_map>
 
 #include <Eigen/SparseCholesky>
@@ -11,6 +13,41 @@
 #include "core/base/errors.h"
 
 namespace hermite {
+
+namespace {
+
+// Mean-value weights tan(θ/2) / |u − v| summed over the triangles on edge v–u (θ their angle at
+// v), from the unfaired positions, keyed (v << 32 | u): for graded patches, where they leave a
+// flat one-ring where it is while uniform weights pull the small triangles near the boundary
+// and the large ones in the middle towards one size, crushing some.
+std::unordered_map<std::uint64_t, double> meanValueWeights(const PreparedMesh& prepared, const HolePatch& patch) {
+  const TriMesh& mesh = prepared.mesh();
+  const auto position = [&](int id) -> Eigen::Vector3d {
+    return id >= patch.baseId ? Eigen::Vector3d(patch.vertices.col(id - patch.baseId)) : Eigen::Vector3d(mesh.vertices.col(id));
+  };
+  std::unordered_map<std::uint64_t, double> meanValue;
+  const auto add = [&](int a, int b, int c) {  // the corner at a of triangle (a, b, c)
+    const Eigen::Vector3d u = position(b) - position(a), w = position(c) - position(a);
+    const double nu = u.norm(), nw = w.norm();
+    if (!(nu > 0 && nw > 0)) return;
+    const double t = std::tan(0.5 * std::acos(std::clamp(u.dot(w) / (nu * nw), -1.0, 1.0)));
+    meanValue[(std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(b)] += t / nu;
+    meanValue[(std::uint64_t(std::uint32_t(a)) << 32) | std::uint32_t(c)] += t / nw;
+  };
+  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t) {
+    const int a = patch.triangles(0, t), b = patch.triangles(1, t), c = patch.triangles(2, t);
+    add(a, b, c), add(b, c, a), add(c, a, b);
+  }
+  for (int v : patch.loop)
+    for (const int* t = prepared.trianglesBegin(v); t != prepared.trianglesEnd(v); ++t) {
+      int k = 0;
+      while (mesh.triangles(k, *t) != v) ++k;
+      add(v, mesh.triangles((k + 1) % 3, *t), mesh.triangles((k + 2) % 3, *t));
+    }
+  return meanValue;
+}
+
+}  // namespace
 
 HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
   HolePatch out = patch;
@@ -34,6 +71,9 @@ HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
     const std::vector<int> nb = prepared.neighbours(v);
     ring[v].insert(ring[v].end(), nb.begin(), nb.end());
   }
+  // Graded patches: mean-value weights (see meanValueWeights).
+  const std::unordered_map<std::uint64_t, double> meanValue =
+      patch.graded ? meanValueWeights(prepared, patch) : std::unordered_map<std::uint64_t, double>{};
   // Rows: every vertex of the patch (new and boundary); the unknowns are the new vertices.
   std::vector<int> rows;
   for (auto& [v, nb] : ring) {
@@ -47,11 +87,22 @@ HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
   for (size_t r = 0; r < rows.size(); ++r) {
     const int v = rows[r];
     const std::vector<int>& nb = ring[v];
-    const double w = 1.0 / static_cast<double>(nb.size());
-    // (L x)_v = x_v − mean of the one-ring; known terms go to the right-hand side.
+    std::vector<double> weights(nb.size(), 1.0 / static_cast<double>(nb.size()));
+    if (patch.graded) {
+      double sum = 0;
+      for (size_t i = 0; i < nb.size(); ++i) {
+        const auto it = meanValue.find((std::uint64_t(std::uint32_t(v)) << 32) | std::uint32_t(nb[i]));
+        sum += weights[i] = it == meanValue.end() ? 0.0 : it->second;
+      }
+      if (sum > 0) for (double& w : weights) w /= sum;
+      else std::fill(weights.begin(), weights.end(), 1.0 / static_cast<double>(nb.size()));
+    }
+    // (L x)_v = x_v − weighted mean of the one-ring; known terms go to the right-hand side.
     if (isNew(v)) entries.emplace_back(static_cast<int>(r), v - patch.baseId, 1.0);
     else b.row(static_cast<Eigen::Index>(r)) -= position(v).transpose();
-    for (int u : nb) {
+    for (size_t i = 0; i < nb.size(); ++i) {
+      const int u = nb[i];
+      const double w = weights[i];
       if (isNew(u)) entries.emplace_back(static_cast<int>(r), u - patch.baseId, -w);
       else b.row(static_cast<Eigen::Index>(r)) += w * position(u).transpose();
     }

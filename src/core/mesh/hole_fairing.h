@@ -7,7 +7,8 @@
 namespace hermite {
 
 // 3. Least-squares-mesh fairing (uniform Laplacian rows for the new vertices and the boundary
-// vertices, boundary fixed), solved by a sparse Cholesky factorisation of the normal equations.
+// vertices, boundary fixed; mean-value weights for graded patches), solved by a sparse Cholesky
+// factorisation of the normal equations.
 // Returns the patch with moved vertices (unchanged when it has none). NumericalError if the solve fails.
 HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch);
 

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <exception>
 #include <mutex>
+#include <stdexcept>
 #include <tuple>
 
 #include "core/base/errors.h"
@@ -21,6 +22,21 @@ namespace hermite {
 namespace {
 
 constexpr double kMinimumPatchAngle = M_PI / 180.0;  // 1°
+
+// Thrown by a stage's progress callback once options.progress has returned false; fillHole
+// catches it and reports the hole as cancelled.
+struct HoleFillCancelled : std::runtime_error {
+  HoleFillCancelled() : std::runtime_error("cancelled") {}
+};
+
+// options.progress mapped to the part [lo, hi] of one hole's work (empty without a callback).
+std::function<bool(double)> stageProgress(const HoleFillOptions& options, double lo, double hi) {
+  if (!options.progress) return {};
+  return [&options, lo, hi](double f) {
+    if (!options.progress(lo + (hi - lo) * std::clamp(f, 0.0, 1.0))) throw HoleFillCancelled();
+    return true;
+  };
+}
 
 // A 3-edge loop whose vertices are one triangle of the mesh: that triangle touches nothing.
 bool isLoneTriangle(const PreparedMesh& prepared, const BoundaryLoop& loop) {
@@ -51,7 +67,7 @@ HolePatch firstPatch(const PreparedMesh& prepared, const BoundaryLoop& loop, con
     frontFailure = patch.failure;
   }
   method = "min-weight";
-  HolePatch patch = minWeightPatch(prepared, loop);
+  HolePatch patch = minWeightPatch(prepared, loop, stageProgress(options, 0.0, 0.4));
   if (!patch.closed && !frontFailure.empty())
     patch.failure = "the advancing front failed (" + frontFailure + "), and " + patch.failure;
   return patch;
@@ -94,15 +110,21 @@ std::vector<int> verticesOfSlivers(const PreparedMesh& prepared, const HolePatch
 // Stages 3–5 on a closed first patch, as the options and `last` enable them.
 void fairFitProject(const PreparedMesh& prepared, const HoleFillOptions& options, HoleFillStage last,
                     const std::string& name, HolePatch& patch, HoleOutcome& out) {
+  const std::function<bool(double)> report = stageProgress(options, 0.4, 1.0);
+  if (report) report(0.0);
   if (options.fair && last >= HoleFillStage::Fair) patch = fairPatch(prepared, patch);
   out.unprojected = patch.vertices;
   if (!options.fitAndProject || last < HoleFillStage::Fit || patch.vertices.cols() == 0) return;
+  if (report) report(0.2);
   try {
     const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
     out.ringPoints = implicit.points;
     out.ringNormals = implicit.normals;
     if (last < HoleFillStage::Project) return;
-    ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, options);
+    HoleFillOptions projection = options;
+    projection.progress = stageProgress(options, 0.5, 1.0);
+    ProjectionResult projected = projectPatch(prepared, patch, *implicit.field, projection);
+    if (projected.cancelled) throw HoleFillCancelled();
     out.unconverged = projected.unconverged;
     out.maxAbsF = projected.maxAbsF;
     if (projected.unconverged > 0)
@@ -138,6 +160,35 @@ double finishPatch(const PreparedMesh& prepared, const HoleFillOptions& options,
   return smallestPatchAngle(prepared, patch);
 }
 
+// The whole job's progress from the holes' own: each hole weighs its boundary edges squared (its
+// patch grows with its area); a hole's stages report their fraction of it.
+class HolesProgress {
+ public:
+  HolesProgress(const std::vector<BoundaryLoop>& holes, const std::function<bool(double)>& callback)
+      : callback_(callback), weight_(holes.size()), done_(holes.size(), 0.0) {
+    for (size_t h = 0; h < holes.size(); ++h) total_ += weight_[h] = double(holes[h].size()) * double(holes[h].size());
+  }
+
+  // Hole h has done `fraction` of its work; false once the callback has said stop.
+  bool report(size_t h, double fraction) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    fraction = std::max(fraction, done_[h]);  // a retry starts its stages again: never backwards
+    finished_ += weight_[h] * (fraction - done_[h]);
+    done_[h] = fraction;
+    if (!cancelled && !callback_(std::clamp(finished_ / total_, 0.0, 1.0))) cancelled = true;
+    return !cancelled;
+  }
+
+  std::atomic<bool> cancelled{false};
+
+ private:
+  const std::function<bool(double)>& callback_;
+  std::vector<double> weight_, done_;
+  double total_ = 0;
+  double finished_ = 0;  // Σ weight × done, under mutex_
+  std::mutex mutex_;
+};
+
 }  // namespace
 
 HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, const HoleFillOptions& options,
@@ -163,7 +214,7 @@ HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, con
       // minimum-weight triangulation and keep whichever is better.
       HoleOutcome retry;
       retry.method = "min-weight";
-      HolePatch other = minWeightPatch(prepared, loop);
+      HolePatch other = minWeightPatch(prepared, loop, stageProgress(options, 0.0, 0.4));
       if (other.closed) {
         const double otherSmallest = finishPatch(prepared, options, last, name, other, retry);
         if (otherSmallest > smallest) smallest = otherSmallest, patch = std::move(other), out = std::move(retry);
@@ -173,6 +224,10 @@ HoleOutcome fillHole(const PreparedMesh& prepared, const BoundaryLoop& loop, con
       out.notes.push_back(name + ": a new triangle has an angle below 1° (" + std::to_string(smallest * 180 / M_PI) + "°)");
     out.patch = std::move(patch);
     out.filled = true;
+  } catch (const HoleFillCancelled& e) {
+    out = HoleOutcome{};
+    out.reason = e.what();
+    out.cancelled = true;
   } catch (const std::exception& e) {  // never let an exception leave a caller's parallel loop
     out.reason = e.what();
     out.notes.push_back(name + " not filled: " + e.what());
@@ -223,25 +278,26 @@ HoleFillResult fillHoles(const TriMesh& input, const HoleFillOptions& options) {
   std::vector<HoleOutcome> perHole(holes.size());
   const int threads = threadCount();
   setBlasThreadCount(1);
-  std::atomic<bool> cancelled{false};
-  std::mutex progressMutex;
-  int finished = 0;
+  HolesProgress progress(holes, options.progress);
+  std::atomic<bool>& cancelled = progress.cancelled;
+  const auto report = [&progress](size_t h, double fraction) { return progress.report(h, fraction); };
 #pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
   for (size_t h = 0; h < holes.size(); ++h) {
     if (cancelled) {
       perHole[h].reason = "cancelled";
+      perHole[h].cancelled = true;
       continue;
     }
     const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
                              " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
-    perHole[h] = fillHole(prepared, holes[h], options, HoleFillStage::Project, name);
-    if (options.progress) {
-      const std::lock_guard<std::mutex> lock(progressMutex);
-      if (!options.progress(double(++finished) / double(holes.size()))) cancelled = true;
-    }
+    HoleFillOptions own = options;
+    if (options.progress) own.progress = [&report, h](double f) { return report(h, f); };
+    perHole[h] = fillHole(prepared, holes[h], own, HoleFillStage::Project, name);
+    if (options.progress) report(h, 1.0);
   }
   setThreadCount(threads);
   result.cancelled = cancelled;
+  for (const HoleOutcome& o : perHole) result.cancelled = result.cancelled || o.cancelled;
   std::vector<const HolePatch*> patches;
   for (size_t h = 0; h < holes.size(); ++h) {
     HoleOutcome& o = perHole[h];

@@ -50,6 +50,7 @@ struct HoleOutcome {
   Points<3> ringNormals;
   Eigen::Matrix3Xd unprojected;  // the patch's vertices before projection (after fairing)
   bool filled = false;       // the front closed and the stages ran
+  bool cancelled = false;    // options.progress returned false (reason "cancelled")
   int unconverged = 0;       // Project: vertices left at their faired position
   double maxAbsF = 0;        // Project: max |f| over the new vertices
   std::vector<std::string> notes;

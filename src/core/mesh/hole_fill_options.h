@@ -31,8 +31,11 @@ struct HoleFillOptions {
   HoleImplicitKind implicit = HoleImplicitKind::RbfOffset;
   int newtonIterations = 20;          // per vertex
   double newtonTolerance = 1e-7;      // step length below this × hole diameter: converged
-  // Called with the fraction of the work done (holes finished, in [0, 1]) from any thread, one
-  // call at a time; returning false cancels the holes not yet finished. Optional.
+  // Called with the fraction of the work done, in [0, 1] (fillHoles: of all holes, each weighted
+  // by its boundary edges squared; fillHole: of that hole), from any thread, one call at a time,
+  // from inside every stage except the dense fit and the fairing solve (so the gaps between calls
+  // stay near those two steps' times); returning false cancels: the hole being filled stops at
+  // once and the holes not yet started are skipped. Optional.
   std::function<bool(double)> progress;
 };
 

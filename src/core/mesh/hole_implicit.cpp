@@ -154,6 +154,10 @@ ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& pat
   for (int sweep = 0; sweep < 3; ++sweep) {
     bool blocked = false;
     for (int k = 0; k < K; ++k) {
+      if (options.progress && k % 256 == 0 && !options.progress((sweep + double(k) / K) / 3.0)) {
+        result.cancelled = true;
+        return result;
+      }
       if (converged[static_cast<size_t>(k)]) continue;
       for (int it = 0; it < options.newtonIterations; ++it) {
         const Eigen::Vector3d x = P.vertices.col(k);

@@ -25,11 +25,13 @@ HoleImplicit fitHoleImplicit(const PreparedMesh& prepared, const HolePatch& patc
 // 5. Newton projection of the new vertices onto f = 0. A step that would flip a patch triangle
 // (its normal turning by more than 90° from the unprojected patch) or make it degenerate is halved
 // up to 4 times, then the vertex stops; a vertex that has not converged within the iteration bound
-// returns to its faired position and is counted.
+// returns to its faired position and is counted. options.progress (optional) receives the
+// fraction of the sweeps done every 256 vertices; false from it stops the projection.
 struct ProjectionResult {
   HolePatch patch;
   int unconverged = 0;
   double maxAbsF = 0;  // max |f| over the new vertices after projection
+  bool cancelled = false;  // options.progress returned false: the patch is half projected
 };
 ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& patch, const ImplicitField<3>& field,
                               const HoleFillOptions& options = {});

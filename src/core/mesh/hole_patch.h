@@ -19,6 +19,7 @@ struct HolePatch {
   Eigen::Matrix3Xd vertexNormals; // 3 × K normals guessed by the front (its local surface normals)
   double meanEdgeLength = 0;      // l of the boundary
   double diameter = 0;            // largest distance between two boundary vertices
+  bool graded = false;            // refined with sizes growing inside (patch_refinement.h)
   bool closed = false;            // the front closed within its bound
   std::string failure;            // why not, when not closed
   int frontSteps = 0;

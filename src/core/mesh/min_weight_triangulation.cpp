@@ -131,23 +131,29 @@ class Triangulator {
   std::vector<int> split_;      // its apex k, or −1
 };
 
+// Thrown when the caller's keepGoing says stop; minWeightTriangulation returns no triangles.
+struct TriangulationStopped {};
+
 // The chord (i, j) that best cuts a polygon of n > maxDirect vertices: both parts keep at least
 // n/4 vertices, the chord is not a mesh edge, and it is the shortest relative to the shorter of
 // the two boundary paths it bridges.
-std::pair<int, int> bestChord(const Polygon& p, const std::unordered_set<std::uint64_t>& meshEdges) {
+std::pair<int, int> bestChord(const Polygon& p, const std::unordered_set<std::uint64_t>& meshEdges,
+                              const std::function<bool()>& keepGoing) {
   const int n = int(p.points.size());
   std::vector<double> arc(std::size_t(n) + 1, 0.0);  // boundary length from vertex 0
   for (int i = 0; i < n; ++i) arc[i + 1] = arc[i] + (p.points[(i + 1) % n] - p.points[i]).norm();
   const int minPart = std::max(3, n / 4);
   double best = std::numeric_limits<double>::infinity();
   std::pair<int, int> chord{0, n / 2};
-  for (int i = 0; i < n; ++i)
+  for (int i = 0; i < n; ++i) {
+    if (i % 64 == 0 && keepGoing && !keepGoing()) throw TriangulationStopped{};
     for (int j = i + minPart; j <= i + n - minPart && j < n; ++j) {
       if (meshEdges.count(edgeKey(p.ids[i], p.ids[j]))) continue;
       const double path = std::min(arc[j] - arc[i], arc[n] - (arc[j] - arc[i]));
       const double ratio = (p.points[j] - p.points[i]).norm() / std::max(path, 1e-300);
       if (ratio < best) best = ratio, chord = {i, j};
     }
+  }
   return chord;
 }
 
@@ -166,11 +172,14 @@ Polygon subPolygon(const Polygon& p, int a, int b) {
 }
 
 bool triangulate(const Polygon& p, const std::unordered_set<std::uint64_t>& meshEdges, int maxDirect,
-                 std::vector<Eigen::Vector3i>& out, double& maxDihedral) {
-  if (int(p.points.size()) <= maxDirect) return Triangulator(p, meshEdges).run(out, maxDihedral);
-  const auto [i, j] = bestChord(p, meshEdges);
-  return triangulate(subPolygon(p, i, j), meshEdges, maxDirect, out, maxDihedral) &&
-         triangulate(subPolygon(p, j, i), meshEdges, maxDirect, out, maxDihedral);
+                 std::vector<Eigen::Vector3i>& out, double& maxDihedral, const std::function<bool()>& keepGoing) {
+  if (int(p.points.size()) <= maxDirect) {
+    if (keepGoing && !keepGoing()) throw TriangulationStopped{};
+    return Triangulator(p, meshEdges).run(out, maxDihedral);
+  }
+  const auto [i, j] = bestChord(p, meshEdges, keepGoing);
+  return triangulate(subPolygon(p, i, j), meshEdges, maxDirect, out, maxDihedral, keepGoing) &&
+         triangulate(subPolygon(p, j, i), meshEdges, maxDirect, out, maxDihedral, keepGoing);
 }
 
 // The outward normal of the mesh triangle holding directed edge a → b (zero if none).
@@ -189,7 +198,7 @@ Vec<3> meshNormalAcross(const PreparedMesh& prepared, int a, int b) {
 }  // namespace
 
 Eigen::Matrix3Xi minWeightTriangulation(const PreparedMesh& prepared, const BoundaryLoop& loop, int maxDirect,
-                                        double* maxDihedral) {
+                                        double* maxDihedral, const std::function<bool()>& keepGoing) {
   const int n = int(loop.size());
   Polygon polygon;
   std::unordered_set<int> onLoop(loop.begin(), loop.end());
@@ -203,7 +212,12 @@ Eigen::Matrix3Xi minWeightTriangulation(const PreparedMesh& prepared, const Boun
   }
   std::vector<Eigen::Vector3i> triangles;
   double dihedral = 0;
-  const bool ok = n >= 3 && triangulate(polygon, meshEdges, std::max(maxDirect, 8), triangles, dihedral);
+  bool ok = false;
+  try {
+    ok = n >= 3 && triangulate(polygon, meshEdges, std::max(maxDirect, 8), triangles, dihedral, keepGoing);
+  } catch (const TriangulationStopped&) {
+    ok = false;
+  }
   if (maxDihedral) *maxDihedral = dihedral;
   if (!ok) return Eigen::Matrix3Xi(3, 0);
   Eigen::Matrix3Xi out(3, Eigen::Index(triangles.size()));
@@ -238,8 +252,16 @@ HolePatch minWeightPatch(const PreparedMesh& prepared, const BoundaryLoop& loop,
   patch.baseId = prepared.mesh().vertexCount();
   patch.vertices.resize(3, 0);
   patch.vertexNormals.resize(3, 0);
-  const Eigen::Matrix3Xi triangles = minWeightTriangulation(prepared, loop);
+  bool stopped = false;
+  const Eigen::Matrix3Xi triangles = minWeightTriangulation(prepared, loop, 96, nullptr, [&] {
+    stopped = stopped || (progress && !progress(0.0));
+    return !stopped;
+  });
   patch.triangles.resize(3, 0);
+  if (stopped) {
+    patch.failure = "cancelled";
+    return patch;
+  }
   if (triangles.cols() == 0) {
     patch.failure = "no triangulation of the boundary avoids the mesh's own edges (the hole touches itself)";
     return patch;
@@ -257,7 +279,13 @@ HolePatch minWeightPatch(const PreparedMesh& prepared, const BoundaryLoop& loop,
   for (std::size_t i = 0; i < loop.size(); ++i)
     for (std::size_t j = i + 1; j < loop.size(); ++j)
       patch.diameter = std::max(patch.diameter, (V.col(loop[j]) - V.col(loop[i])).norm());
-  if (!refinePatch(prepared, patch, progress)) {
+  double area = 0;
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t)
+    area += 0.5 * (V.col(triangles(1, t)) - V.col(triangles(0, t))).cross(V.col(triangles(2, t)) - V.col(triangles(0, t))).norm();
+  const double uniformCount = area / (std::sqrt(3.0) / 4.0 * patch.meanEdgeLength * patch.meanEdgeLength);
+  const double grading = uniformCount > kUniformPatchTriangles ? kPatchGrading : 0.0;
+  patch.graded = grading > 0;
+  if (!refinePatch(prepared, patch, progress, grading)) {
     patch.failure = "cancelled";
     return patch;
   }

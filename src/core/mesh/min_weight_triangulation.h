@@ -18,8 +18,10 @@ namespace hermite {
 // most maxDirect vertices, each solved exactly: O(n²) per cut, O(maxDirect³) per piece.
 // Triangles are 3 × T vertex ids of the mesh, oriented like the mesh across the boundary;
 // `maxDihedral` (optional) receives the triangulation's largest dihedral angle, radians.
+// `keepGoing` (optional) is asked every 64 chord rows and before each piece; false from it stops
+// with no triangles.
 Eigen::Matrix3Xi minWeightTriangulation(const PreparedMesh& prepared, const BoundaryLoop& loop, int maxDirect = 96,
-                                        double* maxDihedral = nullptr);
+                                        double* maxDihedral = nullptr, const std::function<bool()>& keepGoing = {});
 
 // A triangulation whose median angle with the mesh across the boundary edges exceeds this folds
 // back onto the mesh: the loop is the rim of an open surface (the "hole" is everything outside
@@ -30,10 +32,16 @@ inline constexpr double kRimDihedral = 150.0 * 3.14159265358979323846 / 180.0;
 // `triangles` on either side of the edge (radians; π when an edge is not covered).
 double medianBoundaryDihedral(const PreparedMesh& prepared, const BoundaryLoop& loop, const Eigen::Matrix3Xi& triangles);
 
+// A patch that would need more than this many triangles of the boundary's edge length is refined
+// with graded sizes (patch_refinement.h, grading kPatchGrading): a round 2 000-edge hole would
+// otherwise take about 700 000 triangles, with fairing and projection to match.
+inline constexpr double kUniformPatchTriangles = 20000;
+inline constexpr double kPatchGrading = 0.25;
+
 // The fallback patch: minWeightTriangulation (refused, `closed` false, when its median boundary
-// dihedral passes kRimDihedral), then edges longer than 4/3 of the boundary's mean
-// edge length split at their midpoints and interior edges flipped where that raises the smaller
-// minimum angle of the two triangles, until no edge is too long. `progress` (optional) is called
+// dihedral passes kRimDihedral), then edges longer than 4/3 of the boundary's mean edge length
+// (graded for large holes, see above) split at their midpoints and interior edges flipped where
+// that raises the smaller minimum angle of the two triangles, until no edge is too long. `progress` (optional) is called
 // with a fraction in [0, 1]; returning false stops with `closed` false.
 HolePatch minWeightPatch(const PreparedMesh& prepared, const BoundaryLoop& loop,
                          const std::function<bool(double)>& progress = {});

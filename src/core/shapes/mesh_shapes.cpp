@@ -49,6 +49,38 @@ TriMesh uvSphereMesh(int nu, int nv) {
   return m;
 }
 
+TriMesh openWavySphereMesh(int nu, int nv, int openRings, double wave) {
+  TriMesh m = uvSphereMesh(nu, nv);
+  const int north = nu * (nv - 1), firstKept = openRings * nu;  // ring j holds ids j·nu … j·nu + nu − 1
+  std::vector<int> keep;
+  for (int t = 0; t < m.triangleCount(); ++t) {
+    bool open = false;
+    for (int k = 0; k < 3; ++k) open |= m.triangles(k, t) == north || m.triangles(k, t) < firstKept;
+    if (!open) keep.push_back(t);
+  }
+  TriMesh out = m;
+  out.triangles.resize(3, Eigen::Index(keep.size()));
+  for (std::size_t k = 0; k < keep.size(); ++k) out.triangles.col(Eigen::Index(k)) = m.triangles.col(keep[k]);
+  for (Eigen::Index v = 0; v < out.vertices.cols(); ++v) {
+    const double x = out.vertices(0, v), y = out.vertices(1, v);
+    out.vertices(2, v) += wave * (3 * x * x * y - y * y * y);
+  }
+  return out;
+}
+
+TriMesh holedTorusMesh(int nu, int nv, int around, int across, double minRadius, double maxRadius) {
+  const double R = 0.7, r = 0.3;
+  TriMesh holed = parametricTorusMesh(nu, nv, R, r);
+  for (int a = 0; a < around; ++a)
+    for (int b = 0; b < across; ++b) {
+      const double u = 2 * M_PI * (a + 0.5 * (b % 2)) / around, v = 2 * M_PI * (b + 0.5) / across;
+      const double radius = minRadius + (maxRadius - minRadius) * double((7 * a + 3 * b) % 10) / 9.0;
+      holed = cutBall(holed, Vec<3>((R + r * std::cos(v)) * std::cos(u), (R + r * std::cos(v)) * std::sin(u), r * std::sin(v)),
+                      radius);
+    }
+  return holed;
+}
+
 TriMesh cutBall(const TriMesh& mesh, const Vec<3>& centre, double radius) {
   std::vector<int> keep;
   for (int t = 0; t < mesh.triangleCount(); ++t) {

@@ -15,6 +15,16 @@ TriMesh parametricTorusMesh(int nu, int nv, double R = 0.7, double r = 0.3);
 // counter-clockwise from outside.
 TriMesh uvSphereMesh(int nu, int nv);
 
+// uvSphereMesh(nu, nv) without the triangles that touch its north pole or its first `openRings`
+// latitude rings (one hole of nu boundary edges), every vertex then lifted by
+// wave · (3x²y − y³) along z: a smooth surface whose hole rim is not planar.
+TriMesh openWavySphereMesh(int nu, int nv, int openRings, double wave);
+
+// parametricTorusMesh(nu, nv) with around × across holes cut by cutBall: centres on the
+// surface spread over u (around) and v (across), every other row shifted by half a step; radii
+// cycling through minRadius … maxRadius in a fixed order.
+TriMesh holedTorusMesh(int nu, int nv, int around, int across, double minRadius, double maxRadius);
+
 // The mesh without every triangle that has a vertex within `radius` of `centre`: one hole per
 // ball (vertices are kept, ids unchanged).
 TriMesh cutBall(const TriMesh& mesh, const Vec<3>& centre, double radius);
