@@ -52,6 +52,7 @@ void addThreads(CLI::App& cmd, int& threads) {
 // --max-input-size BYTES, an option of every command: the largest input file read.
 void addMaxInputSize(CLI::App& cmd, std::string& text) {
   cmd.add_option("--max-input-size", text, "largest input file read, e.g. 512M, 8G (default 4G)")
+      ->type_name("BYTES")
       ->check([](const std::string& value) {
         const auto bytes = parseByteSize(value);
         return bytes && *bytes > 0 ? std::string() : "expected a byte count > 0 such as 4096, 512M or 8G";
