@@ -1,9 +1,10 @@
 #!/bin/bash
-# Fuzzes every mesh / point-set reader with libFuzzer (clang, libclang-rt-14-dev), ASan and
-# UBSan: scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [TARGET...]
-# Targets: off obj ply gltf (all by default). Builds in build/fuzz with its own clang command
-# lines (the readers and their small dependencies only), seeds each corpus from the mesh
-# fixtures and the malformed corpus, runs each target for the time given and exits non-zero
+# Fuzzes every input reader with libFuzzer (clang, libclang-rt-14-dev), ASan and UBSan:
+# scripts/fuzz.sh [SECONDS_PER_TARGET (default 60)] [TARGET...]
+# Targets: off obj ply gltf points scene (all by default). Builds in build/fuzz with its own
+# clang command lines (the readers and their small dependencies only), seeds each corpus from
+# the fixtures of its format and tests/fuzz/seeds/TARGET, runs each target for the time given
+# and exits non-zero
 # when any target found a crash, a sanitizer report, a timeout or an out-of-memory input
 # (the reproducer is left in build/fuzz/ as crash-*, timeout-*, oom-*).
 # Not part of `make test` (too slow); see README.md.
@@ -13,7 +14,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-60}
 shift || true
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(off obj ply gltf)
+[ ${#targets[@]} -eq 0 ] && targets=(off obj ply gltf points scene)
 
 CXX=${CXX:-clang++}
 if ! command -v "$CXX" >/dev/null 2>&1; then
@@ -27,25 +28,45 @@ flags=(-std=c++20 -O1 -g -fno-omit-frame-pointer -fsanitize=fuzzer,address,undef
 
 status=0
 for t in "${targets[@]}"; do
+  mesh_readers=(src/io/off_file.cpp src/io/obj_file.cpp src/io/ply_file.cpp src/io/gltf_file.cpp
+                src/io/gltf_file_access.cpp src/io/mesh_file.cpp src/io/atomic_file.cpp)
   case $t in
     off)  sources=(src/io/off_file.cpp);  libs=() ;;
     obj)  sources=(src/io/obj_file.cpp);  libs=(-ltinyobjloader_double) ;;
     ply)  sources=(src/io/ply_file.cpp);  libs=() ;;
-    gltf) sources=(src/io/gltf_file.cpp); libs=(-ltinygltf) ;;
-    *) echo "fuzz: unknown target '$t' (off obj ply gltf)" >&2; exit 2 ;;
+    gltf) sources=(src/io/gltf_file.cpp src/io/gltf_file_access.cpp); libs=(-ltinygltf) ;;
+    points) sources=(src/io/point_file.cpp "${mesh_readers[@]}" src/core/points/*.cpp src/core/base/format_number.cpp
+                     src/core/base/threading.cpp)
+            libs=(-ltinyobjloader_double -ltinygltf -lopenblas -fopenmp) ;;
+    # The scene reader is instrumented; what its key tables call (presets, kernels, the patch and
+    # hole-fill documents) is linked from a release build: run `make build` first.
+    scene) sources=(src/scene/scene_file.cpp src/scene/scene_reader.cpp src/scene/scene_*_keys.cpp)
+           release=build/release
+           libs=(-Wl,--start-group "$release"/libhermite_scene.a "$release"/libhermite_io.a
+                 "$release"/libhermite_core_*.a -Wl,--end-group -ltinyobjloader_double -ltinygltf
+                 -llapacke -lopenblas -fopenmp) ;;
+    *) echo "fuzz: unknown target '$t' (off obj ply gltf points scene)" >&2; exit 2 ;;
   esac
   exe=$out/fuzz_$t
   echo "fuzz: building $exe"
-  "$CXX" "${flags[@]}" -o "$exe" "tests/fuzz/fuzz_$t.cpp" "${sources[@]}" src/io/mesh_format_common.cpp "${libs[@]}"
+  "$CXX" "${flags[@]}" -o "$exe" "tests/fuzz/fuzz_$t.cpp" "${sources[@]}" src/io/mesh_format_common.cpp \
+    src/io/input_file.cpp src/io/quoted_token.cpp "${libs[@]}"
 
-  # Seeds: the fixtures of this format (glTF: both .gltf and .glb), copied into a working corpus
-  # that libFuzzer grows between runs.
+  # Seeds: the fixtures of this format (glTF: both .gltf and .glb; points: the point fixtures;
+  # scene: the fixture and teaching scenes) and tests/fuzz/seeds/TARGET, copied into a working
+  # corpus that libFuzzer grows between runs.
   corpus=$out/corpus_$t
   mkdir -p "$corpus"
-  exts=("$t"); [ "$t" = gltf ] && exts=(gltf glb)
+  case $t in
+    points) seed_dirs=(tests/fixtures/points); exts=(xyz xyzn pwn xyn txt) ;;
+    scene)  seed_dirs=(tests/fixtures/scenes assets/scenes); exts=(json) ;;
+    gltf)   seed_dirs=(tests/fixtures/meshes tests/fixtures/malformed); exts=(gltf glb) ;;
+    *)      seed_dirs=(tests/fixtures/meshes tests/fixtures/malformed); exts=("$t") ;;
+  esac
   for e in "${exts[@]}"; do
-    find tests/fixtures/meshes tests/fixtures/malformed -maxdepth 1 -type f -name "*.$e" -exec cp -n {} "$corpus/" \;
+    find "${seed_dirs[@]}" -maxdepth 1 -type f -name "*.$e" -exec cp -n {} "$corpus/" \;
   done
+  [ -d "tests/fuzz/seeds/$t" ] && find "tests/fuzz/seeds/$t" -type f -exec cp -n {} "$corpus/" \;
 
   echo "fuzz: running fuzz_$t for ${seconds}s on $(ls "$corpus" | wc -l) seeds"
   # -timeout: one input taking over 10 s is a hang; -rss_limit_mb: an allocation the header
@@ -58,6 +79,8 @@ for t in "${targets[@]}"; do
     status=1
   else
     grep -E "stat::number_of_executed_units|stat::peak_rss_mb" "$out/fuzz_$t.log" | sed "s/^/fuzz: $t /" || true
+    # Coverage: libFuzzer's last status line (cov: edges, ft: features, corp: corpus size).
+    grep -E "^#[0-9]+.*cov: " "$out/fuzz_$t.log" | tail -n 1 | sed "s/^/fuzz: $t /" || true
   fi
 done
 exit $status

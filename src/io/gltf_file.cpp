@@ -11,59 +11,47 @@
 #include <vector>
 
 #include "core/base/errors.h"
+#include "io/gltf_file_access.h"
 #include "io/mesh_format_common.h"
 
 namespace hermite {
 
 namespace {
 
-// ---- file access for tinygltf: external buffers only, regular files only --------------------
-
-bool fileExists(const std::string& path, void*) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(path, ec);
-}
-
-std::string expandPath(const std::string& path, void*) { return path; }
-
-// A URI naming a device, a fifo or a directory must not block or fail oddly: regular files only.
-bool readExternal(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) {
-    if (err) *err += "'" + path + "' is not a readable regular file\n";
-    return false;
-  }
-  try {
-    const std::string bytes = readFileBytes(path, "glTF buffer");
-    out->assign(bytes.begin(), bytes.end());
-  } catch (const InputError& e) {
-    if (err) *err += std::string(e.what()) + "\n";
-    return false;
-  }
-  return true;
-}
-
-bool refuseWrite(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
-  if (err) *err += "writing files is not used by this reader\n";
-  return false;
-}
-
 // Images are not needed for geometry: accept them without decoding.
 bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
   return true;
 }
 
-tinygltf::TinyGLTF makeLoader() {
+tinygltf::TinyGLTF makeLoader(GltfFileAccess& access) {
   tinygltf::TinyGLTF loader;
   loader.SetImageLoader(&skipImage, nullptr);
-  tinygltf::FsCallbacks fs{};
-  fs.FileExists = &fileExists;
-  fs.ExpandFilePath = &expandPath;
-  fs.ReadWholeFile = &readExternal;
-  fs.WriteWholeFile = &refuseWrite;
-  fs.user_data = nullptr;
-  loader.SetFsCallbacks(fs);
+  access.install(loader);
   return loader;
+}
+
+// tinygltf copies "extras" and "extensions" with one recursive call per nesting level: deeper
+// JSON than any glTF needs is refused before it is parsed.
+constexpr int kMaxJsonNesting = 256;
+
+void checkJsonNesting(std::string_view json, const std::string& path) {
+  int depth = 0;
+  bool inString = false;
+  for (std::size_t i = 0; i < json.size(); ++i) {
+    const char c = json[i];
+    if (inString) {
+      if (c == '\\') ++i;
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting)
+        throw InputError(path + ": JSON nested more than " + std::to_string(kMaxJsonNesting) +
+                         " levels deep (at byte " + std::to_string(i) + "), deeper than this reader supports");
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
 }
 
 std::uint32_t le32(std::string_view bytes, std::size_t at) {
@@ -317,21 +305,54 @@ void addMesh(const tinygltf::Model& model, int meshIndex, const Eigen::Affine3d&
                  transform, path, out);
 }
 
-// Depth-first over the node tree; each node may be reached once (glTF nodes form disjoint
-// trees), which also stops cycles.
-void addNode(const tinygltf::Model& model, int index, const Eigen::Affine3d& parent, std::vector<char>& visited,
-             const std::string& path, Collected& out) {
-  if (index < 0 || static_cast<std::size_t>(index) >= model.nodes.size())
-    throw InputError(path + ": node " + std::to_string(index) + " does not exist (there are " +
-                     std::to_string(model.nodes.size()) + " nodes)");
-  if (visited[static_cast<std::size_t>(index)])
-    throw InputError(path + ": node " + std::to_string(index) +
-                     " is reached twice (a cycle or a shared child; glTF nodes must form trees)");
-  visited[static_cast<std::size_t>(index)] = 1;
-  const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(index)];
-  const Eigen::Affine3d transform = parent * nodeTransform(node, index, path);
-  if (node.mesh >= 0) addMesh(model, node.mesh, transform, path, out);
-  for (int child : node.children) addNode(model, child, transform, visited, path, out);
+// Deepest node tree read; the walk is iterative, so this only bounds the work per root.
+constexpr std::size_t kMaxNodeDepth = 100'000;
+
+[[noreturn]] void throwMissingNode(int index, const tinygltf::Model& model, const std::string& path) {
+  throw InputError(path + ": node " + std::to_string(index) + " does not exist (there are " +
+                   std::to_string(model.nodes.size()) + " nodes)");
+}
+
+// Depth-first over the node tree below `root` with an explicit stack (a chain of nodes may be
+// as deep as the file is long); each node may be reached once (glTF nodes form disjoint trees),
+// which also stops cycles.
+void addNodeTree(const tinygltf::Model& model, int root, std::vector<char>& visited, const std::string& path,
+                 Collected& out) {
+  struct Pending {
+    int index;
+    std::size_t depth;
+    Eigen::Affine3d parent;
+  };
+  std::vector<Pending> stack{{root, 1, Eigen::Affine3d::Identity()}};
+  while (!stack.empty()) {
+    const Pending p = stack.back();
+    stack.pop_back();
+    if (p.index < 0 || static_cast<std::size_t>(p.index) >= model.nodes.size()) throwMissingNode(p.index, model, path);
+    if (visited[static_cast<std::size_t>(p.index)])
+      throw InputError(path + ": node " + std::to_string(p.index) +
+                       " is reached twice (a cycle or a shared child; glTF nodes must form trees)");
+    if (p.depth > kMaxNodeDepth)
+      throw InputError(path + ": node " + std::to_string(p.index) + " is " + std::to_string(p.depth) +
+                       " levels deep in the node tree, more than this reader supports (" +
+                       std::to_string(kMaxNodeDepth) + ")");
+    visited[static_cast<std::size_t>(p.index)] = 1;
+    const tinygltf::Node& node = model.nodes[static_cast<std::size_t>(p.index)];
+    const Eigen::Affine3d transform = p.parent * nodeTransform(node, p.index, path);
+    if (node.mesh >= 0) addMesh(model, node.mesh, transform, path, out);
+    // Reversed, so children come off the stack in file order (the vertex order of before).
+    for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+      stack.push_back({*child, p.depth + 1, transform});
+  }
+}
+
+// tinygltf's errors on one line, at most 400 bytes of them (they may quote a URI).
+[[noreturn]] void throwLoadError(std::string err, bool binary, const std::string& path) {
+  while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
+  for (char& c : err)
+    if (c == '\n') c = ';';
+  if (err.empty()) err = "unknown error";
+  if (err.size() > 400) err = err.substr(0, 400) + "… (" + std::to_string(err.size()) + " bytes)";
+  throw InputError(path + ": not a valid " + (binary ? "GLB" : "glTF") + " file (" + err + ")");
 }
 
 }  // namespace
@@ -344,23 +365,20 @@ TriMesh readGltf(std::string_view bytes, const std::string& path) {
     requireSingleByteText(bytes, path, "glTF files");
   if (bytes.size() > std::numeric_limits<unsigned int>::max())
     throw InputError(path + ": larger than 4 GiB, which tinygltf cannot read");
+  checkJsonNesting(binary ? bytes.substr(20, le32(bytes, 12)) : bytes, path);
 
-  tinygltf::TinyGLTF loader = makeLoader();
+  GltfFileAccess access(path);
+  tinygltf::TinyGLTF loader = makeLoader(access);
   tinygltf::Model model;
   std::string err, warn;
-  const std::string baseDir = std::filesystem::path(path).parent_path().string();
+  const std::string& baseDir = GltfFileAccess::baseDirectory();
   const bool ok =
       binary ? loader.LoadBinaryFromMemory(&model, &err, &warn, reinterpret_cast<const unsigned char*>(bytes.data()),
                                            static_cast<unsigned int>(bytes.size()), baseDir)
              : loader.LoadASCIIFromString(&model, &err, &warn, bytes.data(), static_cast<unsigned int>(bytes.size()),
                                           baseDir);
-  if (!ok) {
-    while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-    for (char& c : err)
-      if (c == '\n') c = ';';
-    throw InputError(path + ": not a valid " + (binary ? "GLB" : "glTF") + " file (" +
-                     (err.empty() ? "unknown error" : err) + ")");
-  }
+  access.throwIfFailed();
+  if (!ok) throwLoadError(err, binary, path);
 
   // Extensions that change how geometry is stored; the others (materials, textures, lights)
   // do not matter for the vertices and triangles read here.
@@ -377,7 +395,7 @@ TriMesh readGltf(std::string_view bytes, const std::string& path) {
   if (scene >= 0) {
     std::vector<char> visited(model.nodes.size(), 0);
     for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes)
-      addNode(model, root, Eigen::Affine3d::Identity(), visited, path, out);
+      addNodeTree(model, root, visited, path, out);
   } else {
     for (std::size_t m = 0; m < model.meshes.size(); ++m)
       addMesh(model, static_cast<int>(m), Eigen::Affine3d::Identity(), path, out);

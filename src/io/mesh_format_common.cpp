@@ -10,31 +10,12 @@
 #include <filesystem>
 
 #include "core/base/errors.h"
+#include "io/input_file.h"
 
 namespace hermite {
 
 std::string readFileBytes(const std::string& path, std::string_view what) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open (it is a directory)");
-  // A device or fifo (/dev/zero, a pipe) could be endless: only regular files are read.
-  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec))
-    throw InputError(path + ": cannot read (not a regular file)");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string bytes;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) {
-    // One read of the announced size; the loop below picks up anything that grew meanwhile.
-    bytes.resize(static_cast<std::size_t>(size));
-    bytes.resize(std::fread(bytes.data(), 1, bytes.size(), f));
-  }
-  char chunk[1 << 16];
-  std::size_t got;
-  while ((got = std::fread(chunk, 1, sizeof(chunk), f)) > 0) bytes.append(chunk, got);
-  const bool failed = std::ferror(f) != 0;
-  const int error = errno;
-  std::fclose(f);
-  if (failed) throw InputError(path + ": cannot read (" + std::strerror(error) + ")");
+  std::string bytes = readInputFile(path, what);
   if (bytes.empty()) throw InputError(path + ": the file is empty (expected " + std::string(what) + " data)");
   return bytes;
 }
@@ -50,17 +31,21 @@ void requireSingleByteText(std::string_view bytes, const std::string& path, std:
                      " data, but " + std::string(what) + " must be ASCII or UTF-8 text; re-save it as UTF-8");
 }
 
-TextLines::TextLines(std::string_view text, std::size_t start) : text_(text), pos_(start) {
+TextLines::TextLines(std::string_view text, std::size_t start, bool bareCrEndsLine)
+    : text_(text), pos_(start), bareCrEndsLine_(bareCrEndsLine) {
   if (pos_ == 0 && text_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
 }
 
 bool TextLines::next(std::string_view& line) {
   if (pos_ >= text_.size()) return false;
-  std::size_t eol = text_.find('\n', pos_);
+  const std::string_view ends = bareCrEndsLine_ ? std::string_view("\r\n") : std::string_view("\n");
+  const std::size_t eol = text_.find_first_of(ends, pos_);
   const std::size_t end = eol == std::string_view::npos ? text_.size() : eol;
   line = text_.substr(pos_, end - pos_);
   if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
-  pos_ = eol == std::string_view::npos ? text_.size() : eol + 1;
+  std::size_t after = eol == std::string_view::npos ? text_.size() : eol + 1;
+  if (eol != std::string_view::npos && text_[eol] == '\r' && after < text_.size() && text_[after] == '\n') ++after;
+  pos_ = after;
   ++number_;
   return true;
 }

@@ -14,8 +14,8 @@
 
 namespace hermite {
 
-// The whole file in one read. InputError when it cannot be opened or read, is a directory, or
-// is empty (`what` names the format in that message, e.g. "PLY").
+// The whole file (readInputFile: regular files only, within the size cap). InputError also when
+// it is empty (`what` names the format in the messages, e.g. "PLY").
 std::string readFileBytes(const std::string& path, std::string_view what);
 
 // InputError when `bytes` look like UTF-16 or UTF-32 text (a byte-order mark, or NUL bytes in
@@ -30,10 +30,11 @@ bool parseDouble(std::string_view token, double& value);
 bool parseInteger(std::string_view token, std::int64_t& value);
 
 // The lines of a text, one at a time: a UTF-8 byte-order mark at the start and a trailing '\r'
-// (CRLF files) are dropped. No copies; the views point into the text.
+// (CRLF files) are dropped. With `bareCrEndsLine`, a '\r' not followed by '\n' ends a line too
+// (old Mac files), as tinyobjloader reads them. No copies; the views point into the text.
 class TextLines {
  public:
-  explicit TextLines(std::string_view text, std::size_t start = 0);
+  explicit TextLines(std::string_view text, std::size_t start = 0, bool bareCrEndsLine = false);
   // False at the end of the text; otherwise `line` is the next line (without its '\n').
   bool next(std::string_view& line);
   // 1-based number of the line `next` returned last (counting from `start`'s line as 1).
@@ -45,6 +46,7 @@ class TextLines {
   std::string_view text_;
   std::size_t pos_;
   long number_ = 0;
+  bool bareCrEndsLine_;
 };
 
 // The blank-separated tokens of one line (blanks: space, tab, '\r', '\v', '\f').

@@ -9,35 +9,51 @@
 
 #include "core/base/errors.h"
 #include "io/mesh_format_common.h"
+#include "io/quoted_token.h"
 
 namespace hermite {
 
 namespace {
 
+// How tinyobjloader recognises a `v` / `vn` line: after spaces and tabs, the tag and a space or tab.
+bool tinyobjSeesTag(std::string_view line, std::string_view tag) {
+  const std::size_t start = line.find_first_not_of(" \t");
+  if (start == std::string_view::npos || line.substr(start, tag.size()) != tag) return false;
+  const std::size_t after = start + tag.size();
+  return after < line.size() && (line[after] == ' ' || line[after] == '\t');
+}
+
+// x y z of one `v` / `vn` line into `values`; "FILE:LINE: ..." naming the token otherwise.
+void parseCoordinates(Tokens& tokens, bool normal, const std::string& where, std::vector<double>& values) {
+  std::string_view token;
+  for (int c = 0; c < 3; ++c) {
+    double value = 0;
+    if (!tokens.next(token))
+      throw InputError(where + "'" + (normal ? "vn" : "v") + "' has " + std::to_string(c) + " numbers, expected 3 (" +
+                       (normal ? "nx ny nz" : "x y z") + ")");
+    if (!parseDouble(token, value)) throw InputError(where + quotedToken(token) + " is not a number");
+    if (!std::isfinite(value)) throw InputError(where + quotedToken(token) + " is not a finite number");
+    values.push_back(value);
+  }
+}
+
 // tinyobjloader reads a malformed number as 0 and a missing coordinate as 0 without a word, and
 // its own number parser is not correctly rounded: parse every `v` and `vn` line ourselves first
-// (from_chars, exact), with line numbers in the errors. x y z of each line go to `vertices` /
-// `normals`.
+// (from_chars, exact), with line numbers in the errors, splitting lines at LF, CRLF and bare CR
+// as tinyobjloader does. x y z of each line go to `vertices` / `normals`.
 void parseVertexLines(std::string_view bytes, const std::string& path, std::vector<double>& vertices,
                       std::vector<double>& normals) {
-  TextLines lines(bytes);
+  TextLines lines(bytes, 0, /*bareCrEndsLine=*/true);
   std::string_view line, token;
   while (lines.next(line)) {
     Tokens tokens(line);
     if (!tokens.next(token) || (token != "v" && token != "vn")) continue;
     const bool normal = token == "vn";
-    for (int c = 0; c < 3; ++c) {
-      double value = 0;
-      const auto where = [&] { return path + ":" + std::to_string(lines.number()) + ": "; };
-      if (!tokens.next(token))
-        throw InputError(where() + "'" + (normal ? "vn" : "v") + "' has " + std::to_string(c) +
-                         " numbers, expected 3 (" + (normal ? "nx ny nz" : "x y z") + ")");
-      if (!parseDouble(token, value))
-        throw InputError(where() + "'" + std::string(token) + "' is not a number");
-      if (!std::isfinite(value))
-        throw InputError(where() + "'" + std::string(token) + "' is not a finite number");
-      (normal ? normals : vertices).push_back(value);
-    }
+    const std::string where = path + ":" + std::to_string(lines.number()) + ": ";
+    if (!tinyobjSeesTag(line, token) && !tokens.rest().empty())
+      throw InputError(where + "'" + std::string(token) +
+                       "' must start the line (after spaces or tabs) and be followed by a space or a tab");
+    parseCoordinates(tokens, normal, where, normal ? normals : vertices);
   }
 }
 
@@ -52,8 +68,10 @@ TriMesh readObj(std::string_view bytes, const std::string& path) {
   config.triangulate = false;  // fan-triangulated below, with our own index checks
   config.vertex_color = false;
   tinyobj::ObjReader reader;
-  // The material text is empty: an `mtllib` line reads nothing from disk.
-  if (!reader.ParseFromString(std::string(bytes), std::string(), config)) {
+  // The material text is empty: an `mtllib` line reads nothing from disk. tinyobjloader does
+  // not skip a byte-order mark; TextLines does.
+  const std::string_view body = bytes.substr(0, 3) == "\xEF\xBB\xBF" ? bytes.substr(3) : bytes;
+  if (!reader.ParseFromString(std::string(body), std::string(), config)) {
     std::string message = reader.Error();
     while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
     throw InputError(path + ": not a valid OBJ file (" + (message.empty() ? "unknown parse error" : message) + ")");
@@ -63,9 +81,14 @@ TriMesh readObj(std::string_view bytes, const std::string& path) {
   const Eigen::Index normalCount = static_cast<Eigen::Index>(attrib.normals.size() / 3);
   if (vertexCount == 0) throw InputError(path + ": no vertices ('v' lines)");
 
-  // Our exactly rounded values where both parsers saw the same lines (they always should).
-  const std::vector<double>& vertexData = vertexValues.size() == attrib.vertices.size() ? vertexValues : attrib.vertices;
-  const std::vector<double>& normalData = normalValues.size() == attrib.normals.size() ? normalValues : attrib.normals;
+  // Our exactly rounded values; both parsers must have seen the same lines, never a silent mix.
+  if (vertexValues.size() != attrib.vertices.size() || normalValues.size() != attrib.normals.size())
+    throw InputError(path + ": " + std::to_string(vertexValues.size() / 3) + " 'v' and " +
+                     std::to_string(normalValues.size() / 3) + " 'vn' lines, but tinyobjloader saw " +
+                     std::to_string(attrib.vertices.size() / 3) + " and " + std::to_string(attrib.normals.size() / 3) +
+                     " (control characters or NUL bytes in a line?)");
+  const std::vector<double>& vertexData = vertexValues;
+  const std::vector<double>& normalData = normalValues;
 
   TriMesh mesh;
   mesh.vertices = Eigen::Map<const Eigen::Matrix3Xd>(vertexData.data(), 3, vertexCount);

@@ -4,6 +4,7 @@
 
 #include "core/base/errors.h"
 #include "io/mesh_format_common.h"
+#include "io/quoted_token.h"
 
 namespace hermite {
 
@@ -45,8 +46,8 @@ bool isOffKeyword(std::string_view token, bool& hasNormals, bool& unsupported) {
 std::int64_t parseCount(std::string_view token, const OffLines& lines, const char* what) {
   std::int64_t value = 0;
   if (!parseInteger(token, value) || value < 0)
-    throw InputError(lines.where() + "the " + std::string(what) + " count '" + std::string(token) +
-                     "' is not a non-negative integer");
+    throw InputError(lines.where() + "the " + std::string(what) + " count " + quotedToken(token) +
+                     " is not a non-negative integer");
   if (value > kMaxMeshElements)
     throw InputError(lines.where() + "the " + std::string(what) + " count " + std::to_string(value) +
                      " is larger than this reader supports (" + std::to_string(kMaxMeshElements) + ")");
@@ -66,8 +67,8 @@ TriMesh readOff(std::string_view bytes, const std::string& path) {
   bool hasNormals = false, unsupported = false;
   if (isOffKeyword(token, hasNormals, unsupported)) {
     if (unsupported)
-      throw InputError(lines.where() + "'" + std::string(token) +
-                       "' (4D or n-dimensional OFF) is not supported; only 3D OFF, COFF, NOFF, STOFF");
+      throw InputError(lines.where() + quotedToken(token) +
+                       " (4D or n-dimensional OFF) is not supported; only 3D OFF, COFF, NOFF, STOFF");
     // The counts may follow the keyword on the same line.
     if (!tokens.next(token)) {
       if (!lines.next(line)) throw InputError(path + ": ends after the OFF keyword; expected 'vertices faces edges'");
@@ -100,7 +101,7 @@ TriMesh readOff(std::string_view bytes, const std::string& path) {
         throw InputError(lines.where() + "vertex " + std::to_string(i) + " has " + std::to_string(c) +
                          " numbers, expected " + (hasNormals ? "x y z nx ny nz (NOFF)" : "x y z"));
       if (!parseDouble(token, v))
-        throw InputError(lines.where() + "'" + std::string(token) + "' is not a number (vertex " +
+        throw InputError(lines.where() + quotedToken(token) + " is not a number (vertex " +
                          std::to_string(i) + ")");
       if (c < 3)
         mesh.vertices(c, i) = v;
@@ -119,8 +120,8 @@ TriMesh readOff(std::string_view bytes, const std::string& path) {
     values.next(token);
     std::int64_t n = 0;
     if (!parseInteger(token, n) || n < 3)
-      throw InputError(lines.where() + "face " + std::to_string(f) + ": the vertex count '" + std::string(token) +
-                       "' is not an integer ≥ 3");
+      throw InputError(lines.where() + "face " + std::to_string(f) + ": the vertex count " + quotedToken(token) +
+                       " is not an integer ≥ 3");
     // Fan triangulation (i0, ik, ik+1), streamed: a huge n cannot allocate more than the line holds.
     std::int64_t first = 0, previous = 0;
     for (std::int64_t k = 0; k < n; ++k) {
@@ -129,8 +130,8 @@ TriMesh readOff(std::string_view bytes, const std::string& path) {
         throw InputError(lines.where() + "face " + std::to_string(f) + " has " + std::to_string(k) + " of its " +
                          std::to_string(n) + " vertex indices");
       if (!parseInteger(token, index))
-        throw InputError(lines.where() + "face " + std::to_string(f) + ": '" + std::string(token) +
-                         "' is not an integer vertex index");
+        throw InputError(lines.where() + "face " + std::to_string(f) + ": " + quotedToken(token) +
+                         " is not an integer vertex index");
       if (index < 0 || index >= vertexCount)
         throw InputError(lines.where() + "face " + std::to_string(f) + " refers to vertex " + std::to_string(index) +
                          ", but there are " + std::to_string(vertexCount) + " vertices (indices are 0-based)");

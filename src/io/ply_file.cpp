@@ -8,6 +8,7 @@
 
 #include "core/base/errors.h"
 #include "io/mesh_format_common.h"
+#include "io/quoted_token.h"
 
 namespace hermite {
 
@@ -104,9 +105,9 @@ Header parseHeader(std::string_view bytes, const std::string& path) {
       else if (kind == "binary_big_endian")
         header.format = Format::BinaryBig;
       else
-        throw InputError(where() + "unknown format '" + std::string(kind) +
-                         "' (expected ascii, binary_little_endian or binary_big_endian)");
-      if (version != "1.0") throw InputError(where() + "unsupported PLY version '" + std::string(version) + "' (expected 1.0)");
+        throw InputError(where() + "unknown format " + quotedToken(kind) +
+                         " (expected ascii, binary_little_endian or binary_big_endian)");
+      if (version != "1.0") throw InputError(where() + "unsupported PLY version " + quotedToken(version) + " (expected 1.0)");
       haveFormat = true;
     } else if (token == "element") {
       Element element;
@@ -115,13 +116,13 @@ Header parseHeader(std::string_view bytes, const std::string& path) {
       if (!tokens.next(name) || !tokens.next(count)) throw InputError(where() + "expected 'element NAME COUNT'");
       element.name = std::string(name);
       if (!parseInteger(count, element.count) || element.count < 0)
-        throw InputError(where() + "element '" + element.name + "': the count '" + std::string(count) +
-                         "' is not a non-negative integer");
+        throw InputError(where() + "element " + quotedToken(element.name) + ": the count " + quotedToken(count) +
+                         " is not a non-negative integer");
       if (element.count > kMaxMeshElements)
-        throw InputError(where() + "element '" + element.name + "': the count " + std::to_string(element.count) +
+        throw InputError(where() + "element " + quotedToken(element.name) + ": the count " + std::to_string(element.count) +
                          " is larger than this reader supports (" + std::to_string(kMaxMeshElements) + ")");
       for (const Element& e : header.elements)
-        if (e.name == element.name) throw InputError(where() + "element '" + element.name + "' is declared twice");
+        if (e.name == element.name) throw InputError(where() + "element " + quotedToken(element.name) + " is declared twice");
       header.elements.push_back(std::move(element));
     } else if (token == "property") {
       if (header.elements.empty()) throw InputError(where() + "a property before any element");
@@ -134,27 +135,28 @@ Header parseHeader(std::string_view bytes, const std::string& path) {
         if (!tokens.next(countType) || !tokens.next(itemType))
           throw InputError(where() + "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
         if (!parseScalarName(countType, property.countType))
-          throw InputError(where() + "unknown PLY type '" + std::string(countType) + "'");
+          throw InputError(where() + "unknown PLY type " + quotedToken(countType));
         if (!isInteger(property.countType))
-          throw InputError(where() + "a list count type must be an integer type, not '" + std::string(countType) + "'");
+          throw InputError(where() + "a list count type must be an integer type, not " + quotedToken(countType));
         type = itemType;
       }
       if (!parseScalarName(type, property.type))
-        throw InputError(where() + "unknown PLY type '" + std::string(type) +
-                         "' (expected char, uchar, short, ushort, int, uint, float, double or their sized names)");
+        throw InputError(where() + "unknown PLY type " + quotedToken(type) +
+                         " (expected char, uchar, short, ushort, int, uint, float, double or their sized names)");
       std::string_view name;
       if (!tokens.next(name)) throw InputError(where() + "a property without a name");
       property.name = std::string(name);
       Element& element = header.elements.back();
       for (const Property& p : element.properties)
         if (p.name == property.name)
-          throw InputError(where() + "property '" + property.name + "' of element '" + element.name + "' is declared twice");
+          throw InputError(where() + "property " + quotedToken(property.name) + " of element " +
+                           quotedToken(element.name) + " is declared twice");
       element.properties.push_back(std::move(property));
     } else if (token == "end_header") {
       ended = true;
     } else {
-      throw InputError(where() + "unknown header keyword '" + std::string(token) +
-                       "' (expected format, element, property, comment, obj_info or end_header)");
+      throw InputError(where() + "unknown header keyword " + quotedToken(token) +
+                       " (expected format, element, property, comment, obj_info or end_header)");
     }
   }
   if (!ended) throw InputError(path + ": the PLY header has no 'end_header' line");
@@ -207,7 +209,7 @@ class BinaryReader {
   // Throws when fewer than `bytes` remain; `what` says where in the file we are.
   void need(std::size_t bytes, const Element& element, std::int64_t row) const {
     if (bytes > remaining())
-      throw InputError(path_ + ": truncated: element '" + element.name + "' row " + std::to_string(row) + " of " +
+      throw InputError(path_ + ": truncated: element " + quotedToken(element.name) + " row " + std::to_string(row) + " of " +
                        std::to_string(element.count) + " needs " + std::to_string(bytes) + " more bytes, the file has " +
                        std::to_string(remaining()) + " left");
   }
@@ -268,7 +270,7 @@ class AsciiReader {
       ++pos_;
     }
     if (pos_ == text_.size())
-      throw InputError(path_ + ": the file ends in element '" + element.name + "' row " + std::to_string(row) +
+      throw InputError(path_ + ": the file ends in element " + quotedToken(element.name) + " row " + std::to_string(row) +
                        " of the " + std::to_string(element.count) + " the header announces");
     const std::size_t begin = pos_;
     while (pos_ < text_.size() && !isBlankChar(text_[pos_]) && text_[pos_] != '\n') ++pos_;
@@ -278,7 +280,7 @@ class AsciiReader {
     const std::string_view t = token(element, row);
     double value = 0;
     if (!parseDouble(t, value))
-      throw InputError(where() + "'" + std::string(t) + "' is not a number (element '" + element.name + "' row " +
+      throw InputError(where() + quotedToken(t) + " is not a number (element " + quotedToken(element.name) + " row " +
                        std::to_string(row) + ")");
     return value;
   }
@@ -286,7 +288,7 @@ class AsciiReader {
     const std::string_view t = token(element, row);
     std::int64_t value = 0;
     if (!parseInteger(t, value))
-      throw InputError(where() + "'" + std::string(t) + "' is not an integer (element '" + element.name + "' row " +
+      throw InputError(where() + quotedToken(t) + " is not an integer (element " + quotedToken(element.name) + " row " +
                        std::to_string(row) + ")");
     return value;
   }
@@ -300,7 +302,7 @@ class AsciiReader {
 
 std::string listError(const std::string& where, const Element& element, std::int64_t row, const Property& p,
                       const std::string& what) {
-  return where + "element '" + element.name + "' row " + std::to_string(row) + " list '" + p.name + "': " + what;
+  return where + "element " + quotedToken(element.name) + " row " + std::to_string(row) + " list " + quotedToken(p.name) + ": " + what;
 }
 
 // What the body readers fill: the mesh (vertices and normals sized from the header) and the
@@ -447,8 +449,8 @@ TriMesh readPly(std::string_view bytes, const std::string& path) {
     for (const Property& p : face->properties)
       if (isIndexList(p)) {
         if (!isInteger(p.type))
-          throw InputError(path + ":" + std::to_string(face->line) + ": face list '" + p.name +
-                           "' has a floating-point item type; vertex indices must be integers");
+          throw InputError(path + ":" + std::to_string(face->line) + ": face list " + quotedToken(p.name) +
+                           " has a floating-point item type; vertex indices must be integers");
         hasIndices = true;
       }
     if (!hasIndices)
@@ -468,7 +470,7 @@ TriMesh readPly(std::string_view bytes, const std::string& path) {
     needed += e.count * perRow;
     if (needed > static_cast<std::int64_t>(body.size()) + (ascii ? 1 : 0))
       throw InputError(path + ":" + std::to_string(e.line) + ": the header announces " + std::to_string(e.count) +
-                       " '" + e.name + "' rows, more than the " + std::to_string(body.size()) +
+                       " " + quotedToken(e.name) + " rows, more than the " + std::to_string(body.size()) +
                        " bytes after the header can hold (truncated file or wrong count)");
   }
 

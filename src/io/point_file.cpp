@@ -13,36 +13,22 @@
 #include "core/base/errors.h"
 #include "core/points/normal_estimation.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
 #include "io/mesh_file.h"
+#include "io/quoted_token.h"
 
 namespace hermite {
 
 namespace {
 
-// The whole file in memory: one read, then a pointer walk over the lines.
-std::string readWholeFile(const std::string& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open (it is a directory)");
-  std::FILE* f = std::fopen(path.c_str(), "rb");
-  if (!f) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::string text;
-  const auto size = std::filesystem::file_size(path, ec);
-  if (!ec) text.reserve(static_cast<std::size_t>(size));
-  char chunk[1 << 16];
-  std::size_t got;
-  while ((got = std::fread(chunk, 1, sizeof(chunk), f)) > 0) text.append(chunk, got);
-  const bool failed = std::ferror(f) != 0;
-  const int error = errno;
-  std::fclose(f);
-  if (failed) throw InputError(path + ": cannot read (" + std::strerror(error) + ")");
-  return text;
-}
+// The whole file in memory (readInputFile), then a pointer walk over the lines.
+std::string readWholeFile(const std::string& path) { return readInputFile(path, "point file"); }
 
 // Iterates over the data lines of a text file: skips a UTF-8 byte-order mark, blank lines and
 // lines whose first non-blank character is '#'; strips a trailing '\r' (CRLF files).
 class LineReader {
  public:
-  explicit LineReader(const std::string& text) : p_(text.data()), end_(text.data() + text.size()) {
+  explicit LineReader(std::string_view text) : p_(text.data()), end_(text.data() + text.size()) {
     if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;
   }
 
@@ -94,14 +80,14 @@ int parseNumbers(std::string_view line, double* values, int capacity, const std:
     double v = 0;
     const auto r = std::from_chars(b, e, v);
     if (r.ec == std::errc::invalid_argument || r.ptr != e)
-      throw InputError(where() + "'" + std::string(token) + "' is not a number");
+      throw InputError(where() + quotedToken(token) + " is not a number");
     if (r.ec == std::errc::result_out_of_range) {
       // from_chars reports both overflow and underflow; strtod tells them apart (underflow → 0).
       const std::string copy(b, e);
       v = std::strtod(copy.c_str(), nullptr);
     }
     if (!std::isfinite(v))
-      throw InputError(where() + "'" + std::string(token) + "' is not a finite number");
+      throw InputError(where() + quotedToken(token) + " is not a finite number");
     if (count < capacity) values[count] = v;
     ++count;
   }
@@ -114,8 +100,7 @@ std::string columnNames(int dim, bool withNormals) {
 }
 
 template <int Dim>
-HermiteSamples<Dim> readSamples(const std::string& path, std::vector<std::string>& warnings) {
-  const std::string text = readWholeFile(path);
+HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
   constexpr int kColumns = 2 * Dim;
   // Dim × N column-major: coordinates of consecutive samples are consecutive.
   std::vector<double> points, normals;
@@ -176,12 +161,11 @@ HermiteSamples<Dim> loadSamples(const std::string& path, std::vector<std::string
     throw InputError(path + ": a " + std::to_string(fileDim) + "D point file (" + lowercaseExtension(path) +
                      ") cannot be used in a " + std::to_string(Dim) + "D scene; use " +
                      (Dim == 2 ? ".xyn (x y nx ny)" : ".xyz, .pwn or .xyzn (x y z nx ny nz)"));
-  return readSamples<Dim>(path, warnings);
+  return parseSamples<Dim>(readWholeFile(path), path, warnings);
 }
 
 template <int Dim>
-Points<Dim> readProbes(const std::string& path) {
-  const std::string text = readWholeFile(path);
+Points<Dim> parseProbes(std::string_view text, const std::string& path) {
   std::vector<double> coords;
   coords.reserve((static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1) * Dim);
   LineReader lines(text);
@@ -259,8 +243,18 @@ HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::stri
   return loadSamples<3>(path, warnings);
 }
 
-Points<2> loadProbePoints2d(const std::string& path) { return readProbes<2>(path); }
-Points<3> loadProbePoints3d(const std::string& path) { return readProbes<3>(path); }
+Points<2> loadProbePoints2d(const std::string& path) { return parseProbes<2>(readWholeFile(path), path); }
+Points<3> loadProbePoints3d(const std::string& path) { return parseProbes<3>(readWholeFile(path), path); }
+
+HermiteSamples<2> parsePointText2d(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
+  return parseSamples<2>(text, path, warnings);
+}
+
+HermiteSamples<3> parsePointText3d(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
+  return parseSamples<3>(text, path, warnings);
+}
+
+Points<3> parseProbeText3d(std::string_view text, const std::string& path) { return parseProbes<3>(text, path); }
 
 void savePointFile(const std::string& path, const HermiteSamples<3>& samples) { writeSamples<3>(path, samples); }
 void savePointFile(const std::string& path, const HermiteSamples<2>& samples) { writeSamples<2>(path, samples); }

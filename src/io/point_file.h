@@ -10,6 +10,7 @@
 // "FILE:LINE: ..." saying what was expected.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/points/hermite_samples.h"
@@ -27,6 +28,12 @@ HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::stri
 // Reads probe points for `eval --at FILE`: Dim numbers per line (extra columns are an error).
 Points<2> loadProbePoints2d(const std::string& path);
 Points<3> loadProbePoints3d(const std::string& path);
+
+// The text formats (.xyz / .pwn / .xyzn, .xyn, probe files) parsed from memory; `path` names
+// the text in messages. The loaders above read the file and call these.
+HermiteSamples<2> parsePointText2d(std::string_view text, const std::string& path, std::vector<std::string>& warnings);
+HermiteSamples<3> parsePointText3d(std::string_view text, const std::string& path, std::vector<std::string>& warnings);
+Points<3> parseProbeText3d(std::string_view text, const std::string& path);
 
 // Writes samples as .xyzn / .xyn (temporary + rename).
 void savePointFile(const std::string& path, const HermiteSamples<3>& samples);

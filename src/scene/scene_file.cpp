@@ -13,6 +13,8 @@
 
 #include "core/base/errors.h"
 #include "io/atomic_file.h"
+#include "io/input_file.h"
+#include "io/quoted_token.h"
 #include "scene/scene_keys.h"
 
 namespace hermite {
@@ -105,6 +107,16 @@ std::string parseErrorReason(const std::string& what) {
     s = s.substr(p + 2);
   if (s.rfind("parse error", 0) == 0)
     if (const auto p = s.find(": "); p != std::string::npos) s = s.substr(p + 2);
+  // nlohmann ends with "; last read: 'TOKEN'" (or quotes the number it could not parse), and a
+  // token may be megabytes long.
+  const std::string lastRead = "; last read: '";
+  if (const auto p = s.find(lastRead); p != std::string::npos && s.size() > p + lastRead.size() && s.back() == '\'')
+    s = s.substr(0, p) + "; last read: " +
+        quotedToken(std::string_view(s).substr(p + lastRead.size(), s.size() - 1 - p - lastRead.size()));
+  const std::string overflow = "number overflow parsing '";
+  if (const auto p = s.find(overflow); p != std::string::npos && s.back() == '\'')
+    s = "number overflow parsing " +
+        quotedToken(std::string_view(s).substr(p + overflow.size(), s.size() - 1 - p - overflow.size()));
   return s;
 }
 
@@ -161,14 +173,10 @@ Scene parseScene(const json& document, const std::string& sourceName, const std:
 }
 
 Scene loadSceneFile(const std::string& path, const std::vector<std::string>& overrides) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": cannot open (it is a directory)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  if (in.bad()) throw InputError(path + ": cannot read (" + std::strerror(errno) + ")");
-  const std::string text = buffer.str();
+  return parseSceneText(readInputFile(path, "scene"), path, overrides);
+}
+
+Scene parseSceneText(const std::string& text, const std::string& path, const std::vector<std::string>& overrides) {
 
   // Object keys must be unique: nlohmann would silently keep the last one.
   std::vector<std::set<std::string>> keysPerLevel;
@@ -188,7 +196,7 @@ Scene loadSceneFile(const std::string& path, const std::vector<std::string>& ove
         keyPath.back() = k;
         if (!keysPerLevel.back().insert(k).second) {
           std::string full;
-          for (const std::string& part : keyPath) full = childPath(full, part);
+          for (const std::string& part : keyPath) full = childPath(full, shortenedToken(part));
           throw InputError(path + ": " + full + ": duplicate key (each key may appear once per object)");
         }
         break;
@@ -206,12 +214,11 @@ Scene loadSceneFile(const std::string& path, const std::vector<std::string>& ove
     throw InputError(path + ":" + std::to_string(line) + ":" + std::to_string(column) +
                      ": JSON syntax error: " + parseErrorReason(e.what()));
   } catch (const json::out_of_range& e) {
-    // A number beyond the double range (1e400): nlohmann reports no position, so the message
-    // names the key being read and the number itself.
-    std::string where;
-    for (const std::string& part : keyPath) where = childPath(where, part);
-    throw InputError(path + ": " + (where.empty() ? "(document)" : where) + ": " + parseErrorReason(e.what()) +
-                     " (numbers must lie within ±1.8e308)");
+    // A number beyond double range (1e400): nlohmann gives no position, the key path is known.
+    std::string full;
+    for (const std::string& part : keyPath) full = childPath(full, shortenedToken(part));
+    throw InputError(path + ": " + (full.empty() ? "" : full + ": ") + "number out of range (" +
+                     parseErrorReason(e.what()) + "); numbers must lie within ±1.7976931348623157e308");
   }
   for (const std::string& o : overrides) applySetOverride(document, o);
   const std::string base = std::filesystem::path(path).parent_path().string();

@@ -152,6 +152,9 @@ Scene parseScene(const nlohmann::json& document, const std::string& sourceName,
 // Reads a scene file (JSON syntax errors name the line and column), applies the overrides in
 // order, then parses strictly.
 Scene loadSceneFile(const std::string& path, const std::vector<std::string>& overrides = {});
+// The same for the bytes of that file held in memory (`text`); `path` names it and gives the
+// folder relative paths are resolved against.
+Scene parseSceneText(const std::string& text, const std::string& path, const std::vector<std::string>& overrides = {});
 
 // The complete document with every key (defaults included); parseScene(sceneToJson(s)) == s.
 nlohmann::json sceneToJson(const Scene& scene);

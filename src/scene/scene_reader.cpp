@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/base/format_number.h"
+#include "io/quoted_token.h"
 
 namespace hermite {
 
@@ -82,11 +83,12 @@ void SceneReader::object(const json& v, const std::string& path, std::span<const
     std::string_view best;
     std::size_t bestDistance = 3;
     for (std::string_view k : keys) {
-      const std::size_t d = editDistance(key, k);
+      // A key much longer than every known one is no typo (and its distance would be slow).
+      const std::size_t d = key.size() > k.size() + bestDistance ? bestDistance : editDistance(key, k);
       if (d < bestDistance) bestDistance = d, best = k;
     }
     if (!best.empty()) what += "; did you mean '" + std::string(best) + "'?";
-    fail(childPath(path, key), what);
+    fail(childPath(path, shortenedToken(key)), what);
   }
 }
 

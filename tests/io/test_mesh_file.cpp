@@ -400,5 +400,5 @@ TEST_CASE("mesh_io: missing files, directories and endless devices are errors, n
   CHECK_THROWS_WITH_AS(hermite::loadMesh(folder), (folder + ": cannot open (it is a directory)").c_str(), InputError);
   const std::string zero = dir.file("zero.ply");
   fs::create_symlink("/dev/zero", zero);
-  CHECK_THROWS_WITH_AS(hermite::loadMesh(zero), (zero + ": cannot read (not a regular file)").c_str(), InputError);
+  CHECK_THROWS_WITH_AS(hermite::loadMesh(zero), (zero + ": cannot read (it is a character device, not a regular file)").c_str(), InputError);
 }

@@ -9,12 +9,14 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/commands/byte_size.h"
 #include "app/commands/commands.h"
 #include "app/commands/fatal_exit.h"
 #include "app/commands/output.h"
 #include "core/base/errors.h"
 #include "core/base/memory_check.h"
 #include "core/base/threading.h"
+#include "io/input_file.h"
 #include "io/system_memory.h"
 
 namespace hermite::app {
@@ -35,7 +37,8 @@ constexpr const char* kUsage =
     "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
-    "options everywhere: --threads N (default: all cores); `hermite-lab COMMAND --help` for details\n";
+    "options everywhere: --threads N (default: all cores), --max-input-size BYTES (default 4G);\n"
+    "`hermite-lab COMMAND --help` for details\n";
 
 void addSceneOptions(CLI::App& cmd, SceneArgs& scene, bool required) {
   auto* opt = cmd.add_option("scene", scene.scenePath, "scene file (JSON, docs/scene-format.md)");
@@ -59,10 +62,24 @@ void addThreads(CLI::App& cmd, int& threads) {
       });
 }
 
-// Parses with CLI11; returns -1 to go on, or the exit code (0 for --help, 2 for usage errors).
+// --max-input-size BYTES, an option of every command: the largest input file read.
+void addMaxInputSize(CLI::App& cmd, std::string& text) {
+  cmd.add_option("--max-input-size", text, "largest input file read, e.g. 512M, 8G (default 4G)")
+      ->type_name("BYTES")
+      ->check([](const std::string& value) {
+        const auto bytes = parseByteSize(value);
+        return bytes && *bytes > 0 ? std::string() : "expected a byte count > 0 such as 4096, 512M or 8G";
+      });
+}
+
+// Parses with CLI11, with the options every command shares and no command handles itself
+// (--max-input-size); returns -1 to go on, or the exit code (0 for --help, 2 for usage errors).
 int parse(CLI::App& cmd, int argc, char** argv) {
+  std::string maxInput;
+  addMaxInputSize(cmd, maxInput);
   try {
     cmd.parse(argc, argv);
+    if (!maxInput.empty()) setMaxInputSize(*parseByteSize(maxInput));
   } catch (const CLI::CallForHelp& e) {
     return cmd.exit(e);
   } catch (const CLI::CallForAllHelp& e) {
