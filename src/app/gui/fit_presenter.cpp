@@ -15,6 +15,12 @@ bool sameCompare(const CompareSettings& a, const CompareSettings& b) {
 
 }  // namespace
 
+bool sameFitInputs(const Scene& a, const Scene& b) {
+  Scene withBView = a;
+  withBView.view = b.view;
+  return withBView == b;
+}
+
 std::optional<Scene> compareScene(const Scene& s, const CompareSettings& compare) {
   if (!compare.enabled || (s.mode != SceneMode::Implicit2d && s.mode != SceneMode::Implicit3d)) return std::nullopt;
   Scene c = s;
@@ -30,8 +36,17 @@ std::optional<Scene> compareScene(const Scene& s, const CompareSettings& compare
 void FitPresenter::submitIfStale(const Scene& scene, std::uint64_t version, const CompareSettings& compare,
                                  bool synchronous) {
   if (version == submittedVersion_ && sameCompare(compare, submittedCompare_)) return;
-  submittedVersion_ = version;
+  if (submittedScene_ && sameCompare(compare, submittedCompare_) && sameFitInputs(scene, *submittedScene_)) {
+    // Only the view changed: the submitted fit (shown or still running) stands for this version.
+    if (submittedShown_) shownVersion_ = version;
+    submittedVersion_ = version;
+    return;
+  }
+  submittedVersion_ = fittedVersion_ = version;
+  submittedShown_ = false;
   submittedCompare_ = compare;
+  submittedScene_ = scene;
+  ++submissions_;
   worker_.submit(scene, version, compareScene(scene, compare));
   if (synchronous)
     worker_.waitIdle(600);
@@ -47,7 +62,9 @@ void FitPresenter::adoptFinished(GuiStatus& status) {
   lastWallMs_ = r->main->wallMs + (r->compare ? r->compare->wallMs : 0.0);
   if (r->main->ok()) {
     shown_ = r->main;
-    shownVersion_ = r->version;
+    // The versions since that changed only the view show this fit too.
+    submittedShown_ = r->version == fittedVersion_;
+    shownVersion_ = submittedShown_ ? submittedVersion_ : r->version;
     lastError_.clear();
   } else {
     // Keep the last good model on screen and say why the new one is not there.

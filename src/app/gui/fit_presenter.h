@@ -1,7 +1,9 @@
 #pragma once
 // The fits on screen: submits the document's scene (and the compare scene) to the FitWorker when
-// its version or the compare settings changed, adopts finished jobs, and keeps the last good
-// result on screen while a newer one runs or after one failed.
+// what a fit reads changed — the data, the fit settings, the transform, the patch or hole-filling
+// document, the compare settings — and not for a view or camera change, which only redraws;
+// adopts finished jobs, and keeps the last good result on screen while a newer one runs or after
+// one failed.
 
 #include <cstdint>
 #include <memory>
@@ -21,6 +23,9 @@ struct CompareSettings {
   KernelType kernel = KernelType::Gaussian;
   double radius = 0.5;
 };
+
+// The scenes fit the same: they differ at most in `view` (camera, what is drawn, bounds).
+bool sameFitInputs(const Scene& a, const Scene& b);
 
 // The scene the right half fits: `scene` with the compared setting changed; none when compare is
 // off or the mode has no implicit fit.
@@ -42,19 +47,26 @@ class FitPresenter {
   }
   const std::string& lastError() const { return lastError_; }  // of the last fit, empty when it succeeded
 
-  // Queues a fit of version `version` of `scene` when it or `compare` changed since the last
-  // submission. synchronous: waits for it (render --ui, tests); else a fit as quick as the last
-  // one is waited for briefly, so it shows in this frame.
+  // Queues a fit of version `version` of `scene` when its fit inputs or `compare` changed since
+  // the last submission; a version that changed only the view takes the submitted fit as its own.
+  // synchronous: waits for it (render --ui, tests); else a fit as quick as the last one is
+  // waited for briefly, so it shows in this frame.
   void submitIfStale(const Scene& scene, std::uint64_t version, const CompareSettings& compare, bool synchronous);
   // Takes a finished job: its results go on screen, or its errors into `status`.
   void adoptFinished(GuiStatus& status);
   // Discards the running job; `version` is not resubmitted.
   void cancel(std::uint64_t version);
+  // Jobs submitted to the worker (a view-only change submits none).
+  int submissions() const { return submissions_; }
 
  private:
   FitWorker worker_;
-  std::uint64_t submittedVersion_ = 0;
+  std::uint64_t submittedVersion_ = 0;  // the newest document version the submitted fit stands for
+  std::uint64_t fittedVersion_ = 0;     // the version whose scene the worker fits
+  std::optional<Scene> submittedScene_;
+  bool submittedShown_ = false;  // the worker's result for fittedVersion_ is on screen
   CompareSettings submittedCompare_;
+  int submissions_ = 0;
   std::shared_ptr<const FitOutcome> shown_, shownCompare_;
   std::uint64_t shownVersion_ = 0;
   std::string lastError_;

@@ -7,7 +7,7 @@
 //
 // Per frame: feed ImGui → adopt finished fits → dropped files, shortcuts and the view's mouse
 // gestures (camera, samples, gizmo, slice plane, patch handles) unless ImGui wants the input →
-// panels (which edit the Document) → submit a refit when the document's version moved → redraw
+// panels (which edit the Document) → submit a refit when what a fit reads changed (not the view) → redraw
 // the view image when the fit, the view or the size changed → overlays → ImGui draw. What the
 // parts share lives in a GuiContext (gui_context.h); fits run on a FitWorker thread and the last
 // good result stays on screen until a newer one arrives.

@@ -189,6 +189,38 @@ TEST_CASE("UI: the r slider changes the radius, refits, and is one undo step") {
   CHECK(h.app->document().scene() == s);
 }
 
+TEST_CASE("UI: view-only changes redraw without a refit; a fit setting refits") {
+  Harness h(scene3d(), true, 640, 480);
+  h.frames(2);
+  const FitOutcome* fitted = h.app->shownFit();
+  REQUIRE(fitted);
+  REQUIRE(h.app->viewIsCurrent());
+  // A display checkbox (points off), then the camera: new document versions, the same fit.
+  Scene s = h.app->document().scene();
+  s.view.showPoints = false;
+  h.app->document().apply(s, "points");
+  h.frames(2);
+  CHECK(h.app->shownFit() == fitted);
+  CHECK(h.app->viewIsCurrent());
+  const Vec<2> o = h.app->viewOrigin();
+  const Vec<2> start(o.x() + 30, o.y() + h.app->viewSize().y() - 60);
+  h.drag(start.x(), start.y(), start.x() + 60, start.y() - 10);  // orbit
+  h.frames(4);
+  CHECK(h.app->document().scene().view.camera != s.view.camera);
+  CHECK(h.app->shownFit() == fitted);
+  CHECK(h.app->viewIsCurrent());
+  CHECK(h.app->shownVersion() == h.app->document().version());
+  // A fit setting: a new fit, of the new setting.
+  s = h.app->document().scene();
+  s.fit.smoothing = 1e-6;
+  h.app->document().apply(s, "smoothing");
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  CHECK(h.app->shownFit() != fitted);
+  CHECK(h.app->shownFit()->scene.fit.smoothing == 1e-6);
+  CHECK(h.app->viewIsCurrent());
+}
+
 TEST_CASE("UI: orbit, zoom and fit-to-view move the 3D camera and never touch the undo history") {
   Harness h(scene3d(), true, 640, 480);
   h.frames(2);
