@@ -1,10 +1,18 @@
 #include "app/gui/document.h"
 
+#include <filesystem>
+
 #include "scene/scene_fit.h"
 
 namespace hermite::app {
 
-Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), path_(std::move(path)) {}
+Document::Document(Scene scene, std::string path) : scene_(std::move(scene)), saved_(scene_), path_(std::move(path)) {}
+
+std::string documentTitle(const Document& document) {
+  const std::string& file = !document.path().empty() ? document.path() : document.scene().data.file;
+  const std::string name = file.empty() ? "demo scene" : std::filesystem::path(file).filename().string();
+  return "Hermite Lab — " + name + (document.dirty() ? " *" : "");
+}
 
 void Document::apply(const Scene& next, const std::string& label) {
   if (gesture_) end();
@@ -79,12 +87,14 @@ void Document::reset(Scene scene, std::string path) {
   redo_.clear();
   gesture_ = false;
   ++version_;
+  saved_ = scene_;
   dirty_ = false;
 }
 
 void Document::save(const std::string& path) {
   saveSceneFile(scene_, path);
   path_ = path;
+  saved_ = scene_;
   dirty_ = false;
 }
 
@@ -94,7 +104,7 @@ void Document::setCamera(const CameraSpec& camera, const std::array<double, 2>& 
   v.camera = camera;
   v.center2d = center2d;
   v.halfHeight2d = halfHeight2d;
-  dirty_ = true;  // saved with the scene, but no refit: the version stays
+  updateDirty();  // saved with the scene, but no refit: the version stays
 }
 
 template <int Dim>

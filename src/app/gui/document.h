@@ -25,6 +25,7 @@ class Document {
   const Scene& scene() const { return scene_; }
   std::uint64_t version() const { return version_; }
   const std::string& path() const { return path_; }
+  // The scene differs from the one last opened or saved (undo back to it clears the flag).
   bool dirty() const { return dirty_; }
 
   // One undo step: the current scene is pushed, `next` becomes current (no-op when equal).
@@ -55,10 +56,15 @@ class Document {
     Scene scene;
     std::string label;
   };
-  void bump() { ++version_; dirty_ = true; }
+  void bump() {
+    ++version_;
+    updateDirty();
+  }
+  void updateDirty() { dirty_ = !(scene_ == saved_); }
   void restore(Scene scene);  // an undo / redo target, keeping the current camera
 
   Scene scene_;
+  Scene saved_;  // as last opened or saved
   std::string path_;
   std::uint64_t version_ = 1;
   bool dirty_ = false;
@@ -67,6 +73,10 @@ class Document {
   std::vector<Entry> undo_, redo_;
   static constexpr std::size_t kMaxHistory = 500;
 };
+
+// The window's title: "Hermite Lab — NAME" with NAME the scene file's name, else the data file's,
+// else "demo scene"; " *" when the document is dirty.
+std::string documentTitle(const Document& document);
 
 // A scene whose data are inline points / normals, with the samples the scene names (preset, file
 // or inline) written in: editing individual samples needs them inline. Validation warnings are

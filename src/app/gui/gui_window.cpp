@@ -109,7 +109,7 @@ int runDefault(const SceneArgs& args) {
     render::ContextOptions co;
     co.width = 1280;
     co.height = 800;
-    co.title = "Hermite Lab — " + (args.scenePath.empty() ? std::string("demo scene") : args.scenePath);
+    co.title = documentTitle(Document(scene, args.scenePath));
     context = render::createContext("glfw", co);
   } catch (const EnvironmentError& e) {
     std::fprintf(stderr, "note: the GUI needs a display (%s); printing the scene's fit report instead.\n", e.what());
@@ -125,6 +125,7 @@ int runDefault(const SceneArgs& args) {
   options.iniFile = false;  // the layout is fixed; nothing worth remembering
   GuiApp app(Document(scene, args.scenePath), options);
   double last = glfwGetTime();
+  std::string title = documentTitle(app.document());
   while (!glfwWindowShouldClose(window) && !app.quitRequested()) {
     // Wait for events while nothing is moving; poll while a fit, a sweep or a redraw is pending.
     if (app.worker().busy() || app.explorer().running()) glfwWaitEventsTimeout(1.0 / 60.0);
@@ -143,6 +144,10 @@ int runDefault(const SceneArgs& args) {
     last = now;
     app.frame(in);
     context->present();
+    if (std::string shown = documentTitle(app.document()); shown != title) {
+      title = std::move(shown);
+      glfwSetWindowTitle(window, title.c_str());
+    }
   }
   return 0;
 }
