@@ -16,6 +16,7 @@
 
 #include "app/commands/commands.h"
 #include "app/commands/output_path.h"
+#include "app/gui/camera_framing.h"
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -177,6 +178,7 @@ int runRender(const RenderArgs& args) {
   if (size) scene.view.size = *size;
   checkOutputPath(args.output);
   checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
+  scene = framedOnLoad(std::move(scene));  // patch / holefill scenes without a camera: frame the content
   const ImageRgba8 image = args.ui ? renderWithPanels(scene, args) : renderView(scene, args);
   writePng(args.output, image);
   return 0;

@@ -1,5 +1,6 @@
 #include "app/gui/document_actions.h"
 
+#include "app/gui/camera_framing.h"
 #include "io/mesh_file.h"
 #include "io/point_file.h"
 #include "scene/scene_fit.h"
@@ -8,7 +9,7 @@ namespace hermite::app {
 
 void openScene(GuiContext& ctx, const std::string& path) {
   try {
-    Scene s = loadSceneFile(path);
+    Scene s = framedOnLoad(loadSceneFile(path));
     ctx.document.reset(s, path);
     ctx.setHomeFromScene();
     ctx.selected = -1;

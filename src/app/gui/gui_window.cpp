@@ -11,6 +11,7 @@
 #include <cstdlib>
 
 #include "app/commands/commands.h"
+#include "app/gui/camera_framing.h"
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -103,7 +104,7 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
 }  // namespace
 
 int runDefault(const SceneArgs& args) {
-  const Scene scene = loadCommandScene(args);
+  const Scene scene = framedOnLoad(loadCommandScene(args));
   std::unique_ptr<render::RenderContext> context;
   try {
     render::ContextOptions co;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/gui/camera_framing.h"
 #include "app/tools/spec_vectors.h"
 #include "scene/view_bounds.h"
 
@@ -70,40 +71,23 @@ void CameraTool::zoom(double notches, const Vec<2>& mouse) {
   }
 }
 
+// 2D: the samples' box; 3D: what the mode shows (camera_framing.h), seen along the current direction.
 void CameraTool::fitToView() {
-  if (!ctx_.fits.shown()) return;
+  const FitOutcome* shown = ctx_.fits.shown().get();
+  if (!shown) return;
   const ViewSpec& v = ctx_.scene().view;
-  if (const auto* f2 = ctx_.fits.shown()->as<SceneFit<2>>()) {
-    const Box<2> b = viewBounds<2>(v, f2->data.points);
+  const double aspect = double(ctx_.view.w) / ctx_.view.h;
+  if (const auto* f2 = shown->as<SceneFit<2>>()) {
+    Box<2> b = boundingBox<2>(f2->data.points);
+    if (!(b.extent().maxCoeff() > 0)) b = viewBounds<2>(v, f2->data.points);  // one sample: its padded bounds
     const Vec<2> c = b.center();
-    const double aspect = double(ctx_.view.w) / ctx_.view.h;
     ctx_.document.setCamera(v.camera, {c.x(), c.y()}, 0.5 * std::max(b.extent().y(), b.extent().x() / aspect) * 1.05);
     return;
   }
-  // 3D: the box to frame (the view bounds of an implicit, already padded; a mesh's own box, with
-  // a little more room) seen along the current direction.
-  Box<3> b;
-  double margin = 1.02;
-  const auto* holefill = ctx_.fits.shown()->as<HoleFillStages>();
-  if (const auto* f3 = ctx_.fits.shown()->as<SceneFit<3>>()) {
-    b = viewBounds<3>(v, f3->data.points);
-  } else if (const auto* patch = ctx_.fits.shown()->as<PatchDisplay>()) {
-    b = boundingBox<3>(patch->mesh.positions);
-    margin = 1.05;
-  } else if (holefill && holefill->input.vertexCount() > 0) {
-    b = boundingBox<3>(holefill->input.vertices);
-    margin = 1.05;
-  } else {
-    return;
-  }
-  const double radius = 0.5 * b.extent().norm();
-  CameraSpec c = v.camera;
-  const Vec<3> dir = (toVec(c.eye) - toVec(c.target)).normalized();
-  const double fov = c.fovYDeg * M_PI / 180;
-  const double aspect = std::min(1.0, double(ctx_.view.w) / ctx_.view.h);
-  c.target = toArray(b.center());
-  c.eye = toArray(b.center() + radius / std::sin(0.5 * fov * aspect) * margin * dir);
-  ctx_.document.setCamera(c, v.center2d, radius * 1.05);
+  const std::optional<ShownBox> box = shownBox3d(*shown);
+  if (!box) return;
+  const FramedCamera f = framedCamera(v.camera, *box, aspect);
+  ctx_.document.setCamera(f.camera, v.center2d, f.halfHeight);
 }
 
 void CameraTool::resetView() {

@@ -175,6 +175,31 @@ TEST_CASE("render golden images (2D, 3D, slice plane, with and without --ui)") {
   checkGolden(kScene3d + " --size 800x500 --ui", "render_3d_ui");
 }
 
+// Pixels that differ from the white background by more than 8/255 in some channel.
+double contentFraction(const ImageRgba8& image) {
+  std::size_t content = 0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = image.at(x, y);
+      content += p[0] < 247 || p[1] < 247 || p[2] < 247;
+    }
+  return double(content) / (double(image.width) * image.height);
+}
+
+TEST_CASE("render frames the patch and the mesh to fill when the scene names no camera") {
+  const std::string minimal = std::string(HERMITE_SOURCE_DIR) + "/tests/fixtures/scenes/minimal.json";
+  const std::string patch = minimal + " --set mode=patch --set patch.preset=torus --size 160x120";
+  const std::string holefill = minimal + " --set mode=holefill --size 160x120";
+  // The default camera looks at the origin from z = 4: the torus piece lies off to the side.
+  CHECK(contentFraction(render(patch, "patch.png")) > 0.05);
+  CHECK(contentFraction(render(holefill, "holefill.png")) > 0.05);
+  // A camera of the scene's own is kept: looking away from the patch shows nothing of it.
+  CHECK(contentFraction(render(patch + " --set view.camera.eye=[0,0,-40] --set view.camera.target=[0,0,-50]",
+                               "patch_away.png")) < 0.001);
+  checkGolden(patch, "render_patch");
+  checkGolden(holefill, "render_holefill");
+}
+
 TEST_CASE("render: exit codes") {
   SUBCASE("unwritable output path → 4") {
     const auto r = runCli("render " + kScene2d + " --size 32x32 -o /nonexistent/dir/x.png");
