@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "support/input_error.h"
 #include "core/base/errors.h"
 #include "io/gltf_file.h"
 #include "io/gltf_file_access.h"
@@ -54,12 +55,7 @@ std::string triangleGltf(const std::string& uri, const std::string& imageUri = "
 }
 
 std::string errorOf(const std::string& path) {
-  try {
-    hermite::loadMesh(path);
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "<no error>";
+  return hermite::testing::inputErrorOf([&] { hermite::loadMesh(path); });
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "support/input_error.h"
 #include "core/base/errors.h"
 #include "io/input_file.h"
 #include "io/mesh_file.h"
@@ -48,14 +49,7 @@ struct CapGuard {
   ~CapGuard() { hermite::setMaxInputSize(hermite::kDefaultMaxInputSize); }
 };
 
-std::string errorOf(const auto& load) {
-  try {
-    load();
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  return "<no error>";
-}
+std::string errorOf(const auto& load) { return hermite::testing::inputErrorOf(load); }
 
 }  // namespace
 

@@ -1,6 +1,7 @@
 #pragma once
 // Test meshes for the mesh tests: the core shapes, and removal of chosen triangles.
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -25,6 +26,19 @@ TriMesh removeTriangles(const TriMesh& mesh, Pred drop) {
   out.triangles.resize(3, static_cast<Eigen::Index>(keep.size()));
   for (size_t k = 0; k < keep.size(); ++k) out.triangles.col(static_cast<Eigen::Index>(k)) = mesh.triangles.col(keep[k]);
   return out;
+}
+
+// The smallest angle, degrees, of triangles firstTriangle … end of `mesh` (180 when there are none).
+inline double smallestAngleDegrees(const TriMesh& mesh, int firstTriangle) {
+  double smallest = 180;
+  for (int t = firstTriangle; t < mesh.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      const Vec<3> p = mesh.vertices.col(mesh.triangles(c, t));
+      const Vec<3> u = Vec<3>(mesh.vertices.col(mesh.triangles((c + 1) % 3, t))) - p;
+      const Vec<3> v = Vec<3>(mesh.vertices.col(mesh.triangles((c + 2) % 3, t))) - p;
+      smallest = std::min(smallest, std::acos(std::clamp(u.dot(v) / (u.norm() * v.norm()), -1.0, 1.0)) * 180 / M_PI);
+    }
+  return smallest;
 }
 
 }  // namespace hermite::testing

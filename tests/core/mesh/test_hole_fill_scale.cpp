@@ -9,26 +9,15 @@
 
 #include "core/mesh/hole_fill.h"
 #include "core/shapes/mesh_shapes.h"
+#include "support/mesh_test_shapes.h"
 
 using namespace hermite;
+using hermite::testing::smallestAngleDegrees;
 
 namespace {
 
 double secondsSince(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// The smallest angle, degrees, of triangles first … end of `mesh`.
-double smallestAngleDegrees(const TriMesh& mesh, int first) {
-  double smallest = 180;
-  for (int t = first; t < mesh.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const Vec<3> p = mesh.vertices.col(mesh.triangles(c, t));
-      const Vec<3> u = Vec<3>(mesh.vertices.col(mesh.triangles((c + 1) % 3, t))) - p;
-      const Vec<3> v = Vec<3>(mesh.vertices.col(mesh.triangles((c + 2) % 3, t))) - p;
-      smallest = std::min(smallest, std::acos(std::clamp(u.dot(v) / (u.norm() * v.norm()), -1.0, 1.0)) * 180 / M_PI);
-    }
-  return smallest;
 }
 
 }  // namespace

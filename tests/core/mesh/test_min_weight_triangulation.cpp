@@ -15,6 +15,7 @@
 using namespace hermite;
 using hermite::testing::cutBall;
 using hermite::testing::parametricTorus;
+using hermite::testing::smallestAngleDegrees;
 
 namespace {
 
@@ -45,18 +46,6 @@ TriMesh withTriangles(const TriMesh& mesh, const Eigen::Matrix3Xi& added) {
   out.triangles.conservativeResize(3, mesh.triangles.cols() + added.cols());
   out.triangles.rightCols(added.cols()) = added;
   return out;
-}
-
-double smallestAngleDegrees(const TriMesh& mesh, int firstTriangle) {
-  double smallest = 180;
-  for (int t = firstTriangle; t < mesh.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      const Vec<3> p = mesh.vertices.col(mesh.triangles(c, t));
-      const Vec<3> u = Vec<3>(mesh.vertices.col(mesh.triangles((c + 1) % 3, t))) - p;
-      const Vec<3> v = Vec<3>(mesh.vertices.col(mesh.triangles((c + 2) % 3, t))) - p;
-      smallest = std::min(smallest, std::acos(std::clamp(u.dot(v) / (u.norm() * v.norm()), -1.0, 1.0)) * 180 / M_PI);
-    }
-  return smallest;
 }
 
 }  // namespace
