@@ -10,21 +10,14 @@
 #include <sstream>
 #include <string>
 
+#include "support/temp_dir.h"
 #include "io/atomic_file.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  explicit TempDir(const std::string& name)
-      : path(fs::temp_directory_path() / (name + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~TempDir() { fs::remove_all(path); }
-};
+using hermite::testing::TempDir;
 
 std::string contents(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

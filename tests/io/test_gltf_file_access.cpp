@@ -9,6 +9,7 @@
 #include <random>
 #include <string>
 
+#include "support/temp_dir.h"
 #include "support/input_error.h"
 #include "core/base/errors.h"
 #include "io/gltf_file.h"
@@ -20,20 +21,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("hermite_gltf_access_test_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
-    fs::create_directories(path / "model" / "sub");
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  void write(const fs::path& relative, const std::string& bytes) const {
-    std::ofstream(path / relative, std::ios::binary) << bytes;
-  }
+// Each test's own folder, named after this file's tests.
+struct TempDir : hermite::testing::TempDir {
+  TempDir() : hermite::testing::TempDir("hermite_gltf_access_test") { fs::create_directories(path / "model" / "sub"); }
 };
 
 // x y z of a triangle, little-endian floats (36 bytes).

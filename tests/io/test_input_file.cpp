@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
 #include "support/input_error.h"
 #include "core/base/errors.h"
 #include "io/input_file.h"
@@ -22,27 +23,14 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("hermite_input_file_test_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path / name, std::ios::binary) << text;
-    return file(name);
-  }
-  std::string fifo(const std::string& name) const {
-    REQUIRE(::mkfifo(file(name).c_str(), 0600) == 0);
-    return file(name);
-  }
+// Each test's own folder, named after this file's tests.
+struct TempDir : hermite::testing::TempDir {
+  TempDir() : hermite::testing::TempDir("hermite_input_file_test") {}
 };
+std::string makeFifo(const hermite::testing::TempDir& dir, const std::string& name) {
+  REQUIRE(::mkfifo(dir.file(name).c_str(), 0600) == 0);
+  return dir.file(name);
+}
 
 // Restores the process-wide cap when a test changes it.
 struct CapGuard {
@@ -62,7 +50,7 @@ TEST_CASE("input_file: a regular file is read whole, an empty one as empty") {
 
 TEST_CASE("input_file: FIFOs, devices and folders are refused by name without blocking") {
   TempDir dir;
-  const std::string fifo = dir.fifo("pipe.xyz");
+  const std::string fifo = makeFifo(dir, "pipe.xyz");
   CHECK(errorOf([&] { hermite::readInputFile(fifo, "point file"); }) ==
         fifo + ": cannot read (it is a FIFO, not a regular file)");
   const std::string zero = dir.file("zero.xyz");
@@ -79,17 +67,17 @@ TEST_CASE("input_file: FIFOs, devices and folders are refused by name without bl
 TEST_CASE("input_file: every reader goes through it (point, probe, mesh and scene files)") {
   TempDir dir;
   std::vector<std::string> warnings;
-  const std::string fifoPoints = dir.fifo("pipe.xyz");
+  const std::string fifoPoints = makeFifo(dir, "pipe.xyz");
   CHECK(errorOf([&] { hermite::loadPointFile3d(fifoPoints, warnings); }).find("is a FIFO, not a regular file") !=
         std::string::npos);
   const std::string urandom = dir.file("random.pwn");
   fs::create_symlink("/dev/urandom", urandom);
   CHECK(errorOf([&] { hermite::loadPointFile3d(urandom, warnings); }).find("a character device") != std::string::npos);
-  const std::string fifoProbe = dir.fifo("probe.txt");
+  const std::string fifoProbe = makeFifo(dir, "probe.txt");
   CHECK(errorOf([&] { hermite::loadProbePoints3d(fifoProbe); }).find("is a FIFO") != std::string::npos);
-  const std::string fifoMesh = dir.fifo("pipe.obj");
+  const std::string fifoMesh = makeFifo(dir, "pipe.obj");
   CHECK(errorOf([&] { hermite::loadMesh(fifoMesh); }).find("is a FIFO") != std::string::npos);
-  const std::string fifoScene = dir.fifo("scene.json");
+  const std::string fifoScene = makeFifo(dir, "scene.json");
   CHECK(errorOf([&] { hermite::loadSceneFile(fifoScene); }) == fifoScene + ": cannot read (it is a FIFO, not a regular file)");
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
 #include "core/base/errors.h"
 #include "io/mesh_file.h"
 #include "io/point_file.h"
@@ -26,24 +27,9 @@ namespace {
 
 const std::string kMeshes = std::string(HERMITE_FIXTURES) + "/meshes";
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("hermite_mesh_io_test_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  std::string write(const std::string& name, const std::string& bytes) const {
-    const std::string p = file(name);
-    std::ofstream out(p, std::ios::binary);
-    out << bytes;
-    return p;
-  }
+// Each test's own folder, named after this file's tests.
+struct TempDir : hermite::testing::TempDir {
+  TempDir() : hermite::testing::TempDir("hermite_mesh_io_test") {}
 };
 
 // A closed octahedron with outward counter-clockwise triangles and unit vertex normals, the

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
 #include "core/base/errors.h"
 #include "io/point_file.h"
 
@@ -22,30 +23,9 @@ namespace {
 
 const std::string kPoints = std::string(HERMITE_FIXTURES) + "/points";
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() /
-           ("hermite_io_test_" + std::to_string(::getpid()) + "_" + std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    const std::string p = (path / name).string();
-    std::ofstream out(p, std::ios::binary);
-    out << text;
-    return p;
-  }
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
+// Each test's own folder, named after this file's tests.
+struct TempDir : hermite::testing::TempDir {
+  TempDir() : hermite::testing::TempDir("hermite_io_test") {}
 };
 
 std::string load3dError(const std::string& path) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "support/temp_dir.h"
 #include "core/base/errors.h"
 #include "scene/scene_file.h"
 
@@ -26,27 +27,9 @@ namespace {
 
 const std::string kFixtures = HERMITE_FIXTURES;
 
-struct TempDir {
-  fs::path path;
-  TempDir() {
-    std::random_device rd;
-    path = fs::temp_directory_path() / ("hermite_scene_test_" + std::to_string(::getpid()) + "_" +
-                                        std::to_string(rd()));
-    fs::create_directories(path);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::permissions(path, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path, ec);
-  }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  // Names in the directory, to check no temporary is left behind.
-  std::vector<std::string> entries() const {
-    std::vector<std::string> names;
-    for (const auto& e : fs::directory_iterator(path)) names.push_back(e.path().filename().string());
-    std::sort(names.begin(), names.end());
-    return names;
-  }
+// Each test's own folder, named after this file's tests.
+struct TempDir : hermite::testing::TempDir {
+  TempDir() : hermite::testing::TempDir("hermite_scene_test") {}
 };
 
 std::string readText(const std::string& path) {
