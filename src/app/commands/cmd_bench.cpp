@@ -332,10 +332,33 @@ Result benchPuTori(int N, const std::string& label) {
           fitS, "s"};
 }
 
-}  // namespace
+using Jobs = std::vector<std::pair<std::string, std::function<Result()>>>;
 
-int runBench(const BenchArgs& args) {
-  std::vector<std::pair<std::string, std::function<Result()>>> jobs;
+// Patch editor: re-tessellating a 4 × 4 grid at 64 × 64 samples per patch after a
+// handle moved (edit + grid + tessellation), as while dragging.
+Result benchRetessellate(bool quick) {
+  PatchSpec spec;
+  spec.splits = {4, 4};
+  spec.tessellation = 64;
+  spec.knots = patchKnotData(spec);
+  const int repeats = quick ? 3 : 51;
+  std::vector<double> ms;
+  for (int k = 0; k < repeats; ++k) {
+    const auto t0 = std::chrono::steady_clock::now();
+    spec = movePatchHandle(spec, PatchHandle{PatchHandle::TangentU, 2, 2, 0, 0},
+                           spec.knots[2 * 5 + 2].X + Vec<3>(0.1, 0.05 * (k % 3), 0.0));
+    const PatchGrid grid = buildPatchGrid(spec);
+    const PatchGrid::Tessellation t = grid.tessellate(spec.tessellation);
+    ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+    if (t.positions.cols() != 16 * 64 * 64) throw EnvironmentError("bench: unexpected tessellation size");
+  }
+  std::sort(ms.begin(), ms.end());
+  return {"patch/retessellate-4x4-64", {{"patches", 16}, {"samples_per_patch", 64 * 64}, {"repeats", repeats}},
+          ms[ms.size() / 2], "ms"};
+}
+
+// Fits and evaluation of the 3D HRBF cases.
+void addFitJobs(Jobs& jobs, const BenchArgs& args) {
   const int fitRepeats = args.quick ? 1 : 7;
   for (const FitCase& c : fitCases()) {
     for (int N : {100, 250, 500, 1000}) {
@@ -348,7 +371,10 @@ int runBench(const BenchArgs& args) {
     const int repeats = args.quick ? 1 : 7;
     jobs.emplace_back("eval3d/" + c.label, [c, points, repeats] { return benchEval(c, 1000, points, repeats); });
   }
+}
 
+// Reading PLY, meshing and hole filling.
+void addMeshJobs(Jobs& jobs, const BenchArgs& args) {
   jobs.emplace_back("io/ply-load", [quick = args.quick] {
     return quick ? benchPlyLoad(100000, 1) : benchPlyLoad(1000000, 5);
   });
@@ -370,7 +396,10 @@ int runBench(const BenchArgs& args) {
                              quick ? openWavySphereMesh(200, 20, 6, 0.3) : openWavySphereMesh(2000, 40, 13, 0.3),
                              quick ? 1 : 3);
   });
+}
 
+// Rendering (on the OpenGL that OSMesa finds), the patch editor, GUI latency, PU at scale.
+void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
   // Rendering, on the OpenGL that OSMesa finds on this machine.
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {
     const TracerBenchResult r =
@@ -393,29 +422,7 @@ int runBench(const BenchArgs& args) {
             {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
   });
 
-  // Patch editor: re-tessellating a 4 × 4 grid at 64 × 64 samples per patch after a
-  // handle moved (edit + grid + tessellation), as while dragging.
-  jobs.emplace_back("patch/retessellate-4x4-64", [quick = args.quick]() -> Result {
-    PatchSpec spec;
-    spec.splits = {4, 4};
-    spec.tessellation = 64;
-    spec.knots = patchKnotData(spec);
-    const int repeats = quick ? 3 : 51;
-    std::vector<double> ms;
-    for (int k = 0; k < repeats; ++k) {
-      const auto t0 = std::chrono::steady_clock::now();
-      spec = movePatchHandle(spec, PatchHandle{PatchHandle::TangentU, 2, 2, 0, 0},
-                             spec.knots[2 * 5 + 2].X + Vec<3>(0.1, 0.05 * (k % 3), 0.0));
-      const PatchGrid grid = buildPatchGrid(spec);
-      const PatchGrid::Tessellation t = grid.tessellate(spec.tessellation);
-      ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
-      if (t.positions.cols() != 16 * 64 * 64) throw EnvironmentError("bench: unexpected tessellation size");
-    }
-    std::sort(ms.begin(), ms.end());
-    return {"patch/retessellate-4x4-64", {{"patches", 16}, {"samples_per_patch", 64 * 64}, {"repeats", repeats}},
-            ms[ms.size() / 2], "ms"};
-  });
-
+  jobs.emplace_back("patch/retessellate-4x4-64", [quick = args.quick] { return benchRetessellate(quick); });
   // GUI latency: dragging a sample until the refitted view is on screen.
   for (const auto& [dim, n] : {std::pair{3, 250}, std::pair{2, 200}}) {
     const std::string name = "gui/drag-latency-" + std::to_string(dim) + "d/N=" + std::to_string(n);
@@ -432,7 +439,10 @@ int runBench(const BenchArgs& args) {
     const int n = args.quick ? N / 100 : N;
     jobs.emplace_back(std::string("pu3d/two-tori/N=") + label, [n, label = std::string(label)] { return benchPuTori(n, label); });
   }
+}
 
+// Runs the jobs `args.only` selects and prints their results (a table, or JSON with --json).
+int runJobs(Jobs& jobs, const BenchArgs& args) {
   std::vector<Result> results;
   for (auto& [name, job] : jobs) {
     if (!args.only.empty() && name.find(args.only) == std::string::npos) continue;
@@ -459,6 +469,16 @@ int runBench(const BenchArgs& args) {
     writeStdout("cores " + std::to_string(availableCores()) + ", threads " + std::to_string(threadCount()) + "\n");
   }
   return 0;
+}
+
+}  // namespace
+
+int runBench(const BenchArgs& args) {
+  Jobs jobs;
+  addFitJobs(jobs, args);
+  addMeshJobs(jobs, args);
+  addRenderJobs(jobs, args);
+  return runJobs(jobs, args);
 }
 
 }  // namespace hermite::app
