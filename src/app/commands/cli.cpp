@@ -1,16 +1,20 @@
 #include "app/commands/cli.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <exception>
+#include <filesystem>
 #include <iostream>
 #include <new>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands/byte_size.h"
 #include "app/commands/commands.h"
+#include "app/commands/error_report.h"
 #include "app/commands/fatal_exit.h"
 #include "app/commands/output.h"
 #include "core/base/errors.h"
@@ -85,15 +89,56 @@ int parse(CLI::App& cmd, int argc, char** argv) {
   } catch (const CLI::CallForAllHelp& e) {
     return cmd.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::fprintf(stderr, "hermite-lab: %s\n", e.what());
-    std::fprintf(stderr, "run 'hermite-lab %s --help' for usage\n", cmd.get_name().c_str());
+    const std::string help = cmd.get_name() == "hermite-lab" ? "hermite-lab --help" : "hermite-lab " + cmd.get_name() + " --help";
+    reportError(2, "hermite-lab", e.what());
+    std::fprintf(stderr, "run '%s' for usage\n", help.c_str());
     return 2;
   }
   return -1;
 }
 
+// Edits (insert, delete, replace) between two short words.
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// What the first argument asks before any command runs: help, the version, or a mistyped
+// command (a word that is no file and within two edits of a command); none to go on.
+std::optional<int> topLevel(const std::string& first) {
+  if (first == "--help" || first == "-h" || first == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (first == "--version" || first == "version") {
+    writeStdout("hermite-lab " HERMITE_VERSION "\n");
+    return 0;
+  }
+  if (first.empty() || first[0] == '-' || first.find_first_of("./") != std::string::npos ||
+      std::filesystem::exists(first))
+    return std::nullopt;
+  constexpr const char* kCommands[] = {"fit", "eval", "render", "sweep", "mesh", "holefill", "patch-table", "bench", "help", "version"};
+  for (const char* command : kCommands)
+    if (first == command) return std::nullopt;
+  for (const char* command : kCommands)
+    if (editDistance(first, command) <= 2)
+      throw UsageError("unknown command '" + first + "' (did you mean '" + command + "'?); 'hermite-lab --help' lists the commands");
+  return std::nullopt;
+}
+
 int dispatch(int argc, char** argv) {
   const std::string first = argc > 1 ? argv[1] : "";
+  if (const std::optional<int> rc = topLevel(first)) return *rc;
   int threads = 0;
   if (first == "fit") {
     FitArgs a;
@@ -199,10 +244,6 @@ int dispatch(int argc, char** argv) {
     if (threads > 0) setThreadCount(threads);
     return runBench(a);
   }
-  if (first == "--help" || first == "-h" || first == "help") {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
   // No subcommand: the program's main job on SCENE (or the demo scene).
   SceneArgs a;
   CLI::App cmd("Hermite Lab", "hermite-lab");
@@ -218,27 +259,23 @@ int dispatch(int argc, char** argv) {
 int runCli(int argc, char** argv) {
   installFatalHandlers();
   setAvailableMemorySource(querySystemMemory);
+  noteJsonRequested(argc, argv);
   try {
     const int rc = dispatch(argc, argv);
     finishStdout();
     return rc;
   } catch (const InputError& e) {
-    std::fprintf(stderr, "error: %s\n", e.what());
-    return 1;
+    return reportError(1, "error", e.what());
   } catch (const UsageError& e) {
-    std::fprintf(stderr, "usage error: %s\n", e.what());
-    return 2;
+    return reportError(2, "usage error", e.what());
   } catch (const NumericalError& e) {
-    std::fprintf(stderr, "numerical failure: %s\n", e.what());
-    return 3;
+    return reportError(3, "numerical failure", e.what());
   } catch (const EnvironmentError& e) {
-    std::fprintf(stderr, "environment error: %s\n", e.what());
-    return 4;
+    return reportError(4, "environment error", e.what());
   } catch (const std::bad_alloc&) {
     exitOutOfMemory("");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "internal error: %s\n", e.what());
-    return 4;
+    return reportError(4, "internal error", e.what());
   }
 }
 

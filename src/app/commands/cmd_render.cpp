@@ -181,6 +181,7 @@ int runRender(const RenderArgs& args) {
   scene = framedOnLoad(std::move(scene));  // patch / holefill scenes without a camera: frame the content
   const ImageRgba8 image = args.ui ? renderWithPanels(scene, args) : renderView(scene, args);
   writePng(args.output, image);
+  std::fprintf(stderr, "render: wrote %s (%d x %d)\n", args.output.c_str(), image.width, image.height);
   return 0;
 }
 
