@@ -67,8 +67,11 @@ TEST_CASE("scene numbers out of range: 1e400 and smoothing 1e308 exit 1 naming t
     "data": {"preset": "circle"}, "fit": {"kernel": "gaussian", "smoothing": 1e308}})");
   const auto r2 = runCli("fit " + smooth + " --json");
   CHECK(r2.rc == 1);
-  CHECK(r2.out.empty());
   CHECK(r2.err.find("fit.smoothing") != std::string::npos);
+  // With --json standard output holds only the error object (no partial fit report).
+  const nlohmann::json j = nlohmann::json::parse(r2.out);
+  CHECK(j["exit_code"] == 1);
+  CHECK(j["key"] == "fit.smoothing");
 }
 
 TEST_CASE("max_points_per_box near INT_MAX fits one box instead of wrapping 6·max") {
