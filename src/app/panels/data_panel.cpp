@@ -161,20 +161,23 @@ void DataPanel::drawNormals() {
 
 // How many samples, their spacing, the selection and the data warnings.
 void DataPanel::drawSummary() {
+  // Always three lines, so nothing below (the Fit panel's r slider) moves while one drags it;
+  // the warnings themselves are listed in Diagnostics.
   const int dim = ctx_.dimension();
   const FitOutcome* f = ctx_.currentFit();
-  if (f && f->ok()) {
-    int n = 0;
-    double spacing = 0;
-    f->visitImplicit([&](const auto& fit) {
-      n = fit.samples.size();
-      spacing = meanSampleSpacing<std::decay_t<decltype(fit)>::kDim>(fit.samples.points);
-    });
-    ImGui::Text("%d samples (%dD), mean spacing %.4g", n, dim, spacing);
-    if (ctx_.selected >= 0) ImGui::Text("selected: sample %d (N flips, Del deletes)", ctx_.selected);
-    for (const std::string& w : f->warnings())
-      ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", w.c_str());
-  }
+  int n = 0;
+  double spacing = 0;
+  if (f) f->visitImplicit([&](const auto& fit) {
+    n = fit.samples.size();
+    spacing = meanSampleSpacing<std::decay_t<decltype(fit)>::kDim>(fit.samples.points);
+  });
+  if (n > 0) ImGui::Text("%d samples (%dD), mean spacing %.4g", n, dim, spacing);
+  else ImGui::TextDisabled("samples: fitting...");
+  if (ctx_.selected >= 0) ImGui::Text("selected: sample %d (N flips, Del deletes)", ctx_.selected);
+  else ImGui::TextDisabled("no sample selected");
+  const std::size_t warnings = f ? f->warnings().size() : 0;
+  if (warnings > 0) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %zu data / fit warnings (Diagnostics)", warnings);
+  else ImGui::TextDisabled("no warnings");
 }
 
 

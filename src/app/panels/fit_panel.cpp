@@ -15,8 +15,9 @@ namespace {
 
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
 
-// r: a logarithmic slider (one undo step per drag) and exact entry, with r in units of the mean
-// sample spacing; disabled for scale-free kernels.
+// r: a logarithmic slider (one undo step per drag) over 0.1 to 200 mean sample spacings (widened
+// to hold the current r; 1e-4 to 100 before the first fit), exact entry, and r in spacings;
+// disabled for scale-free kernels. A 50-pixel drag changes r by a factor of about 7, not 40.
 void drawRadius(GuiContext& ctx, const FitSpec& fit) {
   const Kernel kernel{fit.kernel, fit.radius};
   double spacing = 0;
@@ -26,7 +27,8 @@ void drawRadius(GuiContext& ctx, const FitSpec& fit) {
     });
   ImGui::BeginDisabled(!kernel.usesRadius());
   double r = fit.radius;
-  const double rMin = 1e-4, rMax = 100.0;
+  const double rMin = spacing > 0 ? std::min(0.1 * spacing, r) : 1e-4;
+  const double rMax = spacing > 0 ? std::max(200.0 * spacing, r) : 100.0;
   if (ImGui::SliderScalar("r", ImGuiDataType_Double, &r, &rMin, &rMax, "%.4g", ImGuiSliderFlags_Logarithmic)) {
     if (!ctx.document.inGesture()) ctx.document.begin("radius");
     Scene s = ctx.scene();
