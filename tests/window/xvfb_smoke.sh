@@ -65,6 +65,7 @@ a = px(1.0, 0.0); b = px(1.3, 0.25)
 print(round(a[0]), round(a[1]), round(b[0]), round(b[1]), s)")"
 
 xdotool mousemove "$PX" "$PY"; sleep 0.3
+xdotool click 1; sleep 0.3          # a click selects the sample; a drag on the selection moves it
 xdotool mousedown 1; sleep 0.2
 for k in 1 2 3 4 5 6; do
   xdotool mousemove $((PX + (TX - PX) * k / 6)) $((PY + (TY - PY) * k / 6)); sleep 0.1

@@ -65,6 +65,10 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   in.mouseX = start.x();
   in.mouseY = start.y();
   frame();
+  in.mouseDown[0] = true;  // a click selects it, then a press on the selection grabs it
+  frame();
+  in.mouseDown[0] = false;
+  frame();
   in.mouseDown[0] = true;
   frame();
   std::vector<double> latency, withWait, frames, fit, view;

@@ -21,6 +21,9 @@ namespace hermite::app {
 
 namespace {
 
+// How far (view pixels) the mouse may move between press and release of a click.
+constexpr double kClickSlopPx = 3.0;
+
 // The view's rectangle: right of the left panel, above the explorer strip and the status bar;
 // the whole window when the panels are hidden (Tab).
 void layoutView(ViewRect& view, int width, int height, const PanelVisibility& panels) {
@@ -193,9 +196,13 @@ void GuiApp::handleViewInput(const FrameInput& in) {
   if (ctx_.drag != Drag::None) {
     if (!anyDown) {
       if (ctx_.drag != Drag::Orbit && ctx_.drag != Drag::Pan) ctx_.document.end();
+      if (click_) ctx_.selected = click_->sample;  // a press and release in place: a click selects
+      click_.reset();
       ctx_.drag = Drag::None;
       return;
     }
+    if (click_ && (mouse - click_->at).norm() <= kClickSlopPx) return;  // not yet a drag
+    click_.reset();
     switch (ctx_.drag) {
       case Drag::Orbit: camera_.orbit(delta.x(), delta.y()); break;
       case Drag::Pan: camera_.pan(delta.x(), delta.y()); break;
@@ -231,13 +238,15 @@ void GuiApp::pressInView(const FrameInput& in, const Vec<2>& mouse) {
     ctx_.drag = Drag::SlicePlane;
     return;
   }
-  if (leftPressed && in.ctrl) {
+  if (leftPressed && in.ctrl && !in.shift) {
     samples_.addAt(mouse);
     return;
   }
-  if (leftPressed && !in.shift) {
-    if (samples_.press(mouse)) return;
-    ctx_.selected = -1;
+  if (leftPressed && (!in.shift || in.ctrl)) {
+    // The selected sample (or its tip) moves; Ctrl+Shift moves any sample. Anything else orbits
+    // (3D) or pans (2D) once the mouse moves, and selects what is under it when it does not.
+    if (samples_.press(mouse, in.ctrl && in.shift)) return;
+    click_ = Click{mouse, samples_.sampleAt(mouse)};
     ctx_.drag = ctx_.dimension() == 3 ? Drag::Orbit : Drag::Pan;
     return;
   }

@@ -111,6 +111,13 @@ class GuiApp {
   HoleFillPanel holeFill_{ctx_};
 
   Vec<2> lastMouse_ = Vec<2>::Zero();
+  // A left press that orbits or pans once the mouse moves, and selects `sample` (−1: clears the
+  // selection) when it is released in place.
+  struct Click {
+    Vec<2> at;
+    int sample = -1;
+  };
+  std::optional<Click> click_;
   std::array<bool, 3> prevMouseDown_{};
   std::array<bool, 512> prevKeys_{};
   bool quit_ = false;

@@ -10,12 +10,13 @@ void drawHelpOverlay(GuiContext& ctx) {
   ImGui::SetNextWindowBgAlpha(0.95f);
   if (ImGui::Begin("Controls", &ctx.panels.help, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings)) {
     const char* rows[][2] = {
-        {"left drag (3D)", "orbit the camera"},
+        {"left drag (3D)", "orbit (2D: pan), unless it starts on the selection"},
         {"right / middle drag, Shift+left", "pan"},
         {"wheel", "zoom towards the cursor"},
         {"F / Home", "fit to view / reset the camera"},
         {"click a sample", "select it (highlighted)"},
-        {"drag a sample", "move it (3D: on the plane facing the camera)"},
+        {"drag the selected sample", "move it (3D: on the plane facing the camera)"},
+        {"Ctrl+Shift+drag", "move any sample"},
         {"drag the normal's tip", "rotate the normal"},
         {"N / Del", "flip the normal / delete the sample"},
         {"Ctrl+click", "add a sample (3D: on the surface or the slice plane)"},

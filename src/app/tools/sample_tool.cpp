@@ -94,10 +94,15 @@ int SampleTool::pick(const Vec<2>& mouse, bool* onTip) const {
   return best;
 }
 
-bool SampleTool::press(const Vec<2>& mouse) {
+int SampleTool::sampleAt(const Vec<2>& mouse) const {
+  bool tip = false;
+  return pick(mouse, &tip);
+}
+
+bool SampleTool::press(const Vec<2>& mouse, bool anySample) {
   bool tip = false;
   const int hit = pick(mouse, &tip);
-  if (hit < 0) return false;
+  if (hit < 0 || (!anySample && hit != ctx_.selected)) return false;
   ctx_.selected = hit;
   ctx_.drag = tip ? Drag::NormalTip : Drag::Sample;
   if (const SceneFit<3>* f3 = ctx_.dimension() == 3 && ctx_.fits.shown() ? ctx_.fits.shown()->as<SceneFit<3>>() : nullptr) {

@@ -17,9 +17,11 @@ class SampleTool {
   // Position of sample i and of its normal's tip in view pixels; nullopt when not visible.
   std::optional<Vec<2>> samplePosition(int i) const;
   std::optional<Vec<2>> normalTipPosition(int i) const;
-  // A press at `mouse`: grabs the sample (or the selected sample's tip) under it, selects it and
-  // starts the drag gesture; false when nothing is there.
-  bool press(const Vec<2>& mouse);
+  // A press at `mouse`: grabs the selected sample or its normal's tip under it (anySample: any
+  // sample, which becomes selected) and starts the drag gesture; false when there is none.
+  bool press(const Vec<2>& mouse, bool anySample);
+  // The sample drawn under `mouse` (view pixels), −1 for none.
+  int sampleAt(const Vec<2>& mouse) const;
   void drag(const Vec<2>& mouse);  // the grabbed sample or tip follows the mouse
   void addAt(const Vec<2>& mouse);
   void deleteSelected();

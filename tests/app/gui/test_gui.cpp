@@ -116,7 +116,16 @@ TEST_CASE("UI: dragging a 2D sample moves it and the field is refitted through i
   REQUIRE(p);
   const Vec<2> origin = h.app->viewOrigin();
   const Vec<2> from = *p + origin, to = from + Vec<2>(25, -18);
+  // A drag on an unselected sample pans (the viewer convention): the sample stays put.
   h.drag(from.x(), from.y(), to.x(), to.y());
+  CHECK(h.app->selectedSample() == -1);
+  CHECK(h.app->document().scene().data == scene2d().data);
+  CHECK(!h.app->document().canUndo());
+  h.key(GLFW_KEY_HOME);  // the pan undone
+  REQUIRE(h.app->document().scene() == scene2d());
+  h.click(from.x(), from.y());  // a click selects
+  REQUIRE(h.app->selectedSample() == i);
+  h.drag(from.x(), from.y(), to.x(), to.y());  // dragging the selection moves it
   CHECK(h.app->selectedSample() == i);
   const Scene& s = h.app->document().scene();
   REQUIRE(s.data.isInline());  // the first edit wrote the preset's samples into the scene
@@ -134,6 +143,24 @@ TEST_CASE("UI: dragging a 2D sample moves it and the field is refitted through i
   CHECK(h.app->document().scene() == scene2d());
   h.key(GLFW_KEY_Z, true, true);  // redo
   CHECK(h.app->document().scene().data.points[i][0] == moved.x());
+}
+
+TEST_CASE("UI: Ctrl+Shift+drag moves any sample without selecting it first") {
+  Harness h(scene2d());
+  h.frames(2);
+  const int i = 7;
+  const Vec<2> from = *h.app->sampleScreenPosition(i) + h.app->viewOrigin(), to = from + Vec<2>(-20, 15);
+  h.input.ctrl = h.input.shift = true;
+  h.drag(from.x(), from.y(), to.x(), to.y());
+  h.input.ctrl = h.input.shift = false;
+  CHECK(h.app->selectedSample() == i);
+  const Scene& s = h.app->document().scene();
+  REQUIRE(s.data.isInline());
+  CHECK(s.data.points.size() == 24);  // moved, not added
+  const Vec<2> moved(s.data.points[i][0], s.data.points[i][1]);
+  const View2d view = sceneView2d(s, h.app->viewResult().width, h.app->viewResult().height);
+  const Vec<2> origin = h.app->viewOrigin();
+  CHECK((moved - view.pixelToWorld(to.x() - origin.x(), to.y() - origin.y())).norm() < 1e-9);
 }
 
 TEST_CASE("UI: dragging the normal's tip rotates the normal; N flips it; Del deletes; undo restores each") {
