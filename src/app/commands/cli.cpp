@@ -17,6 +17,7 @@
 #include "app/commands/error_report.h"
 #include "app/commands/fatal_exit.h"
 #include "app/commands/output.h"
+#include "core/base/edit_distance.h"
 #include "core/base/errors.h"
 #include "core/base/memory_check.h"
 #include "core/base/threading.h"
@@ -95,22 +96,6 @@ int parse(CLI::App& cmd, int argc, char** argv) {
     return 2;
   }
   return -1;
-}
-
-// Edits (insert, delete, replace) between two short words.
-std::size_t editDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
 }
 
 // What the first argument asks before any command runs: help, the version, or a mistyped
