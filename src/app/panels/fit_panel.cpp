@@ -15,6 +15,18 @@ namespace {
 
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
 
+// The arrow keys over the r slider nudge r by 5 % (with Shift by 0.5 %), one undo step each.
+void nudgeRadius(GuiContext& ctx, const FitSpec& fit) {
+  if (!ImGui::IsItemHovered() || ctx.document.inGesture()) return;
+  const int steps = int(ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_RightArrow))) -
+                    int(ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_LeftArrow)));
+  if (steps == 0) return;
+  const double factor = ImGui::GetIO().KeyShift ? 1.005 : 1.05;
+  FitSpec f = fit;
+  f.radius = fit.radius * std::pow(factor, steps);
+  editFit(ctx, f, "radius");
+}
+
 // r: a logarithmic slider (one undo step per drag) over 0.1 to 200 mean sample spacings (widened
 // to hold the current r; 1e-4 to 100 before the first fit), exact entry, and r in spacings;
 // disabled for scale-free kernels. A 50-pixel drag changes r by a factor of about 7, not 40.
@@ -37,6 +49,7 @@ void drawRadius(GuiContext& ctx, const FitSpec& fit) {
   }
   ctx.recordWidget("fit.radius");
   if (ImGui::IsItemDeactivated() && ctx.document.inGesture()) ctx.document.end();  // one undo step per drag
+  nudgeRadius(ctx, fit);
   double typed = fit.radius;
   if (ImGui::InputDouble("r exact", &typed, 0, 0, "%.6g", ImGuiInputTextFlags_EnterReturnsTrue) && typed > 0 &&
       std::isfinite(typed)) {

@@ -216,6 +216,24 @@ TEST_CASE("UI: the r slider changes the radius, refits, and is one undo step") {
   CHECK(h.app->document().scene() == s);
 }
 
+TEST_CASE("UI: arrow keys over the r slider nudge r by 5 %, with Shift by 0.5 %, one undo step each") {
+  Scene s = scene2d();
+  s.fit.kernel = KernelType::Gaussian;
+  s.fit.radius = 0.3;
+  Harness h(s);
+  h.frames(2);
+  const auto rect = h.app->widgetRect("fit.radius");
+  REQUIRE(rect);
+  h.moveTo(0.5 * ((*rect)[0] + (*rect)[2]), 0.5 * ((*rect)[1] + (*rect)[3]));
+  h.key(GLFW_KEY_RIGHT);
+  CHECK(h.app->document().scene().fit.radius == doctest::Approx(0.3 * 1.05).epsilon(1e-12));
+  h.key(GLFW_KEY_LEFT, false, true);
+  CHECK(h.app->document().scene().fit.radius == doctest::Approx(0.3 * 1.05 / 1.005).epsilon(1e-12));
+  h.key(GLFW_KEY_Z, true);
+  h.key(GLFW_KEY_Z, true);
+  CHECK(h.app->document().scene().fit.radius == 0.3);
+}
+
 TEST_CASE("UI: view-only changes redraw without a refit; a fit setting refits") {
   Harness h(scene3d(), true, 640, 480);
   h.frames(2);
