@@ -13,6 +13,7 @@ void drawHelpOverlay(GuiContext& ctx) {
         {"left drag (3D)", "orbit (2D: pan), unless it starts on the selection"},
         {"right / middle drag, Shift+left", "pan"},
         {"wheel", "zoom towards the cursor"},
+        {"arrows over the r slider", "r x or / 1.05 (Shift: 1.005)"},
         {"F / Home", "fit to view / reset the camera"},
         {"click a sample", "select it (highlighted)"},
         {"drag the selected sample", "move it (3D: on the plane facing the camera)"},
