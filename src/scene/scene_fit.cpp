@@ -80,11 +80,6 @@ bool chooseUpdate(const Scene& scene, SceneFit<Dim>& out) {
   return update;
 }
 
-template <int Dim>
-const ImplicitField<Dim>& fieldOf(const FittedModel<Dim>& m) {
-  return std::visit([](const auto& p) -> const ImplicitField<Dim>& { return *p; }, m);
-}
-
 // The model a similarity transform keeps: `updated`, or the re-solve that `resolve` makes where
 // chooseUpdate says so; with transform.verify the re-solve runs either way and the two are
 // compared on probes around the moved samples.
@@ -97,7 +92,7 @@ FittedModel<Dim> keptModel(const Scene& scene, FittedModel<Dim> updated, const P
   FittedModel<Dim> resolved = resolve();
   if (scene.transform.verify) {
     out.transform.resolveMs = msSince(t0);
-    compareOnProbes<Dim>(fieldOf<Dim>(updated), fieldOf<Dim>(resolved), moved, out.transform);
+    compareOnProbes<Dim>(fittedField<Dim>(updated), fittedField<Dim>(resolved), moved, out.transform);
   }
   return update ? std::move(updated) : std::move(resolved);
 }

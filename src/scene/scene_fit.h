@@ -57,6 +57,12 @@ template <int Dim>
 using FittedModel =
     std::variant<std::unique_ptr<HrbfModel<Dim>>, std::unique_ptr<RbfOffsetModel<Dim>>, std::unique_ptr<PuModel<Dim>>>;
 
+// The field of whichever model `m` holds.
+template <int Dim>
+const ImplicitField<Dim>& fittedField(const FittedModel<Dim>& m) {
+  return std::visit([](const auto& p) -> const ImplicitField<Dim>& { return *p; }, m);
+}
+
 template <int Dim>
 struct SceneFit : SceneFitReport {
   static constexpr int kDim = Dim;
@@ -72,9 +78,7 @@ struct SceneFit : SceneFitReport {
     return modelField();
   }
   // The model without the composition.
-  const ImplicitField<Dim>& modelField() const {
-    return std::visit([](const auto& m) -> const ImplicitField<Dim>& { return *m; }, model);
-  }
+  const ImplicitField<Dim>& modelField() const { return fittedField<Dim>(model); }
   // The partition of unity, or null for a global fit.
   const PuModel<Dim>* pu() const {
     const auto* p = std::get_if<std::unique_ptr<PuModel<Dim>>>(&model);

@@ -3,23 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "app/tools/spec_vectors.h"
 #include "scene/view_bounds.h"
 
 namespace hermite::app {
 
-namespace {
-
-Vec<3> toVec3(const std::array<double, 3>& a) { return Vec<3>(a[0], a[1], a[2]); }
-std::array<double, 3> toArray3(const Vec<3>& v) { return {v.x(), v.y(), v.z()}; }
-
-// The samples' own box; their view bounds (padded) when the samples span nothing (one point).
 template <int Dim>
 Box<Dim> samplesBox(const ViewSpec& view, const Points<Dim>& points) {
   const Box<Dim> b = boundingBox<Dim>(points);
   return b.extent().maxCoeff() > 0 ? b : viewBounds<Dim>(view, points);
 }
 
-}  // namespace
+template Box<2> samplesBox<2>(const ViewSpec&, const Points<2>&);
+template Box<3> samplesBox<3>(const ViewSpec&, const Points<3>&);
 
 std::optional<ShownBox> shownBox3d(const FitOutcome& fit) {
   if (const auto* f3 = fit.as<SceneFit<3>>()) return ShownBox{samplesBox<3>(fit.scene.view, f3->data.points), 1.05};
@@ -33,11 +29,11 @@ std::optional<ShownBox> shownBox3d(const FitOutcome& fit) {
 FramedCamera framedCamera(const CameraSpec& camera, const ShownBox& shown, double aspect) {
   const double radius = 0.5 * shown.box.extent().norm();
   FramedCamera out{camera, radius * shown.margin};
-  const Vec<3> dir = (toVec3(camera.eye) - toVec3(camera.target)).normalized();
+  const Vec<3> dir = (toVec(camera.eye) - toVec(camera.target)).normalized();
   const double fov = camera.fovYDeg * M_PI / 180;
   const Vec<3> centre = shown.box.center();
-  out.camera.target = toArray3(centre);
-  out.camera.eye = toArray3(centre + radius / std::sin(0.5 * fov * std::min(1.0, aspect)) * shown.margin * dir);
+  out.camera.target = toArray(centre);
+  out.camera.eye = toArray(centre + radius / std::sin(0.5 * fov * std::min(1.0, aspect)) * shown.margin * dir);
   return out;
 }
 

@@ -10,6 +10,10 @@
 
 namespace hermite::app {
 
+// The samples' own box; their view bounds (padded) when the samples span nothing (one point).
+template <int Dim>
+Box<Dim> samplesBox(const ViewSpec& view, const Points<Dim>& points);
+
 // The box a 3D view of `fit` shows and the room to leave around it (a factor ≥ 1); none for a 2D
 // fit or an empty mesh.
 struct ShownBox {

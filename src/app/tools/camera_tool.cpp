@@ -78,8 +78,7 @@ void CameraTool::fitToView() {
   const ViewSpec& v = ctx_.scene().view;
   const double aspect = double(ctx_.view.w) / ctx_.view.h;
   if (const auto* f2 = shown->as<SceneFit<2>>()) {
-    Box<2> b = boundingBox<2>(f2->data.points);
-    if (!(b.extent().maxCoeff() > 0)) b = viewBounds<2>(v, f2->data.points);  // one sample: its padded bounds
+    const Box<2> b = samplesBox<2>(v, f2->data.points);
     const Vec<2> c = b.center();
     ctx_.document.setCamera(v.camera, {c.x(), c.y()}, 0.5 * std::max(b.extent().y(), b.extent().x() / aspect) * 1.05);
     return;

@@ -95,6 +95,14 @@ Scene scene2d(int count = 24) {
   return s;
 }
 
+// scene2d with a kernel whose radius matters: Gaussian, r = 0.3.
+Scene gaussianScene2d() {
+  Scene s = scene2d();
+  s.fit.kernel = KernelType::Gaussian;
+  s.fit.radius = 0.3;
+  return s;
+}
+
 Scene scene3d(const std::string& preset = "sphere", int count = 40) {
   Scene s;
   s.mode = SceneMode::Implicit3d;
@@ -197,9 +205,7 @@ TEST_CASE("UI: dragging the normal's tip rotates the normal; N flips it; Del del
 }
 
 TEST_CASE("UI: the r slider changes the radius, refits, and is one undo step") {
-  Scene s = scene2d();
-  s.fit.kernel = KernelType::Gaussian;
-  s.fit.radius = 0.3;
+  const Scene s = gaussianScene2d();
   Harness h(s);
   h.frames(2);
   const auto rect = h.app->widgetRect("fit.radius");
@@ -217,9 +223,7 @@ TEST_CASE("UI: the r slider changes the radius, refits, and is one undo step") {
 }
 
 TEST_CASE("UI: arrow keys over the r slider nudge r by 5 %, with Shift by 0.5 %, one undo step each") {
-  Scene s = scene2d();
-  s.fit.kernel = KernelType::Gaussian;
-  s.fit.radius = 0.3;
+  const Scene s = gaussianScene2d();
   Harness h(s);
   h.frames(2);
   const auto rect = h.app->widgetRect("fit.radius");
