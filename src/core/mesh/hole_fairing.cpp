@@ -74,12 +74,14 @@ HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
   // Graded patches: mean-value weights (see meanValueWeights).
   const std::unordered_map<std::uint64_t, double> meanValue =
       patch.graded ? meanValueWeights(prepared, patch) : std::unordered_map<std::uint64_t, double>{};
-  // Rows: every vertex of the patch (new and boundary); the unknowns are the new vertices.
+  // Rows: every vertex of the patch (new and boundary); the unknowns are the new vertices. A thin
+  // wedge drops the boundary rows: they would carry the mesh's slope into the patch and bend it
+  // through the mesh; without them the patch is a membrane inside the rim's convex hull.
   std::vector<int> rows;
   for (auto& [v, nb] : ring) {
     std::sort(nb.begin(), nb.end());
     nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-    rows.push_back(v);
+    if (isNew(v) || patch.rimFold == 0) rows.push_back(v);
   }
   std::sort(rows.begin(), rows.end());  // deterministic
   std::vector<Eigen::Triplet<double>> entries;

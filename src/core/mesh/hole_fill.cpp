@@ -115,6 +115,11 @@ void fairFitProject(const PreparedMesh& prepared, const HoleFillOptions& options
   if (options.fair && last >= HoleFillStage::Fair) patch = fairPatch(prepared, patch);
   out.unprojected = patch.vertices;
   if (!options.fitAndProject || last < HoleFillStage::Fit || patch.vertices.cols() == 0) return;
+  if (patch.rimFold > 0) {  // the surface around a thin wedge continues into the mesh itself
+    out.notes.push_back(name + ": closes a thin wedge (" + std::to_string(int(patch.rimFold * 180 / M_PI)) +
+                        "° at the rim); the faired patch is kept, not projected onto the implicit");
+    return;
+  }
   if (report) report(0.2);
   try {
     const HoleImplicit implicit = fitHoleImplicit(prepared, patch, options);
@@ -265,11 +270,18 @@ TriMesh appendPatches(const TriMesh& mesh, const std::vector<const HolePatch*>& 
 HoleFillResult fillHoles(const TriMesh& input, const HoleFillOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillResult result;
-  const TriMesh mesh = repairMesh(input, result.repair);
-  result.messages = result.repair.messages;
   if (options.rings < 1) throw InputError("hole filling: rings must be ≥ 1");
   if (!(options.offsetFraction > 0)) throw InputError("hole filling: the offset fraction must be > 0");
+  // Repairing and preparing a large mesh take a while: a chance to stop before and after each.
+  const auto stopped = [&options, &result] {
+    return result.cancelled = result.cancelled || (options.progress && !options.progress(0.0));
+  };
+  if (stopped()) return result;
+  const TriMesh mesh = repairMesh(input, result.repair);
+  result.messages = result.repair.messages;
+  if (stopped()) return result;
   const PreparedMesh prepared(mesh);
+  if (stopped()) return result;
   const std::vector<BoundaryLoop> holes = detectHoles(mesh);
   result.holesFound = static_cast<int>(holes.size());
 

@@ -20,6 +20,7 @@ struct HolePatch {
   double meanEdgeLength = 0;      // l of the boundary
   double diameter = 0;            // largest distance between two boundary vertices
   bool graded = false;            // refined with sizes growing inside (patch_refinement.h)
+  double rimFold = 0;             // > 0: the patch meets the mesh in a thin wedge (median angle, radians)
   bool closed = false;            // the front closed within its bound
   std::string failure;            // why not, when not closed
   int frontSteps = 0;

@@ -4,13 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <numbers>
+#include <string>
 #include <unordered_map>
 #include <unordered_set>
 
 #include "core/base/geometry.h"
 #include "core/mesh/patch_refinement.h"
+#include "core/mesh/triangle_distance.h"
 
 namespace hermite {
 
@@ -195,6 +198,62 @@ Vec<3> meshNormalAcross(const PreparedMesh& prepared, int a, int b) {
   return Vec<3>::Zero();
 }
 
+// x as a percentage with one decimal: 0.0123 → "1.2 %".
+std::string percent(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f %%", 100.0 * x);
+  return text;
+}
+
+// The diameter of the loop: the largest distance between two of its vertices.
+double loopDiameter(const Eigen::Matrix3Xd& V, const BoundaryLoop& loop) {
+  double diameter = 0;
+  for (std::size_t i = 0; i < loop.size(); ++i)
+    for (std::size_t j = i + 1; j < loop.size(); ++j) diameter = std::max(diameter, (V.col(loop[j]) - V.col(loop[i])).norm());
+  return diameter;
+}
+
+// The distance from the centroid of triangle t of `triangles` to the nearest mesh triangle, capped
+// at `cap`; `near` holds the mesh triangles that can be closer than the cap.
+double gapToMesh(const TriMesh& mesh, const Eigen::Matrix3Xi& triangles, Eigen::Index t, const std::vector<int>& near,
+                 double cap) {
+  const Eigen::Matrix3Xd& V = mesh.vertices;
+  const Vec<3> centroid = (V.col(triangles(0, t)) + V.col(triangles(1, t)) + V.col(triangles(2, t))) / 3.0;
+  double gap = cap;
+  for (int m : near)
+    gap = std::min(gap, pointTriangleDistance(centroid, V.col(mesh.triangles(0, m)), V.col(mesh.triangles(1, m)),
+                                              V.col(mesh.triangles(2, m))));
+  return gap;
+}
+
+// The 90th percentile over `triangles` of gapToMesh, capped at `cap`: near zero when the
+// triangulation lies on the mesh itself (the rim of an open sheet filled by a second copy of the
+// sheet). A triangulation without inner vertices has most of its triangles along the rim, where
+// even a real wedge is thin, hence a high percentile rather than the median.
+double gapPercentileToMesh(const TriMesh& mesh, const Eigen::Matrix3Xi& triangles, double cap) {
+  Box<3> box{Vec<3>::Constant(std::numeric_limits<double>::infinity()), Vec<3>::Constant(-std::numeric_limits<double>::infinity())};
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t)
+    for (int c = 0; c < 3; ++c) {
+      box.lo = box.lo.cwiseMin(mesh.vertices.col(triangles(c, t)));
+      box.hi = box.hi.cwiseMax(mesh.vertices.col(triangles(c, t)));
+    }
+  std::vector<int> near;  // mesh triangles whose bounding box comes within `cap` of the patch's
+  for (Eigen::Index m = 0; m < mesh.triangles.cols(); ++m) {
+    Vec<3> lo = mesh.vertices.col(mesh.triangles(0, m)), hi = lo;
+    for (int c = 1; c < 3; ++c) {
+      lo = lo.cwiseMin(mesh.vertices.col(mesh.triangles(c, m)));
+      hi = hi.cwiseMax(mesh.vertices.col(mesh.triangles(c, m)));
+    }
+    if (((lo.array() - cap) <= box.hi.array()).all() && ((hi.array() + cap) >= box.lo.array()).all()) near.push_back(int(m));
+  }
+  std::vector<double> gaps;
+  for (Eigen::Index t = 0; t < triangles.cols(); ++t) gaps.push_back(gapToMesh(mesh, triangles, t, near, cap));
+  if (gaps.empty()) return 0;
+  const std::size_t k = gaps.size() * 9 / 10;
+  std::nth_element(gaps.begin(), gaps.begin() + std::ptrdiff_t(k), gaps.end());
+  return gaps[k];
+}
+
 }  // namespace
 
 Eigen::Matrix3Xi minWeightTriangulation(const PreparedMesh& prepared, const BoundaryLoop& loop, int maxDirect,
@@ -266,19 +325,24 @@ HolePatch minWeightPatch(const PreparedMesh& prepared, const BoundaryLoop& loop,
     patch.failure = "no triangulation of the boundary avoids the mesh's own edges (the hole touches itself)";
     return patch;
   }
+  const Eigen::Matrix3Xd& V = prepared.mesh().vertices;
+  patch.diameter = loopDiameter(V, loop);
+  // A sharp fold at the rim is a thin wedge (a blade's missing face) unless the triangulation
+  // lies on the mesh itself: then the loop is the rim of an open sheet.
   if (const double dihedral = medianBoundaryDihedral(prepared, loop, triangles); dihedral > kRimDihedral) {
-    patch.failure = "every triangulation folds back onto the mesh (" + std::to_string(int(dihedral * 180 / M_PI)) +
-                    "° between neighbours): the rim of an open surface, not a hole";
-    return patch;
+    const double gap = gapPercentileToMesh(prepared.mesh(), triangles, kSheetGap * patch.diameter);
+    if (gap < kSheetGap * patch.diameter) {
+      patch.failure = "every triangulation folds back onto the mesh (" + std::to_string(int(dihedral * 180 / M_PI)) +
+                      "° between neighbours) and lies on it (90 % of its triangles within " + percent(gap / patch.diameter) +
+                      " of the hole's width): the rim of an open surface, not a hole";
+      return patch;
+    }
+    patch.rimFold = dihedral;
   }
   patch.triangles = triangles;
-  const Eigen::Matrix3Xd& V = prepared.mesh().vertices;
   double length = 0;
   for (std::size_t i = 0; i < loop.size(); ++i) length += (V.col(loop[(i + 1) % loop.size()]) - V.col(loop[i])).norm();
   patch.meanEdgeLength = length / double(loop.size());
-  for (std::size_t i = 0; i < loop.size(); ++i)
-    for (std::size_t j = i + 1; j < loop.size(); ++j)
-      patch.diameter = std::max(patch.diameter, (V.col(loop[j]) - V.col(loop[i])).norm());
   double area = 0;
   for (Eigen::Index t = 0; t < triangles.cols(); ++t)
     area += 0.5 * (V.col(triangles(1, t)) - V.col(triangles(0, t))).cross(V.col(triangles(2, t)) - V.col(triangles(0, t))).norm();

@@ -24,9 +24,12 @@ Eigen::Matrix3Xi minWeightTriangulation(const PreparedMesh& prepared, const Boun
                                         double* maxDihedral = nullptr, const std::function<bool()>& keepGoing = {});
 
 // A triangulation whose median angle with the mesh across the boundary edges exceeds this folds
-// back onto the mesh: the loop is the rim of an open surface (the "hole" is everything outside
-// it), not a hole to close.
+// back onto the mesh. When its triangles also lie on the mesh (90 % of their centroids within
+// kSheetGap × the hole's diameter of it) the loop is the rim of an open surface (the
+// "hole" is everything outside it), not a hole to close; otherwise it closes a thin wedge, such as
+// a blade whose upper face is missing.
 inline constexpr double kRimDihedral = 150.0 * 3.14159265358979323846 / 180.0;
+inline constexpr double kSheetGap = 0.02;
 
 // The median, over the loop's edges, of the angle between the mesh triangle and the triangle of
 // `triangles` on either side of the edge (radians; π when an edge is not covered).
@@ -38,8 +41,8 @@ double medianBoundaryDihedral(const PreparedMesh& prepared, const BoundaryLoop& 
 inline constexpr double kUniformPatchTriangles = 20000;
 inline constexpr double kPatchGrading = 0.25;
 
-// The fallback patch: minWeightTriangulation (refused, `closed` false, when its median boundary
-// dihedral passes kRimDihedral), then edges longer than 4/3 of the boundary's mean edge length
+// The fallback patch: minWeightTriangulation (refused, `closed` false, when it is the rim of an
+// open surface: see kRimDihedral), then edges longer than 4/3 of the boundary's mean edge length
 // (graded for large holes, see above) split at their midpoints and interior edges flipped where
 // that raises the smaller minimum angle of the two triangles, until no edge is too long. `progress` (optional) is called
 // with a fraction in [0, 1]; returning false stops with `closed` false.

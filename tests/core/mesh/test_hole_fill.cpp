@@ -8,6 +8,7 @@
 #include "core/mesh/marching_cubes.h"
 #include "core/rbf/hrbf.h"
 #include "core/shapes/analytic_shapes.h"
+#include "core/shapes/mesh_shapes.h"
 #include "core/shapes/presets.h"
 #include "support/mesh_test_shapes.h"
 
@@ -15,6 +16,7 @@ using namespace hermite;
 using hermite::testing::cutBall;
 using hermite::testing::parametricTorus;
 using hermite::testing::removeTriangles;
+using hermite::testing::smallestAngleDegrees;
 
 namespace {
 
@@ -235,6 +237,40 @@ TEST_CASE("hole filling: pathological loops end, filled or reported") {
     REQUIRE(r.holes.size() == 1);
     CHECK(r.holes[0].method == "min-weight");  // 400 edges: past the front's limit
     CHECK_FALSE(r.holes[0].filled);
+  }
+  SUBCASE("a shallow bowl without its lid folds sharply at the rim but does not lie on itself: it closes") {
+    // The lower 20° cap of the unit sphere: a new lid meets it at about 160°, past kRimDihedral,
+    // while its centre stands 1 − cos 20° ≈ 0.06 above the bowl (9 % of the rim's diameter).
+    const TriMesh ball = uvSphereMesh(64, 32);
+    const double rimZ = -std::cos(20.0 * M_PI / 180.0);
+    const TriMesh bowl = removeTriangles(ball, [&](int t) {
+      for (int c = 0; c < 3; ++c)
+        if (ball.vertices(2, ball.triangles(c, t)) > rimZ + 1e-9) return true;
+      return false;
+    });
+    const HoleFillResult r = fillHoles(bowl);
+    CHECK(r.holesFound == 1);
+    CHECK(r.holesFilled == 1);
+    for (const std::string& m : r.messages) MESSAGE(m);
+    const MeshCheck c = checkMesh(r.mesh);
+    CHECK(c.closedManifold());
+    CHECK(c.eulerCharacteristic == 2);
+    CHECK(smallestAngleDegrees(r.mesh, bowl.triangleCount()) >= 1.0);
+    for (int v = bowl.vertexCount(); v < r.mesh.vertexCount(); ++v)  // the lid stays inside the sphere
+      CHECK(r.mesh.vertices.col(v).norm() <= 1.0 + 1e-6);
+  }
+  SUBCASE("a flat sheet's rim is refused with the gap that shows the fill would lie on the sheet") {
+    const TriMesh ball = uvSphereMesh(64, 32);
+    TriMesh disc = removeTriangles(ball, [&](int t) {  // the lower cap, pressed flat
+      for (int c = 0; c < 3; ++c)
+        if (ball.vertices(2, ball.triangles(c, t)) > -std::cos(20.0 * M_PI / 180.0) + 1e-9) return true;
+      return false;
+    });
+    disc.vertices.row(2).setZero();
+    const HoleFillResult r = fillHoles(disc);
+    CHECK(r.holesFilled == 0);
+    REQUIRE(r.holes.size() == 1);
+    CHECK(r.holes[0].reason.find("lies on it (90 % of its triangles within 0.0 %") != std::string::npos);
   }
   SUBCASE("a front bounded to too few steps ends at once; the minimum-weight fallback closes the hole") {
     HoleFillOptions o;
