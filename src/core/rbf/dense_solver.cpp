@@ -244,6 +244,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   if (!allFinite(sys.A) || !allFinite(sys.P) || !sys.b.allFinite())
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
   clock.lap("mirror");
+  throwIfCancelled(sys.cancel);
 
   Eigen::MatrixXd QR;
   Eigen::VectorXd tau;
@@ -274,6 +275,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     // spanning null(Pᵀ): the unknowns x = Q [0; y] satisfy Pᵀx = 0 by construction.
     projectLower(sys.A, QR, tau);
     clock.lap("project");
+    throwIfCancelled(sys.cancel);
     Eigen::VectorXd bq = sys.b;
     applyQ(QR, tau, 'L', 'T', bq);
     Eigen::VectorXd y = bq.tail(n - m);
@@ -303,6 +305,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
                  "the " + std::string(solverName(choice)) + " factorisation of " + std::to_string(n + m) +
                      " unknowns (" + std::to_string(copies) + " more matrices of that size)"},
                 kDenseFitRemedy);
+    throwIfCancelled(sys.cancel);
     Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
     rhs.head(n) = sys.b;
     Eigen::MatrixXd K = m > 0 ? saddleMatrix(sys.A, sys.P) : std::move(sys.A);

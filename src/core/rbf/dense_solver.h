@@ -21,6 +21,7 @@
 
 #include <Eigen/Core>
 
+#include "core/base/cancel_token.h"
 #include "core/base/enum_names.h"
 
 namespace hermite {
@@ -42,6 +43,9 @@ struct SaddleSystem {
   // +1: A is positive definite on null(Pᵀ) (and on everything when m = 0); −1: negative
   // definite there; 0: no known definiteness (indefinite paths only).
   int definiteSign = 0;
+  // Polled between tiles of the factorisation (≤ 50 ms of work each): solveSaddle throws
+  // Cancelled once it is set. Null: never cancelled.
+  const CancelToken* cancel = nullptr;
 };
 
 struct SaddleSolution {
