@@ -15,4 +15,24 @@ int threadCount();
 // std::thread::hardware_concurrency.
 int availableCores();
 
+// Cores not busy with other work right now: availableCores() minus the runnable tasks of the
+// whole machine other than the caller (/proc/loadavg's instantaneous count), at least 1.
+int idleCores();
+
+// For one large BLAS call sequence: OpenBLAS gets no more threads than idleCores() (a thread
+// sharing a core with another busy process makes every synchronisation of a factorisation wait
+// for it: 4–10× slower fits, docs/performance.md); the previous count comes back at the end.
+class BlasThreadsForLoad {
+ public:
+  BlasThreadsForLoad();
+  ~BlasThreadsForLoad();
+  BlasThreadsForLoad(const BlasThreadsForLoad&) = delete;
+  BlasThreadsForLoad& operator=(const BlasThreadsForLoad&) = delete;
+  int threads() const { return threads_; }
+
+ private:
+  int previous_ = 0;
+  int threads_ = 0;
+};
+
 }  // namespace hermite

@@ -13,6 +13,7 @@ int squareMatrices(SolverChoice path, bool polynomial) {
   switch (path) {
     case SolverChoice::Cholesky:
     case SolverChoice::NullspaceCholesky:
+    case SolverChoice::ProjectedCholesky:
       return 1;
     case SolverChoice::Lu:
       return polynomial ? 2 : 1;

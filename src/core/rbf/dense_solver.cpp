@@ -5,13 +5,18 @@
 #include <cmath>
 #include <limits>
 #include <cstdio>
+#include <functional>
 #include <string>
 
 #include <cblas.h>
 #include <lapacke.h>
 
+#include <Eigen/LU>
+
 #include "core/base/errors.h"
+#include "core/base/huge_pages.h"
 #include "core/base/memory_check.h"
+#include "core/base/threading.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/lapack_errors.h"
 
@@ -74,11 +79,81 @@ Factorised checked(Factorised out) {
   return out;
 }
 
+// The factorisations in panels of kPanel columns, polled for cancellation between calls that each
+// stay under about 50 ms on this machine (docs/performance.md): the trailing updates run in slabs of
+// kSlab columns. Used when a fit carries a cancel token (the GUI); the command line calls LAPACK.
+constexpr lapack_int kPanel = 256;
+constexpr lapack_int kSlab = 1024;
+
+// Lower Cholesky of the k × k block at M (leading dimension ld), right-looking: the diagonal block
+// by dpotrf, the panel below it by a triangular solve, the trailing lower triangle by dsyrk/dgemm.
+// Returns dpotrf's info for the whole matrix (0, or the 1-based index of the failing pivot).
+lapack_int cancellableCholesky(double* M, lapack_int k, lapack_int ld, const CancelToken* cancel) {
+  for (lapack_int j = 0; j < k; j += kPanel) {
+    throwIfCancelled(cancel);
+    const lapack_int b = std::min(kPanel, k - j), rest = k - j - b;
+    double* D = M + std::size_t(j) * ld + j;
+    const lapack_int info = LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', b, D, ld);
+    if (info != 0) return info > 0 ? info + j : info;
+    if (rest == 0) break;
+    double* below = D + b;  // rows j + b …, columns j … j + b
+    cblas_dtrsm(CblasColMajor, CblasRight, CblasLower, CblasTrans, CblasNonUnit, rest, b, 1.0, D, ld, below, ld);
+    double* trailing = M + std::size_t(j + b) * ld + j + b;
+    for (lapack_int c = 0; c < rest; c += kSlab) {
+      throwIfCancelled(cancel);
+      const lapack_int w = std::min(kSlab, rest - c);
+      double* slab = trailing + std::size_t(c) * ld + c;
+      cblas_dsyrk(CblasColMajor, CblasLower, CblasNoTrans, w, b, -1.0, below + c, ld, 1.0, slab, ld);
+      if (rest - c - w > 0)
+        cblas_dgemm(CblasColMajor, CblasNoTrans, CblasTrans, rest - c - w, w, b, -1.0, below + c + w, ld, below + c, ld,
+                    1.0, slab + w, ld);
+    }
+  }
+  return 0;
+}
+
+// LU with partial pivoting of the n × n matrix A (leading dimension n), right-looking: each panel
+// by dgetrf, its row interchanges applied left and right, U₁₂ by a triangular solve, the trailing
+// block by dgemm. Returns dgetrf's info for the whole matrix (the first exactly zero pivot).
+lapack_int cancellableLu(double* A, lapack_int n, lapack_int* ipiv, const CancelToken* cancel) {
+  lapack_int first = 0;
+  for (lapack_int j = 0; j < n; j += kPanel) {
+    throwIfCancelled(cancel);
+    const lapack_int b = std::min(kPanel, n - j), rest = n - j - b;
+    double* D = A + std::size_t(j) * n + j;
+    const lapack_int info = LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n - j, b, D, n, ipiv + j);
+    if (info < 0) return info;
+    if (info > 0 && first == 0) first = info + j;
+    for (lapack_int i = j; i < j + b; ++i) ipiv[i] += j;
+    if (j > 0) LAPACKE_dlaswp_work(LAPACK_COL_MAJOR, j, A, n, j + 1, j + b, ipiv, 1);
+    if (rest == 0) break;
+    double* right = A + std::size_t(j + b) * n;
+    LAPACKE_dlaswp_work(LAPACK_COL_MAJOR, rest, right, n, j + 1, j + b, ipiv, 1);
+    cblas_dtrsm(CblasColMajor, CblasLeft, CblasLower, CblasNoTrans, CblasUnit, b, rest, 1.0, D, n, right + j, n);
+    for (lapack_int c = 0; c < rest; c += kSlab) {
+      throwIfCancelled(cancel);
+      const lapack_int w = std::min(kSlab, rest - c);
+      double* slab = right + std::size_t(c) * n;
+      cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, rest, w, b, -1.0, D + b, n, slab + j, n, 1.0, slab + j + b, n);
+    }
+  }
+  return first;
+}
+
+// rcond as LAPACK's ?con defines it, 1 / (‖M‖₁ · est ‖M⁻¹‖₁), with the estimate made by
+// dlacn2 through the factors' own solves (`solve`: v ← M⁻¹v, M symmetric). LAPACK's ?con make
+// the same estimate through dlatrs, a scaled unblocked triangular solve several times slower
+// than the blocked solves (docs/performance.md). 0 when the estimate is not finite.
+double reciprocalCondition(double anorm, Index n, const std::function<void(Eigen::VectorXd&)>& solve) {
+  const double inverseNorm = symmetricInverseNormEstimate(n, solve);
+  return anorm > 0 && inverseNorm > 0 && std::isfinite(inverseNorm) ? 1.0 / (anorm * inverseNorm) : 0.0;
+}
+
 // Cholesky of sign·M in place, M = the k × k block at `M` with leading dimension `ld` (lower
 // triangle only; the upper triangle is left untouched so a failure can be undone). Solves
 // sign·M y = sign·rhs in place of rhs.
 Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs,
-                         PhaseClock& clock) {
+                         PhaseClock& clock, const CancelToken* cancel, bool estimateCondition = true) {
   Factorised out;
   if (k == 0) {  // nothing to solve (LAPACK would reject the empty right-hand side's stride)
     out.ok = true;
@@ -89,7 +164,7 @@ Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Ei
     for (lapack_int j = 0; j < k; ++j)
       for (lapack_int i = j; i < k; ++i) M[size_t(j) * ld + i] = -M[size_t(j) * ld + i];
   const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', k, M, ld);
-  const lapack_int info = LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', k, M, ld);
+  const lapack_int info = cancel ? cancellableCholesky(M, k, ld, cancel) : LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', k, M, ld);
   clock.lap("factor");
   if (info != 0) {
     out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
@@ -98,10 +173,14 @@ Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Ei
                                         : "Cholesky: invalid argument " + std::to_string(-info);
     return out;
   }
-  LAPACKE_dpocon(LAPACK_COL_MAJOR, 'L', k, M, ld, anorm, &out.rcond);
-  clock.lap("condition");
+  if (estimateCondition) {
+    out.rcond = reciprocalCondition(anorm, k, [&](Eigen::VectorXd& v) {
+      LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, v.data(), k);
+    });
+    clock.lap("condition");
+  }
   if (sign < 0) rhs *= -1.0;
-  LAPACKE_dpotrs(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
+  LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
   return checked(out);
 }
 
@@ -126,6 +205,7 @@ void projectLower(Eigen::MatrixXd& A, const Eigen::MatrixXd& QR, const Eigen::Ve
 Eigen::MatrixXd saddleMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& P) {
   const Index n = A.rows(), m = P.cols();
   Eigen::MatrixXd K(n + m, n + m);
+  adviseHugePages(K.data(), sizeof(double) * std::size_t(K.size()));
   K.topLeftCorner(n, n) = A;
   K.topRightCorner(n, m) = P;
   K.bottomLeftCorner(m, n) = P.transpose();
@@ -133,39 +213,48 @@ Eigen::MatrixXd saddleMatrix(const Eigen::MatrixXd& A, const Eigen::MatrixXd& P)
   return K;
 }
 
-Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
+Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs, PhaseClock& clock) {
   Factorised out;
   takeLapackError();  // a failed earlier path reported its own error through info
   const lapack_int n = toLapack(K.rows());
   std::vector<lapack_int> ipiv(n);
   const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, K.data(), n);
   const lapack_int info = LAPACKE_dsytrf(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data());
+  clock.lap("factor");
   if (info != 0) {
     out.failure = info > 0 ? "symmetric-indefinite LDLᵀ: D(" + std::to_string(info) + "," +
                                  std::to_string(info) + ") is exactly zero (singular)"
                            : "LDLᵀ: invalid argument " + std::to_string(-info);
     return out;
   }
-  LAPACKE_dsycon(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data(), anorm, &out.rcond);
-  LAPACKE_dsytrs(LAPACK_COL_MAJOR, 'L', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
+  out.rcond = reciprocalCondition(anorm, n, [&](Eigen::VectorXd& v) {
+    LAPACKE_dsytrs_work(LAPACK_COL_MAJOR, 'L', n, 1, K.data(), n, ipiv.data(), v.data(), n);
+  });
+  clock.lap("condition");
+  LAPACKE_dsytrs_work(LAPACK_COL_MAJOR, 'L', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
   return checked(out);
 }
 
-Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs) {
+Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs, PhaseClock& clock, const CancelToken* cancel) {
   Factorised out;
   takeLapackError();  // a failed earlier path reported its own error through info
   const lapack_int n = toLapack(K.rows());
   std::vector<lapack_int> ipiv(n);
   const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, K.data(), n);
-  const lapack_int info = LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, K.data(), n, ipiv.data());
+  const lapack_int info =
+      cancel ? cancellableLu(K.data(), n, ipiv.data(), cancel) : LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, K.data(), n, ipiv.data());
+  clock.lap("factor");
   if (info != 0) {
     out.failure = info > 0 ? "LU: U(" + std::to_string(info) + "," + std::to_string(info) +
                                  ") is exactly zero (the system is singular)"
                            : "LU: invalid argument " + std::to_string(-info);
     return out;
   }
-  LAPACKE_dgecon(LAPACK_COL_MAJOR, '1', n, K.data(), n, anorm, &out.rcond);
-  LAPACKE_dgetrs(LAPACK_COL_MAJOR, 'N', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
+  out.rcond = reciprocalCondition(anorm, n, [&](Eigen::VectorXd& v) {  // K is symmetric: K⁻ᵀ = K⁻¹
+    LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', n, 1, K.data(), n, ipiv.data(), v.data(), n);
+  });
+  clock.lap("condition");
+  LAPACKE_dgetrs_work(LAPACK_COL_MAJOR, 'N', n, 1, K.data(), n, ipiv.data(), rhs.data(), n);
   return checked(out);
 }
 
@@ -215,6 +304,93 @@ void mirrorLowerToUpper(Eigen::MatrixXd& M) {
 
 bool allFinite(const Eigen::MatrixXd& M) { return M.allFinite(); }
 
+// The factors of the projected-cholesky path (dense_solver.h) and its solve. With C = QR,
+// B = QᵀAQ = [[B₁₁, B₂₁ᵀ], [B₂₁, B₂₂]] (q and n − q rows), B₂₂ = sign·LLᵀ:
+//   A x = b  ⇔  B z = g = Qᵀb, x = Qz;  z₁ = S⁻¹(g₁ − B₂₁ᵀ B₂₂⁻¹ g₂),  z₂ = B₂₂⁻¹ g₂ − W z₁,
+// with W = B₂₂⁻¹ B₂₁ (n − q × q) and the Schur complement S = B₁₁ − B₂₁ᵀ W (q × q).
+struct ProjectedFactors {
+  Eigen::MatrixXd QR;
+  Eigen::VectorXd tau;
+  const double* L = nullptr;  // the Cholesky factor of sign·B₂₂, inside the system's A
+  lapack_int ld = 0;
+  double sign = 1;
+  Eigen::MatrixXd B21, W;
+  Eigen::FullPivLU<Eigen::MatrixXd> schur;
+
+  Index n() const { return QR.rows(); }
+  Index q() const { return QR.cols(); }
+
+  // v ← B₂₂⁻¹ v for a block of n − q rows.
+  void solveTrailing(Eigen::Ref<Eigen::MatrixXd> v) const {
+    LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', toLapack(v.rows()), toLapack(v.cols()), L, ld, v.data(),
+                        toLapack(v.outerStride()));
+    v *= sign;
+  }
+
+  // v ← A⁻¹ v.
+  void solve(Eigen::VectorXd& v) const {
+    applyQ(QR, tau, 'L', 'T', v);
+    Eigen::MatrixXd y = v.tail(n() - q());
+    solveTrailing(y);
+    const Eigen::VectorXd z1 = schur.solve(Eigen::VectorXd(v.head(q()) - B21.transpose() * y));
+    v.head(q()) = z1;
+    v.tail(n() - q()) = y - W * z1;
+    applyQ(QR, tau, 'L', 'N', v);
+  }
+};
+
+// The projected-cholesky path on the system's A (m = 0; its upper triangle must hold A). On
+// success x = A⁻¹ b and the factors are returned; on failure A's lower triangle and diagonal are
+// overwritten (restoreSymmetric undoes it) and `failure` says why.
+Factorised projectedCholeskySolve(SaddleSystem& sys, Eigen::VectorXd& x, PhaseClock& clock) {
+  Factorised out;
+  const Index n = sys.A.rows();
+  ProjectedFactors F;
+  F.QR = sys.definiteOn;
+  try {
+    factorPolynomialBlock(F.QR, F.tau);
+  } catch (const NumericalError&) {
+    out.failure = "projected Cholesky: the samples do not determine the kernel's polynomial";
+    return out;
+  }
+  const Index q = F.q();
+  clock.lap("qr");
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'U', toLapack(n), sys.A.data(), toLapack(n));
+  projectLower(sys.A, F.QR, F.tau);
+  clock.lap("project");
+  throwIfCancelled(sys.cancel);
+  F.sign = sys.definiteOnSign < 0 ? -1.0 : 1.0;
+  F.ld = toLapack(n);
+  double* B22 = sys.A.data() + q * n + q;
+  Eigen::VectorXd g = sys.b;
+  applyQ(F.QR, F.tau, 'L', 'T', g);
+  Eigen::VectorXd y = g.tail(n - q);
+  out = choleskySolve(B22, toLapack(n - q), F.ld, F.sign, y, clock, sys.cancel, false);
+  if (!out.ok) {
+    out.failure = "projected " + out.failure;
+    return out;
+  }
+  F.L = B22;
+  F.B21 = sys.A.block(q, 0, n - q, q);
+  F.W = F.B21;
+  F.solveTrailing(F.W);
+  const Eigen::MatrixXd S =
+      Eigen::MatrixXd(sys.A.topLeftCorner(q, q).selfadjointView<Eigen::Lower>()) - F.B21.transpose() * F.W;
+  F.schur.compute(S);
+  if (!F.schur.isInvertible()) {
+    out.ok = false;
+    out.failure = "projected Cholesky: the Schur complement on the kernel's polynomial is singular";
+    return out;
+  }
+  x = sys.b;
+  F.solve(x);
+  clock.lap("solve");
+  // 1-norm condition of A itself: ‖A‖₁ times the Hager–Higham estimate of ‖A⁻¹‖₁.
+  out.rcond = reciprocalCondition(anorm, n, [&F](Eigen::VectorXd& v) { F.solve(v); });
+  clock.lap("condition");
+  return out;
+}
+
 }  // namespace
 
 std::string_view solverName(SolverChoice s) { return nameIn<SolverChoice>(kSolverChoiceNames, s); }
@@ -225,9 +401,13 @@ SolverChoice parseSolverChoice(std::string_view name) {
                    namesIn<SolverChoice>(kSolverChoiceNames));
 }
 
-SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definiteSign) {
-  if (choice == SolverChoice::Auto)
-    choice = definiteSign == 0 ? SolverChoice::Ldlt : m == 0 ? SolverChoice::Cholesky : SolverChoice::NullspaceCholesky;
+SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definiteSign, bool projectable) {
+  const bool canProject = projectable && m == 0 && definiteSign == 0;
+  if (choice == SolverChoice::Auto) {
+    if (definiteSign != 0) return m == 0 ? SolverChoice::Cholesky : SolverChoice::NullspaceCholesky;
+    return canProject ? SolverChoice::ProjectedCholesky : SolverChoice::Lu;
+  }
+  if (choice == SolverChoice::ProjectedCholesky && !canProject) return SolverChoice::Lu;
   if (choice == SolverChoice::Cholesky && m > 0) return SolverChoice::NullspaceCholesky;
   if (choice == SolverChoice::NullspaceCholesky && m == 0) return SolverChoice::Cholesky;
   return choice;
@@ -245,6 +425,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
   clock.lap("mirror");
   throwIfCancelled(sys.cancel);
+  const BlasThreadsForLoad blasThreads;  // fewer BLAS threads while other processes keep cores busy
 
   Eigen::MatrixXd QR;
   Eigen::VectorXd tau;
@@ -256,16 +437,17 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
 
   if (choice == SolverChoice::Cholesky && m > 0)
     out.warnings.push_back("cholesky needs a system without polynomial term; using nullspace-cholesky");
-  choice = plannedSolverPath(choice, m, sys.definiteSign);
+  choice = plannedSolverPath(choice, m, sys.definiteSign, sys.definiteOn.cols() > 0 && sys.definiteOnSign != 0);
   const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
 
   const Eigen::VectorXd diagonal = sys.A.diagonal();  // for restoring A after a failed Cholesky
   Factorised fact;
   if (choice == SolverChoice::Cholesky) {
     out.x = sys.b;
-    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock);
+    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock, sys.cancel);
     if (fact.ok) {
       out.solver = "cholesky";
+      out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n);
       out.c.resize(0);
     } else {
       restoreSymmetric(sys.A, diagonal);
@@ -279,9 +461,10 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     Eigen::VectorXd bq = sys.b;
     applyQ(QR, tau, 'L', 'T', bq);
     Eigen::VectorXd y = bq.tail(n - m);
-    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y, clock);
+    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y, clock, sys.cancel);
     if (fact.ok) {
       out.solver = "nullspace-cholesky";
+      out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n - m);
       // R c = (Qᵀ b)₁ − B₁₂ y, with B₁₂ = B₂₁ᵀ from the (untouched by dpotrf) lower part.
       Eigen::VectorXd rhs = bq.head(m) - sys.A.block(m, 0, n - m, m).transpose() * y;
       out.c = QR.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(rhs);
@@ -291,9 +474,19 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     } else {
       restoreSymmetric(sys.A, diagonal);  // the upper triangle still holds A
     }
+  } else if (choice == SolverChoice::ProjectedCholesky) {
+    fact = projectedCholeskySolve(sys, out.x, clock);
+    if (fact.ok) {
+      out.solver = "projected-cholesky";
+      out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n - sys.definiteOn.cols());
+      out.c.resize(0);
+    } else {
+      restoreSymmetric(sys.A, diagonal);  // the upper triangle still holds A
+    }
   }
 
-  if (!fact.ok && (choice == SolverChoice::Cholesky || choice == SolverChoice::NullspaceCholesky)) {
+  if (!fact.ok && (choice == SolverChoice::Cholesky || choice == SolverChoice::NullspaceCholesky ||
+                   choice == SolverChoice::ProjectedCholesky)) {
     out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
     choice = SolverChoice::Lu;
   }
@@ -312,9 +505,10 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     if (choice == SolverChoice::Ldlt) {
       Eigen::MatrixXd Kcopy = K;  // kept for the LU fallback
       Eigen::VectorXd r = rhs;
-      fact = ldltSolve(K, r);
+      fact = ldltSolve(K, r, clock);
       if (fact.ok) {
         out.solver = "ldlt";
+        out.factorFlops = factorisationFlops(SolverChoice::Ldlt, n + m);
         rhs = r;
       } else {
         out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
@@ -323,9 +517,10 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       }
     }
     if (choice == SolverChoice::Lu) {
-      fact = luSolve(K, rhs);
+      fact = luSolve(K, rhs, clock, sys.cancel);
       if (!fact.ok) throw NumericalError("singular system: " + fact.failure);
       out.solver = "lu";
+      out.factorFlops = factorisationFlops(SolverChoice::Lu, n + m);
     }
     out.x = rhs.head(n);
     out.c = rhs.tail(m);
@@ -338,6 +533,18 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
                          fmt(out.conditionEstimate) + ")");
   if (auto warning = illConditionedWarning(out.conditionEstimate, out.solver)) out.warnings.push_back(*warning);
   return out;
+}
+
+double factorisationFlops(SolverChoice path, Eigen::Index k) {
+  const double n = double(k);
+  return (path == SolverChoice::Lu ? 2.0 : 1.0) * n * n * n / 3.0;
+}
+
+double factorMs(const SaddleSolution& solution) {
+  double ms = 0;
+  for (const auto& [phase, t] : solution.phaseMs)
+    if (phase == "factor") ms = t;
+  return ms;
 }
 
 std::optional<std::string> illConditionedWarning(double conditionEstimate, std::string_view solver) {

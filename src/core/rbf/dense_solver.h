@@ -10,8 +10,14 @@
 //                         (dgeqrf), Zᵀ(±A)Z positive definite, dpotrf on it (n − m unknowns)
 //  - ldlt:                Bunch–Kaufman symmetric-indefinite factorisation (dsytrf)
 //  - lu:                  LU with partial pivoting (dgetrf)
-// Auto picks the cheapest path the kernel's definiteness allows; a failed factorisation falls
-// back to LU with a warning. Only a failed LU or a non-finite result throws NumericalError.
+//  - projected-cholesky:  m = 0, A definite only on null(Cᵀ) for a small block C (n × q: the
+//                         polynomial the kernel's conditional definiteness needs, absent from
+//                         the fit): C = QR, Cholesky of the trailing (n − q) block of QᵀAQ and a
+//                         q × q Schur complement — the exact solution of A x = b at Cholesky cost
+// Auto picks the cheapest path the kernel's definiteness allows, and LU rather than LDLᵀ for an
+// indefinite system (OpenBLAS's dgetrf is faster than LAPACK's dsytrf, docs/performance.md); a
+// failed factorisation falls back to LU with a warning. Only a failed LU or a non-finite result
+// throws NumericalError.
 
 #include <functional>
 #include <optional>
@@ -26,12 +32,14 @@
 
 namespace hermite {
 
-enum class SolverChoice { Auto, Cholesky, NullspaceCholesky, Ldlt, Lu };
-inline constexpr EnumName<SolverChoice> kSolverChoiceNames[] = {{"auto", SolverChoice::Auto},
-                                                                {"cholesky", SolverChoice::Cholesky},
-                                                                {"nullspace-cholesky", SolverChoice::NullspaceCholesky},
-                                                                {"ldlt", SolverChoice::Ldlt},
-                                                                {"lu", SolverChoice::Lu}};
+enum class SolverChoice { Auto, Cholesky, NullspaceCholesky, Ldlt, Lu, ProjectedCholesky };
+inline constexpr EnumName<SolverChoice> kSolverChoiceNames[] = {
+    {"auto", SolverChoice::Auto},
+    {"cholesky", SolverChoice::Cholesky},
+    {"nullspace-cholesky", SolverChoice::NullspaceCholesky},
+    {"ldlt", SolverChoice::Ldlt},
+    {"lu", SolverChoice::Lu},
+    {"projected-cholesky", SolverChoice::ProjectedCholesky}};
 
 std::string_view solverName(SolverChoice s);
 SolverChoice parseSolverChoice(std::string_view name);  // throws InputError
@@ -43,6 +51,11 @@ struct SaddleSystem {
   // +1: A is positive definite on null(Pᵀ) (and on everything when m = 0); −1: negative
   // definite there; 0: no known definiteness (indefinite paths only).
   int definiteSign = 0;
+  // m = 0 and definiteSign = 0 only: C (n × q) with A definite, of sign definiteOnSign, on
+  // null(Cᵀ) — the Hermite rows of the polynomial a conditionally definite kernel needs. Empty:
+  // unknown. Enables the projected-cholesky path.
+  Eigen::MatrixXd definiteOn;
+  int definiteOnSign = 0;
   // Polled between tiles of the factorisation (≤ 50 ms of work each): solveSaddle throws
   // Cancelled once it is set. Null: never cancelled.
   const CancelToken* cancel = nullptr;
@@ -53,6 +66,7 @@ struct SaddleSolution {
   Eigen::VectorXd c;  // m
   std::string solver;              // the path that produced x: cholesky, nullspace-cholesky, ldlt, lu
   double conditionEstimate = 0;    // 1-norm estimate of the factorised matrix (LAPACK ?con)
+  double factorFlops = 0;          // floating-point operations of the factorisation that produced x
   std::vector<std::string> warnings;
   // Wall-clock milliseconds of each phase ("qr", "project", "factor", "condition", "solve",
   // "fallback"), in order, for benchmarks and the diagnostics panel.
@@ -61,12 +75,21 @@ struct SaddleSolution {
 
 // The path solveSaddle tries first for `choice` on a system with m polynomial terms and the
 // kernel block's `definiteSign` (SaddleSystem::definiteSign): auto picks cholesky (m = 0) or
-// nullspace-cholesky for a definite block, else ldlt; cholesky with m > 0 becomes
-// nullspace-cholesky and nullspace-cholesky with m = 0 cholesky.
-SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definiteSign);
+// nullspace-cholesky for a definite block; cholesky with m > 0 becomes nullspace-cholesky and
+// nullspace-cholesky with m = 0 cholesky.
+// With `projectable` (SaddleSystem::definiteOn given), auto picks projected-cholesky for an
+// indefinite system; otherwise it picks lu there, and projected-cholesky falls back to lu.
+SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definiteSign, bool projectable = false);
 
 // Solves the system; A may be overwritten (it is taken by value where the caller moves it).
 SaddleSolution solveSaddle(SaddleSystem system, SolverChoice choice = SolverChoice::Auto);
+
+// Floating-point operations of factorising k unknowns by `path`: k³/3 for the Cholesky and LDLᵀ
+// paths, 2k³/3 for LU (k is the size of the block the path factorises).
+double factorisationFlops(SolverChoice path, Eigen::Index k);
+
+// The milliseconds of the last "factor" phase, or 0.
+double factorMs(const SaddleSolution& solution);
 
 // Condition estimates above this get an "ill-conditioned" warning (about 4 of 16 digits left).
 inline constexpr double kIllConditionedEstimate = 1e12;

@@ -7,6 +7,7 @@
 #include "core/base/exact_centre.h"
 #include "core/base/ms_since.h"
 #include "core/rbf/dense_fit_memory.h"
+#include "core/base/huge_pages.h"
 
 namespace hermite {
 
@@ -26,6 +27,12 @@ int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoot
   if (smoothing < 0) return 0;
   if (polynomialDegree(polynomial) < kernel.cpdOrder() - 1) return 0;
   return kernel.smoothingSign() > 0 ? 1 : -1;
+}
+
+Polynomial definitenessPolynomial(const Kernel& kernel) {
+  const int order = kernel.cpdOrder();
+  if (order == 0) return Polynomial::None;
+  return order <= 2 ? Polynomial::Linear : order == 3 ? Polynomial::Quadratic : Polynomial::None;
 }
 
 namespace {
@@ -48,6 +55,8 @@ SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Ke
     report->assemblyMs = std::chrono::duration<double, std::milli>(tSolve - start).count();
     report->solveMs = msSince(tSolve);
     report->fitMs = msSince(start);
+    report->factorMs = factorMs(sol);
+    report->factorGflops = report->factorMs > 0 ? sol.factorFlops / (report->factorMs * 1e6) : 0.0;
   }
   return sol;
 }
@@ -66,6 +75,7 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
 
   SaddleSystem sys;
   sys.A.resize(n, n);
+  adviseHugePages(sys.A.data(), sizeof(double) * std::size_t(n) * std::size_t(n));
   sys.P.resize(n, m);
   sys.b.setZero(n);
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
@@ -84,6 +94,14 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   for (int i = 0; i < N; ++i) {
     sys.b.template segment<Dim>(Eigen::Index(i) * B + 1) = samples.normals.col(i);
     if (m > 0) sys.P.middleRows(Eigen::Index(i) * B, B) = hrbfPolynomialRows<Dim>(options.polynomial, p.col(i));
+  }
+  // No polynomial for a conditionally definite kernel: A is still definite on the complement of
+  // the polynomial it needs, which the projected-cholesky path uses (dense_solver.h).
+  const Polynomial needed = definitenessPolynomial(kernel);
+  if (m == 0 && sys.definiteSign == 0 && needed != Polynomial::None) {
+    sys.definiteOnSign = kernelDefiniteSign(kernel, needed, options.smoothing);
+    sys.definiteOn.resize(n, monomialCount<Dim>(needed));
+    for (int i = 0; i < N; ++i) sys.definiteOn.middleRows(Eigen::Index(i) * B, B) = hrbfPolynomialRows<Dim>(needed, p.col(i));
   }
   return sys;
 }
@@ -125,7 +143,9 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
   const auto t0 = std::chrono::steady_clock::now();
   const int m = monomialCount<Dim>(options.polynomial);
   const int sign = kernelDefiniteSign(options.kernel, options.polynomial, options.smoothing);
-  checkDenseFitMemory(std::int64_t(samples.size()) * (Dim + 1) + m, plannedSolverPath(options.solver, m, sign), m);
+  const bool projectable = m == 0 && definitenessPolynomial(options.kernel) != Polynomial::None;
+  checkDenseFitMemory(std::int64_t(samples.size()) * (Dim + 1) + m, plannedSolverPath(options.solver, m, sign, projectable),
+                      m);
   // The polynomial part about `origin` (docs/maths.md, Centring): P is built from the centred
   // points, the kernel block is unchanged (it sees only exact differences pᵢ − pⱼ).
   SaddleSystem sys;

@@ -36,6 +36,8 @@ struct FitReport {
   double fitMs = 0;       // assembly + factorisation + solve, wall clock
   double assemblyMs = 0;  // building the kernel and polynomial blocks
   double solveMs = 0;     // factorisation + solve (solveSaddle)
+  double factorMs = 0;    // the factorisation alone (its last attempt when one fell back)
+  double factorGflops = 0;  // its floating-point operations per second, 10⁹
   std::vector<std::string> warnings;
 };
 
@@ -90,5 +92,9 @@ std::vector<std::string> polynomialOrderWarnings(const Kernel& kernel, Polynomia
 // Definiteness of the kernel block on null(Pᵀ) for the solver, or 0 when unknown
 // (polynomial below the order, or smoothing with the wrong sign).
 int kernelDefiniteSign(const Kernel& kernel, Polynomial polynomial, double smoothing);
+
+// The lowest polynomial the kernel's conditional definiteness needs (linear for orders 1 and 2,
+// quadratic for 3), or None for a positive definite kernel.
+Polynomial definitenessPolynomial(const Kernel& kernel);
 
 }  // namespace hermite

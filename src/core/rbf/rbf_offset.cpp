@@ -5,6 +5,7 @@
 #include "core/base/errors.h"
 #include "core/base/exact_centre.h"
 #include "core/rbf/dense_fit_memory.h"
+#include "core/base/huge_pages.h"
 
 namespace hermite {
 
@@ -35,6 +36,7 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
   checkDenseFitMemory(n + m, plannedSolverPath(options.solver, m, sys.definiteSign), m);
   sys.A.resize(n, n);
+  adviseHugePages(sys.A.data(), sizeof(double) * std::size_t(n) * std::size_t(n));
   sys.P.resize(n, m);
 #pragma omp parallel for schedule(dynamic, 16)
   for (Eigen::Index j = 0; j < n; ++j)

@@ -84,7 +84,10 @@ TEST_CASE("denseFitBytes: N² doubles per square matrix the solver path holds") 
   CHECK(denseFitBytes(N, SolverChoice::Auto, 4) == denseFitBytes(N, SolverChoice::Ldlt, 4));
   CHECK(plannedSolverPath(SolverChoice::Auto, 4, 1) == SolverChoice::NullspaceCholesky);
   CHECK(plannedSolverPath(SolverChoice::Auto, 0, -1) == SolverChoice::Cholesky);
-  CHECK(plannedSolverPath(SolverChoice::Auto, 4, 0) == SolverChoice::Ldlt);
+  // Indefinite: LU (OpenBLAS's dgetrf beats LAPACK's dsytrf), or the projected Cholesky path.
+  CHECK(plannedSolverPath(SolverChoice::Auto, 4, 0) == SolverChoice::Lu);
+  CHECK(plannedSolverPath(SolverChoice::Auto, 0, 0, true) == SolverChoice::ProjectedCholesky);
+  CHECK(denseFitBytes(N, SolverChoice::ProjectedCholesky, 0) == doctest::Approx(double(square)).epsilon(5e-3));
 }
 
 TEST_CASE("a global fit too large for the available memory is refused before assembly, quickly") {
