@@ -39,9 +39,11 @@
 
 #include "app/commands/bench_field2d.h"
 #include "app/commands/bench_gui.h"
+#include "app/commands/bench_lapack.h"
 #include "app/commands/bench_tracer.h"
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
+#include "core/base/blas_setup.h"
 #include "core/base/errors.h"
 #include "core/base/threading.h"
 #include "core/mesh/hole_fill.h"
@@ -85,23 +87,32 @@ struct FitCase {
 
 std::vector<FitCase> fitCases() {
   return {{"cubic-linear", {{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0}},
+          {"cubic-none", {{KernelType::Cubic, 1.0}, Polynomial::None, 0.0}},
           {"gaussian-r0.5", {{KernelType::Gaussian, 0.5}, Polynomial::None, 0.0}}};
 }
 
 Result benchFit(const FitCase& c, int N, int repeats) {
   const HermiteSamples<3> s = makePreset3d("sphere", N);
-  std::vector<double> times;
+  std::vector<double> times, factorMs, gflops;
   std::string solver;
   for (int r = 0; r < repeats; ++r) {
     FitReport rep;
     fitHrbf<3>(s, c.options, &rep);
     times.push_back(rep.fitMs);
+    factorMs.push_back(rep.factorMs);
+    gflops.push_back(rep.factorGflops);
     solver = rep.solver;
   }
+  // The factorisation against a plain dpotrf / dgetrf of the block it factorised.
+  const SolverChoice path = parseSolverChoice(solver);
+  const double factorGflops = median(gflops);
+  const Eigen::Index k = factorisedSize(path, factorGflops * median(factorMs) * 1e6);
+  const double lapackGflops = plainLapackGflops(path, k, std::min(repeats, 3));
   return {"fit3d/" + c.label + "/N=" + std::to_string(N),
           {{"N", N}, {"kernel", std::string(kernelName(c.options.kernel.type))},
            {"radius", c.options.kernel.radius}, {"polynomial", std::string(polynomialName(c.options.polynomial))},
-           {"solver", solver}, {"repeats", repeats}},
+           {"solver", solver}, {"repeats", repeats}, {"factor_ms", median(factorMs)},
+           {"factor_gflops", factorGflops}, {"factorised_size", k}, {"lapack_gflops", lapackGflops}},
           median(times), "ms"};
 }
 
@@ -460,13 +471,15 @@ int runJobs(Jobs& jobs, const BenchArgs& args) {
     json out;
     out["cores"] = availableCores();
     out["threads"] = threadCount();
+    out["blas_core"] = blasCoreName();
     json arr = json::array();
     for (const Result& r : results)
       arr.push_back({{"name", r.name}, {"params", r.params}, {"median", r.median}, {"unit", r.unit}});
     out["results"] = std::move(arr);
     writeStdout(out.dump(2) + "\n");
   } else {
-    writeStdout("cores " + std::to_string(availableCores()) + ", threads " + std::to_string(threadCount()) + "\n");
+    writeStdout("cores " + std::to_string(availableCores()) + ", threads " + std::to_string(threadCount()) +
+                ", OpenBLAS core " + blasCoreName() + "\n");
   }
   return 0;
 }

@@ -124,6 +124,8 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["fit_ms"] = fit.report.fitMs;
   out["assembly_ms"] = fit.report.assemblyMs;
   out["solve_ms"] = fit.report.solveMs;
+  out["factor_ms"] = fit.report.factorMs;
+  out["factor_gflops"] = fit.report.factorGflops;
   out["warnings"] = fit.warnings;
   if (const PuModel<Dim>* pu = fit.pu()) {
     out["partition"] = {{"boxes", fit.puReport.boxes},

@@ -263,10 +263,15 @@ TEST_CASE("bench --quick --json reports cores and results") {
   REQUIRE(r.rc == 0);
   const json j = json::parse(r.out);
   CHECK(j["cores"].get<int>() >= 1);
-  REQUIRE(j["results"].size() == 8);  // two fit cases × four sizes
+  CHECK(!j["blas_core"].get<std::string>().empty());
+  REQUIRE(j["results"].size() == 12);  // three fit cases × four sizes
   for (const auto& res : j["results"]) {
     CHECK(res["unit"] == "ms");
     CHECK(res["median"].get<double>() > 0);
+    // The factorisation's speed next to plain LAPACK's on the block it factorised.
+    CHECK(res["params"]["factor_gflops"].get<double>() > 0);
+    CHECK(res["params"]["lapack_gflops"].get<double>() > 0);
+    CHECK(res["params"]["factorised_size"].get<int>() > 0);
   }
   CHECK(runCli("bench --only no-such-benchmark").rc == 2);
 }

@@ -1,0 +1,51 @@
+#!/bin/bash
+# Whole-process fit times in "units" of the yardstick (a 1000 × 1000 Eigen LU, scripts/yardstick.cpp),
+# measured in the same run: the table of docs/performance.md, "Fit speed as users meet it".
+#   [FIT_SPEED_BUSY=1] [FIT_SPEED_SOLVERS="lu ldlt"] scripts/fit_speed.sh [BUILD_DIR] [REPEATS]
+# Needs the build's hermite-lab and yardstick targets. Prints one line per case: the median wall
+# time of REPEATS whole processes (default 7), the median fit_ms they report, and both in units.
+set -euo pipefail
+BUILD=${1:-build/release}
+REPEATS=${2:-7}
+HL=$BUILD/hermite-lab
+MIN=tests/fixtures/scenes/minimal.json
+[ -x "$HL" ] && [ -x "$BUILD/yardstick" ] || { echo "fit_speed: build $BUILD first (targets hermite-lab yardstick)" >&2; exit 2; }
+
+median() { sort -g | awk '{a[NR]=$1} END {print a[int((NR+1)/2)]}'; }
+# FIT_SPEED_BUSY=1: one competing busy process (a shell loop) for the whole run.
+if [ "${FIT_SPEED_BUSY:-0}" = 1 ]; then
+  sh -c 'while :; do :; done' &
+  busy=$!
+  trap 'kill $busy' EXIT
+  echo "with one busy process competing (pid $busy)"
+fi
+unit=$(for _ in 1 2 3; do "$BUILD/yardstick"; done | median)
+echo "unit (1000 x 1000 Eigen LU, -O2, 1 thread): $unit ms; load average $(cut -d' ' -f1 /proc/loadavg)"
+printf '%-44s %10s %8s %10s %8s %s\n' case process_ms units fit_ms units solver
+
+run_case() {  # name, then the fit arguments
+  local name=$1; shift
+  local walls=() fits=() solver=
+  for _ in $(seq "$REPEATS"); do
+    local t0 t1 out
+    t0=$(date +%s%N)
+    out=$("$HL" fit "$MIN" "$@" --json)
+    t1=$(date +%s%N)
+    walls+=("$(( (t1 - t0) / 1000 ))")
+    fits+=("$(python3 -c 'import json,sys; print(json.load(sys.stdin)["fit_ms"])' <<<"$out")")
+    solver=$(python3 -c 'import json,sys; print(json.load(sys.stdin).get("solver", ""))' <<<"$out")
+  done
+  local wall fit
+  wall=$(printf '%s\n' "${walls[@]}" | median)
+  fit=$(printf '%s\n' "${fits[@]}" | median)
+  awk -v n="$name" -v w="$wall" -v f="$fit" -v u="$unit" -v s="$solver" \
+    'BEGIN {printf "%-44s %10.1f %8.2f %10.1f %8.2f %s\n", n, w / 1000, w / 1000 / u, f, f / u, s}'
+}
+
+run_case "cubic + linear, N = 250" --set data.preset=sphere --set data.count=250
+run_case "cubic + linear, N = 1000" --set data.preset=sphere --set data.count=1000
+run_case "cubic, no polynomial, N = 1000 (auto)" --set data.preset=sphere --set data.count=1000 --set fit.polynomial=none
+for solver in ${FIT_SPEED_SOLVERS:-}; do
+  run_case "cubic, no polynomial, N = 1000 ($solver)" --set data.preset=sphere --set data.count=1000 \
+    --set fit.polynomial=none --set fit.solver="$solver"
+done

@@ -1,0 +1,60 @@
+/* hermite-lab: sets the environment that libgomp and OpenBLAS read while they load, then runs
+ * the program itself (hermite-lab-main, next to this file) in its place.
+ *
+ * The program used to set these variables in main() and re-execute itself, loading its thirty
+ * shared libraries twice: about one process start-up per command (docs/performance.md, Fit speed
+ * as users meet it). This launcher depends on libc alone, so the second start costs little.
+ * Values the user set are kept:
+ *  - OMP_WAIT_POLICY=PASSIVE: spinning OpenMP workers starve OpenBLAS's threads on small machines;
+ *  - OPENBLAS_THREAD_TIMEOUT=16: OpenBLAS's workers spin about 2^16 cycles after a call, not 2^28;
+ *  - OPENBLAS_CORETYPE on Intel CPUs, from their feature flags: under hypervisors that hide the
+ *    model, OpenBLAS otherwise falls back to its generic kernels (core/base/blas_setup.h).
+ * HERMITE_REEXECUTED=1 tells the program that nothing is left to do. */
+
+#include <errno.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+static const char* intelCoreType(void) {
+  __builtin_cpu_init();
+  if (!__builtin_cpu_is("intel")) return 0;
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
+      __builtin_cpu_supports("avx512cd"))
+    return "SKYLAKEX";
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "HASWELL";
+  if (__builtin_cpu_supports("avx")) return "SANDYBRIDGE";
+  return 0;
+}
+
+/* The program's path: this executable's directory + "/hermite-lab-main". */
+static int programPath(char* out, size_t size) {
+  char self[PATH_MAX];
+  const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+  if (n <= 0) return 0;
+  self[n] = '\0';
+  char* slash = strrchr(self, '/');
+  if (slash == 0) return 0;
+  *slash = '\0';
+  return snprintf(out, size, "%s/hermite-lab-main", self) < (int)size;
+}
+
+int main(int argc, char** argv) {
+  (void)argc;
+  setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
+  setenv("OPENBLAS_THREAD_TIMEOUT", "16", 0);
+  const char* core = intelCoreType();
+  if (core) setenv("OPENBLAS_CORETYPE", core, 0);
+  setenv("HERMITE_REEXECUTED", "1", 1);
+  char program[PATH_MAX];
+  if (!programPath(program, sizeof program)) {
+    fprintf(stderr, "hermite-lab: cannot find this executable's folder (/proc/self/exe)\n");
+    return 4;
+  }
+  execv(program, argv);
+  fprintf(stderr, "hermite-lab: cannot run %s: %s\n", program, strerror(errno));
+  return 4;
+}
