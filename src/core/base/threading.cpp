@@ -46,7 +46,9 @@ int idleCores() {
 }
 
 BlasThreadsForLoad::BlasThreadsForLoad() : previous_(openblas_get_num_threads()) {
-  threads_ = previous_ > 1 ? std::min(previous_, idleCores()) : previous_;
+  // Inside a parallel region (partition-of-unity boxes) other threads may be in BLAS calls while
+  // this one would change the count under them: left alone there.
+  threads_ = previous_ > 1 && !omp_in_parallel() ? std::min(previous_, idleCores()) : previous_;
   if (threads_ != previous_) openblas_set_num_threads(threads_);
 }
 

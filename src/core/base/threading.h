@@ -22,6 +22,7 @@ int idleCores();
 // For one large BLAS call sequence: OpenBLAS gets no more threads than idleCores() (a thread
 // sharing a core with another busy process makes every synchronisation of a factorisation wait
 // for it: 4–10× slower fits, docs/performance.md); the previous count comes back at the end.
+// Inside an OpenMP parallel region it changes nothing.
 class BlasThreadsForLoad {
  public:
   BlasThreadsForLoad();
