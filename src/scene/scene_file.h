@@ -54,8 +54,12 @@ struct DataSpec {
   bool operator==(const DataSpec&) const = default;
 };
 
+// fit.partition.enabled: "auto" (dense while the global fit is small, else partition of unity;
+// docs/scene-format.md, choosePartition in scene_fit_memory.h), true or false.
+enum class PartitionSwitch { Auto, On, Off };
+
 struct PartitionSpec {
-  bool enabled = false;
+  PartitionSwitch enabled = PartitionSwitch::Auto;
   int maxPointsPerBox = 20;  // ≥ 1
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;      // ≥ 1: support = box scaled about its centre

@@ -152,6 +152,7 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
   out["smoothing"] = scene.fit.smoothing;
   out["mean_spacing"] = meanSampleSpacing<Dim>(fit.samples.points);
+  out["partition_chosen"] = fit.pu() ? "pu" : "dense";  // what fit.partition.enabled ("auto": by size) ran
   if (coefficients) out["model"] = fittedModelJson<Dim>(scene, fit.model);
   return out;
 }

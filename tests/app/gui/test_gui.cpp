@@ -442,7 +442,7 @@ TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier 
 
 TEST_CASE("UI: a partition-of-unity fit shows its boxes; Flip all normals is one undoable edit") {
   Scene s = scene2d(120);
-  s.fit.partition.enabled = true;
+  s.fit.partition.enabled = PartitionSwitch::On;
   s.fit.partition.maxPointsPerBox = 10;
   Harness h(s, true, 1000, 700);
   h.frames(2);
