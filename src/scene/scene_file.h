@@ -163,7 +163,8 @@ Scene parseSceneText(const std::string& text, const std::string& path, const std
 // The complete document with every key (defaults included); parseScene(sceneToJson(s)) == s.
 nlohmann::json sceneToJson(const Scene& scene);
 
-// Writes the scene to `path` without destroying an existing file on failure (temporary + rename).
+// Writes the scene to `path` without destroying an existing file on failure (temporary + rename),
+// with data.file and holefill.mesh relative to the folder of `path` (withPathsRelativeTo).
 void saveSceneFile(const Scene& scene, const std::string& path);
 
 }  // namespace hermite
