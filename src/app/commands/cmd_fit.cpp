@@ -7,6 +7,7 @@
 
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
+#include "app/commands/terminal_progress.h"
 #include "app/gui/fit_worker.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -221,8 +222,11 @@ json fitAndReport(const Scene& scene, bool coefficients) {
 int runFit(const FitArgs& args) {
   Scene scene = loadCommandScene(args.scene);
   if (args.verify) scene.transform.verify = true;
-  const json j = scene.dimension() == 2 ? fitAndReport<2>(scene, args.coefficients)
-                                        : fitAndReport<3>(scene, args.coefficients);
+  json j;
+  {
+    const TerminalProgress progress("fitting " + scene.sourceName);
+    j = scene.dimension() == 2 ? fitAndReport<2>(scene, args.coefficients) : fitAndReport<3>(scene, args.coefficients);
+  }
   if (args.json) {
     writeStdout(j.dump(2) + "\n");
   } else {
