@@ -99,6 +99,30 @@ std::string columnNames(int dim, bool withNormals) {
   return withNormals ? "x y z nx ny nz" : "x y z";
 }
 
+// Estimates the zero columns of `normals` (all of them for a file without normals) by PCA and
+// orients them consistently with the given ones (normal_estimation.h), with a warning saying how
+// many; `why` says why they are missing ("3 columns"; empty: zero in the file).
+template <int Dim>
+void fillMissingNormals(const Points<Dim>& points, Points<Dim>& normals, const std::string& path,
+                        const std::string& why, std::vector<std::string>& warnings) {
+  if (points.cols() < 2 && normals.isZero(0))
+    throw InputError(path + ": has no normals and a single point; normals cannot be estimated");
+  const NormalEstimationOptions estimation;
+  const int estimated = completeNormals<Dim>(points, normals, estimation);
+  if (estimated == 0) return;
+  const std::string what = !why.empty() ? "has no normals (" + why + ")"
+                                        : std::to_string(estimated) + " of " + std::to_string(points.cols()) +
+                                              " normals are zero";
+  const std::string which = estimated == points.cols() ? "all " + std::to_string(estimated) + " samples"
+                                                       : "those " + std::to_string(estimated);
+  warnings.push_back(path + ": " + what + ": normals estimated for " + which + " by PCA over " +
+                     std::to_string(estimation.neighbours) +
+                     " nearest neighbours and oriented by propagation over a minimum spanning tree" +
+                     (estimated == points.cols() ? ", outward at each part's extreme point"
+                                                 : ", consistently with the given normals") +
+                     "; check their direction (flip if inside out)");
+}
+
 template <int Dim>
 HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
   constexpr int kColumns = 2 * Dim;
@@ -133,18 +157,12 @@ HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path,
     if (columns == kColumns) normals.insert(normals.end(), values + Dim, values + kColumns);
   }
   if (points.empty()) throw InputError(path + ": no points");
-  if (columns == Dim) {
-    const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
-    if (count < 2) throw InputError(path + ": has no normals and a single point; normals cannot be estimated");
-    const Points<Dim> P = Eigen::Map<const Points<Dim>>(points.data(), Dim, count);
-    NormalEstimationOptions estimation;
-    const Points<Dim> N = estimateNormals<Dim>(P, estimation);
-    normals.assign(N.data(), N.data() + N.size());
-    warnings.push_back(path + ": has no normals (" + std::to_string(Dim) +
-                       " columns): normals estimated by PCA over " + std::to_string(estimation.neighbours) +
-                       " nearest neighbours and oriented by propagation over a minimum spanning tree, "
-                       "outward from each component's centroid; check their direction (flip if inside out)");
-  }
+  const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
+  if (columns == Dim) normals.assign(points.size(), 0.0);  // every normal missing: estimated below
+  Points<Dim> N = Eigen::Map<const Points<Dim>>(normals.data(), Dim, count);
+  fillMissingNormals<Dim>(Eigen::Map<const Points<Dim>>(points.data(), Dim, count), N, path,
+                          columns == Dim ? std::to_string(Dim) + " columns" : std::string(), warnings);
+  normals.assign(N.data(), N.data() + N.size());
 
   HermiteSamples<Dim> samples;
   const Eigen::Index n = static_cast<Eigen::Index>(points.size() / Dim);
@@ -212,12 +230,21 @@ void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
 HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings) {
   TriMesh mesh = loadMeshFile(path);
   if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
-  if (!mesh.hasNormals())
-    throw InputError(path + ": has no normals (positions only); normal estimation is not available yet — give "
-                            "per-vertex normals (PLY nx ny nz, OBJ vn, glTF NORMAL)");
   HermiteSamples<3> samples;
+  if (mesh.hasNormals()) {
+    samples.normals = std::move(mesh.normals);
+  } else if (mesh.triangleCount() > 0) {
+    // Area-weighted face normals, oriented by the faces' winding; vertices on no face stay zero
+    // and are estimated from their neighbours below.
+    samples.normals = vertexNormals(mesh, NormalWeighting::Area);
+    warnings.push_back(path + ": has no vertex normals: " + std::to_string(mesh.vertexCount()) +
+                       " normals are the area-weighted means of the face normals (oriented by the faces' winding)");
+  } else {
+    samples.normals = Points<3>::Zero(3, mesh.vertexCount());
+  }
   samples.points = std::move(mesh.vertices);
-  samples.normals = std::move(mesh.normals);
+  fillMissingNormals<3>(samples.points, samples.normals, path,
+                        mesh.triangleCount() > 0 ? std::string() : std::string("positions only"), warnings);
   validateSamples(samples, warnings, path);
   return samples;
 }

@@ -1,11 +1,14 @@
 #pragma once
 // Oriented point files (docs/scene-format.md):
-//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated,
-//                         normal_estimation.h, with a warning)
+//   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated)
 //   .xyn                  2D: x y nx ny per line (2 columns = no normals: estimated too)
 //   .ply .obj .gltf .glb .off  3D: the vertices and vertex normals of a mesh or point-set file
 //                         (PLY nx ny nz, OBJ v + vn, glTF POINTS/TRIANGLES with NORMAL, NOFF),
-//                         read by mesh_io; faces are ignored; no normals is an error for now.
+//                         read by mesh_io. A mesh without vertex normals gets the area-weighted
+//                         means of its face normals; a point set without them estimated ones.
+// Missing normals (Dim columns) and zero normals (all or some) are estimated by PCA and oriented
+// consistently with the given ones (completeNormals, normal_estimation.h), with a warning that
+// says how many.
 // Blank lines and lines starting with '#' are skipped. A malformed line is an InputError
 // "FILE:LINE: ..." saying what was expected.
 

@@ -51,7 +51,7 @@ RadiusSweepRow radiusSweepRow(const Scene& s, const SceneFit<Dim>& fit, double s
   row.maxAbsF = res.maxAbsF;
   row.maxGradError = res.maxGradError;
   row.fitMs = fit.report.fitMs;
-  if (s.fit.method == FitMethod::Hrbf && !s.fit.partition.enabled) {
+  if (s.fit.method == FitMethod::Hrbf && !fit.pu()) {
     HrbfOptions o;
     o.kernel = Kernel{s.fit.kernel, s.fit.radius};
     o.polynomial = s.fit.polynomial;

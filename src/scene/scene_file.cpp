@@ -15,6 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "io/quoted_token.h"
+#include "scene/data_file_scene.h"
 #include "scene/scene_keys.h"
 
 namespace hermite {
@@ -228,7 +229,9 @@ Scene parseSceneText(const std::string& text, const std::string& path, const std
 json sceneToJson(const Scene& scene) { return writeObject<Scene>(scene, kDocumentKeys, scene.dimension()); }
 
 void saveSceneFile(const Scene& scene, const std::string& path) {
-  writeFileAtomically(path, sceneToJson(scene).dump(2) + "\n");
+  // data.file and holefill.mesh name the same files from the scene's new folder.
+  const Scene moved = withPathsRelativeTo(scene, std::filesystem::path(path).parent_path().string());
+  writeFileAtomically(path, sceneToJson(moved).dump(2) + "\n");
 }
 
 }  // namespace hermite

@@ -54,8 +54,12 @@ struct DataSpec {
   bool operator==(const DataSpec&) const = default;
 };
 
+// fit.partition.enabled: "auto" (dense while the global fit is small, else partition of unity;
+// docs/scene-format.md, choosePartition in scene_fit_memory.h), true or false.
+enum class PartitionSwitch { Auto, On, Off };
+
 struct PartitionSpec {
-  bool enabled = false;
+  PartitionSwitch enabled = PartitionSwitch::Auto;
   int maxPointsPerBox = 20;  // ≥ 1
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;      // ≥ 1: support = box scaled about its centre
@@ -159,7 +163,8 @@ Scene parseSceneText(const std::string& text, const std::string& path, const std
 // The complete document with every key (defaults included); parseScene(sceneToJson(s)) == s.
 nlohmann::json sceneToJson(const Scene& scene);
 
-// Writes the scene to `path` without destroying an existing file on failure (temporary + rename).
+// Writes the scene to `path` without destroying an existing file on failure (temporary + rename),
+// with data.file and holefill.mesh relative to the folder of `path` (withPathsRelativeTo).
 void saveSceneFile(const Scene& scene, const std::string& path);
 
 }  // namespace hermite

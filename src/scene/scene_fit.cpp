@@ -10,6 +10,7 @@
 #include "core/base/ms_since.h"
 #include "core/shapes/presets.h"
 #include "io/point_file.h"
+#include "scene/scene_fit_memory.h"
 
 namespace hermite {
 
@@ -285,12 +286,14 @@ SceneFit<Dim> fitScene(const Scene& scene) {
   if (scene.dimension() != Dim || (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d))
     throw InputError(scene.sourceName + ": mode: '" + std::string(sceneModeName(scene.mode)) +
                      "' scenes have no implicit fit");
-  if (scene.fit.partition.enabled && scene.fit.method != FitMethod::Hrbf)
+  if (scene.fit.partition.enabled == PartitionSwitch::On && scene.fit.method != FitMethod::Hrbf)
     throw InputError(scene.sourceName + ": fit.partition.enabled: partition of unity fits method 'hrbf' only (got '" +
                      std::string(fitMethodName(scene.fit.method)) + "')");
   SceneFit<Dim> out;
   out.samples = sceneSamples<Dim>(scene, out.warnings);
-  if (scene.fit.partition.enabled)
+  const PartitionChoice choice = choosePartition(scene, out.samples.size());
+  if (!choice.message.empty()) out.warnings.push_back(choice.message);
+  if (choice.pu)
     fitScenePu(scene, out);
   else
     out.model = fitGlobal<Dim>(scene.fit, out.samples, 1.0, &out.report);

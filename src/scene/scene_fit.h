@@ -52,7 +52,7 @@ struct SceneFitReport {
 };
 
 // The fitted model: one global interpolant of fit.method, or a partition of unity
-// (fit.partition.enabled). Held on the heap so that compositions wrapping it survive moves.
+// (fit.partition.enabled, "auto" by size: choosePartition in scene_fit_memory.h). Held on the heap so that compositions wrapping it survive moves.
 template <int Dim>
 using FittedModel =
     std::variant<std::unique_ptr<HrbfModel<Dim>>, std::unique_ptr<RbfOffsetModel<Dim>>, std::unique_ptr<PuModel<Dim>>>;

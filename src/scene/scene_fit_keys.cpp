@@ -14,7 +14,19 @@ using json = nlohmann::json;
 using Reader = SceneReader;
 
 constexpr SceneKey<PartitionSpec> kPartitionKeys[] = {
-    valueKey<PartitionSpec, &PartitionSpec::enabled, &Reader::boolean>("enabled"),
+    {"enabled",
+     [](const Reader& r, const json& x, const std::string& p, PartitionSpec& s, int) {
+       if (x.is_boolean())
+         s.enabled = x.get<bool>() ? PartitionSwitch::On : PartitionSwitch::Off;
+       else if (x.is_string() && x.get<std::string>() == "auto")
+         s.enabled = PartitionSwitch::Auto;
+       else
+         r.fail(p, "must be \"auto\", true or false (got " + describeJson(x) + ")");
+     },
+     [](const PartitionSpec& s, int) -> Written {
+       if (s.enabled == PartitionSwitch::Auto) return json("auto");
+       return json(s.enabled == PartitionSwitch::On);
+     }},
     integerKey<PartitionSpec, &PartitionSpec::maxPointsPerBox, 1, INT_MAX>("max_points_per_box"),
     valueKey<PartitionSpec, &PartitionSpec::boxSize, &Reader::nonNegative>("box_size"),
     {"overlap",

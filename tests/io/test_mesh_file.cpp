@@ -287,11 +287,28 @@ TEST_CASE("mesh_io: oriented point sets from PLY and OBJ through the point loade
 
   const std::string bare = dir.file("bare.ply");
   hermite::saveMesh(bare, octahedron(false));
-  CHECK_THROWS_WITH_AS(hermite::loadPointFile3d(bare, warnings),
-                       (bare + ": has no normals (positions only); normal estimation is not available yet — give "
-                               "per-vertex normals (PLY nx ny nz, OBJ vn, glTF NORMAL)")
-                           .c_str(),
-                       InputError);
+  // A mesh without vertex normals: the area-weighted face normals, outward for this closed,
+  // counter-clockwise octahedron (near the vertices' directions from its centre).
+  warnings.clear();
+  const auto fromFaces = hermite::loadPointFile3d(bare, warnings);
+  REQUIRE(fromFaces.size() == 6);
+  const TriMesh reference = octahedron(false);
+  const Eigen::Matrix3Xd areaWeighted = hermite::vertexNormals(reference, hermite::NormalWeighting::Area);
+  CHECK((fromFaces.normals - areaWeighted).cwiseAbs().maxCoeff() <= 1e-6);  // float round trip of the vertices
+  for (int v = 0; v < 6; ++v) CHECK(fromFaces.normals.col(v).dot(reference.vertices.col(v).normalized()) > 0.9);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0] == bare + ": has no vertex normals: 6 normals are the area-weighted means of the face normals "
+                              "(oriented by the faces' winding)");
+  // Its vertices without faces: estimated and oriented outward, with a warning.
+  TriMesh bareCloud = octahedron(false);
+  bareCloud.triangles.resize(3, 0);
+  const std::string bareCloudPath = dir.file("bare_cloud.ply");
+  hermite::saveMesh(bareCloudPath, bareCloud);
+  warnings.clear();
+  const auto estimated = hermite::loadPointFile3d(bareCloudPath, warnings);
+  REQUIRE(estimated.size() == 6);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find("has no normals (positions only): normals estimated for all 6 samples") != std::string::npos);
   CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(ply, warnings),
                        (ply + ": a 3D point file (.ply) cannot be used in a 2D scene; use .xyn (x y nx ny)").c_str(),
                        InputError);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -13,10 +14,13 @@
 #include <vector>
 
 #include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "core/base/errors.h"
 #include "io/point_file.h"
 
+using hermite::HermiteSamples;
 using hermite::InputError;
+using hermite::Vec;
 namespace fs = std::filesystem;
 
 namespace {
@@ -106,7 +110,7 @@ TEST_CASE("io_points: 2D files") {
   const auto est = hermite::loadPointFile2d(positions, warnings);
   REQUIRE(est.size() == 40);
   REQUIRE(warnings.size() == 1);
-  CHECK(warnings[0].find("has no normals (2 columns): normals estimated") != std::string::npos);
+  CHECK(warnings[0].find("has no normals (2 columns): normals estimated for all 40 samples") != std::string::npos);
   for (int i = 0; i < est.size(); ++i) CHECK(est.normals.col(i).dot(est.points.col(i).normalized()) > 0.99);
   // A file of the other dimension is refused by its extension.
   CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(kPoints + "/tetra.xyzn", warnings),
@@ -127,7 +131,6 @@ TEST_CASE("io_points: malformed files name the file and line") {
   CHECK(load3dError(p + "/not_a_number.xyz") == p + "/not_a_number.xyz:2: 'abc' is not a number");
   CHECK(load3dError(p + "/nan.xyz") == p + "/nan.xyz:2: 'nan' is not a finite number");
   CHECK(load3dError(p + "/comments_only.xyz") == p + "/comments_only.xyz: no points");
-  CHECK(load3dError(p + "/zero_normal.xyz") == p + "/zero_normal.xyz: sample 1: normal is zero");
   CHECK(load3dError(p + "/missing.xyz") == p + "/missing.xyz: cannot open (No such file or directory)");
 
   TempDir dir;
@@ -252,4 +255,45 @@ TEST_CASE("io_points: large files load quickly") {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   CHECK(s.size() == 200000);
   CHECK(seconds < 5.0);  // a generous bound that a parser built on streams instead of from_chars would approach
+}
+
+TEST_CASE("io_points: zero normals, all or some, are estimated and oriented with a warning") {
+  TempDir dir;
+  const HermiteSamples<3> sphere = hermite::testing::goldenSphere(800, 1.0);
+  // Six columns, every normal zero (CGAL's blobby.xyz): estimated, outward, one warning.
+  std::string allZero, someZero;
+  int zeroed = 0;
+  for (int i = 0; i < sphere.size(); ++i) {
+    const Vec<3> p = sphere.points.col(i);
+    char line[200];
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g 0 0 0\n", p.x(), p.y(), p.z());
+    allZero += line;
+    // Every seventh normal zero, the others given pointing inward: the estimated ones follow them.
+    const Vec<3> n = i % 7 == 0 ? Vec<3>::Zero() : Vec<3>(-sphere.normals.col(i));
+    zeroed += i % 7 == 0;
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
+    someZero += line;
+  }
+  std::vector<std::string> warnings;
+  const auto all = hermite::loadPointFile3d(dir.write("blobby.xyz", allZero), warnings);
+  REQUIRE(all.size() == sphere.size());
+  for (int i = 0; i < all.size(); ++i) CHECK(all.normals.col(i).dot(sphere.normals.col(i)) > 0.99);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find("800 of 800 normals are zero: normals estimated for all 800 samples") != std::string::npos);
+
+  warnings.clear();
+  const auto some = hermite::loadPointFile3d(dir.write("some.xyz", someZero), warnings);
+  REQUIRE(some.size() == sphere.size());
+  for (int i = 0; i < some.size(); ++i) CHECK(some.normals.col(i).dot(sphere.normals.col(i)) < -0.99);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find(std::to_string(zeroed) + " of 800 normals are zero: normals estimated for those " +
+                         std::to_string(zeroed)) != std::string::npos);
+  CHECK(warnings[0].find("consistently with the given normals") != std::string::npos);
+
+  // The fixture's second normal is zero: estimated from the first.
+  warnings.clear();
+  const auto two = hermite::loadPointFile3d(kPoints + "/zero_normal.xyz", warnings);
+  REQUIRE(two.size() == 2);
+  CHECK(two.normals.col(1).norm() == doctest::Approx(1.0));
+  CHECK(warnings.size() == 1);
 }

@@ -81,7 +81,7 @@ Scene nonDefaultScene3d() {
   s.fit.smoothing = 1e-6;
   s.fit.shift = 0.025;
   s.fit.solver = hermite::SolverChoice::Ldlt;
-  s.fit.partition = {true, 35, 0.2, 1.25};
+  s.fit.partition = {hermite::PartitionSwitch::On, 35, 0.2, 1.25};
   s.transform.translate = {0.1, -0.2, 0.3};
   s.transform.rotateAxisAngleDeg = {1, 2, 3, 33.3};
   s.transform.scale = 1.7;
@@ -117,7 +117,7 @@ TEST_CASE("scene: minimal scene takes the documented defaults") {
   CHECK(s.fit.smoothing == 0.0);
   CHECK(s.fit.shift == 0.01);
   CHECK(s.fit.solver == hermite::SolverChoice::Auto);
-  CHECK(s.fit.partition == hermite::PartitionSpec{false, 20, 0.0, 1.5});
+  CHECK(s.fit.partition == hermite::PartitionSpec{hermite::PartitionSwitch::Auto, 20, 0.0, 1.5});
   CHECK(s.transform.translate == std::vector<double>{0, 0, 0});
   CHECK(s.transform.isIdentity());
   CHECK(s.view.size == std::array<int, 2>{800, 600});
@@ -261,7 +261,7 @@ TEST_CASE("scene: fit validation") {
   CHECK(errorOf(scene3d(R"("fit": {"smoothing": -0.1})")) == "x.json: fit.smoothing: must be >= 0 (got -0.1)");
   CHECK(errorOf(scene3d(R"("fit": {"shift": 0})")) == "x.json: fit.shift: must be > 0 (got 0)");
   CHECK(errorOf(scene3d(R"("fit": {"partition": {"enabled": "true"}})")) ==
-        "x.json: fit.partition.enabled: must be true or false (got string \"true\")");
+        "x.json: fit.partition.enabled: must be \"auto\", true or false (got string \"true\")");
   CHECK(errorOf(scene3d(R"("fit": {"partition": {"max_points_per_box": 0}})")) ==
         "x.json: fit.partition.max_points_per_box: must be >= 1 (got 0)");
   CHECK(errorOf(scene3d(R"("fit": {"partition": {"max_points_per_box": 2.5}})")) ==
@@ -285,7 +285,7 @@ TEST_CASE("scene: fit validation") {
   CHECK(s.fit.smoothing == 0.001);
   CHECK(s.fit.shift == 0.05);
   CHECK(s.fit.solver == hermite::SolverChoice::Cholesky);
-  CHECK(s.fit.partition == hermite::PartitionSpec{true, 8, 0.25, 1.0});
+  CHECK(s.fit.partition == hermite::PartitionSpec{hermite::PartitionSwitch::On, 8, 0.25, 1.0});
 
   // Added key fit.partition.blend: smooth (default) | hard.
   CHECK(parse(scene3d(R"("fit": {"partition": {"blend": "hard"}})")).fit.partition.blend == hermite::PuBlend::Hard);
@@ -508,7 +508,7 @@ TEST_CASE("scene: --set overrides") {
   CHECK(s.fit.radius == 0.5);
   CHECK(s.view.size == std::array<int, 2>{640, 480});
   CHECK(s.view.camera.eye == std::array<double, 3>{0, 0, 9});
-  CHECK(s.fit.partition.enabled);
+  CHECK(s.fit.partition.enabled == hermite::PartitionSwitch::On);
 
   CHECK_THROWS_WITH_AS(hermite::applySetOverride(doc, "fit.radius.value=1"),
                        "--set fit.radius.value: fit.radius is not an object (it is 0.5), so it cannot hold 'value'",

@@ -42,11 +42,15 @@ constexpr const char* kUsage =
     "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
+    "SCENE is a scene file (.json) or a data file (.xyz .pwn .xyzn .xyn .ply .obj .gltf .glb .off): a default\n"
+    "scene is built around a data file (docs/scene-format.md, Data files as scenes)\n"
     "options everywhere: --threads N (default: all cores), --max-input-size BYTES (default 4G);\n"
     "`hermite-lab COMMAND --help` for details\n";
 
 void addSceneOptions(CLI::App& cmd, SceneArgs& scene, bool required) {
-  auto* opt = cmd.add_option("scene", scene.scenePath, "scene file (JSON, docs/scene-format.md)");
+  auto* opt = cmd.add_option("scene", scene.scenePath,
+                             "scene file (JSON, docs/scene-format.md) or a point or mesh file (a default scene "
+                             "around it)");
   if (required) opt->required();
   cmd.add_option("--set", scene.overrides, "override a scene key: KEY=VALUE (VALUE is JSON or a string)")
       ->take_all()

@@ -3,10 +3,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
+#include "app/commands/terminal_progress.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
 #include "io/point_file.h"
@@ -46,7 +48,9 @@ void evalScene(const Scene& scene, const std::string& probeFile) {
     X = loadProbePoints2d(probeFile);
   else
     X = loadProbePoints3d(probeFile);
+  std::optional<TerminalProgress> progress(std::in_place, "fitting " + scene.sourceName);
   const SceneFit<Dim> fit = fitScene<Dim>(scene);
+  progress.reset();
   Eigen::VectorXd f;
   Points<Dim> G;
   fit.field().evaluateBatch(X, f, &G);

@@ -7,6 +7,7 @@
 
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
+#include "app/commands/terminal_progress.h"
 #include "app/gui/fit_worker.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -154,6 +155,7 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["polynomial"] = std::string(polynomialName(scene.fit.polynomial));
   out["smoothing"] = scene.fit.smoothing;
   out["mean_spacing"] = meanSampleSpacing<Dim>(fit.samples.points);
+  out["partition_chosen"] = fit.pu() ? "pu" : "dense";  // what fit.partition.enabled ("auto": by size) ran
   if (coefficients) out["model"] = fittedModelJson<Dim>(scene, fit.model);
   return out;
 }
@@ -222,8 +224,11 @@ json fitAndReport(const Scene& scene, bool coefficients) {
 int runFit(const FitArgs& args) {
   Scene scene = loadCommandScene(args.scene);
   if (args.verify) scene.transform.verify = true;
-  const json j = scene.dimension() == 2 ? fitAndReport<2>(scene, args.coefficients)
-                                        : fitAndReport<3>(scene, args.coefficients);
+  json j;
+  {
+    const TerminalProgress progress("fitting " + scene.sourceName);
+    j = scene.dimension() == 2 ? fitAndReport<2>(scene, args.coefficients) : fitAndReport<3>(scene, args.coefficients);
+  }
   if (args.json) {
     writeStdout(j.dump(2) + "\n");
   } else {

@@ -8,6 +8,7 @@
 #include "app/commands/commands.h"
 #include "app/commands/output.h"
 #include "app/commands/output_path.h"
+#include "app/commands/terminal_progress.h"
 #include "app/gui/fit_worker.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -146,7 +147,12 @@ int runMesh(const MeshArgs& args) {
   requireWritableLocation("mesh", args.output);
   if (scene.mode == SceneMode::Implicit3d) checkMeshGrid<3>(scene, args.resolution);
   if (scene.mode == SceneMode::Implicit2d) checkMeshGrid<2>(scene, args.resolution);
-  writeStdout(exportZeroSet(*fitOutcomeOrThrow(scene), args.output, args.resolution) + "\n");
+  std::string summary;
+  {
+    const TerminalProgress progress("fitting and meshing " + scene.sourceName);
+    summary = exportZeroSet(*fitOutcomeOrThrow(scene), args.output, args.resolution);
+  }
+  writeStdout(summary + "\n");
   return 0;
 }
 

@@ -3,6 +3,7 @@
 // draws) and diagnostics.csv with the condition estimate, residuals and leave-one-out error per
 // radius, the suggested r (least leave-one-out error) marked — a teacher's figure in one command.
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -81,7 +82,13 @@ void checkSweepMemory(const Scene& scene) {
 }  // namespace
 
 int runSweep(const SweepArgs& args) {
-  Scene scene = loadCommandScene(args.scene);
+  // A data file's default scene is cubic (no radius): the sweep takes wendland unless told.
+  SceneArgs sceneArgs = args.scene;
+  const bool kernelGiven = std::any_of(sceneArgs.overrides.begin(), sceneArgs.overrides.end(),
+                                       [](const std::string& o) { return o.rfind("fit.kernel=", 0) == 0; });
+  if (!sceneArgs.scenePath.empty() && !isSceneFilePath(sceneArgs.scenePath) && !kernelGiven)
+    sceneArgs.overrides.insert(sceneArgs.overrides.begin(), "fit.kernel=wendland");
+  Scene scene = loadCommandScene(sceneArgs);
   if (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d)
     throw InputError("sweep: mode '" + std::string(sceneModeName(scene.mode)) + "' has no radius to sweep");
   if (!Kernel{scene.fit.kernel, 1.0}.usesRadius())

@@ -1,9 +1,11 @@
 #include "app/gui/document_actions.h"
 
+#include <filesystem>
+
 #include "app/gui/camera_framing.h"
+#include "app/gui/scene_loading.h"
 #include "io/mesh_file.h"
-#include "io/point_file.h"
-#include "scene/scene_fit.h"
+#include "scene/data_file_scene.h"
 
 namespace hermite::app {
 
@@ -22,23 +24,20 @@ void openScene(GuiContext& ctx, const std::string& path) {
 
 namespace {
 
-// A point file: the fit and view settings stay, the data is replaced.
-void openPointFile(GuiContext& ctx, const std::string& path) {
+// A data file (point or mesh file) opens as the default scene around it (scene_loading.h), the
+// same scene `hermite-lab FILE` opens; Save proposes FILE's name with .json beside it.
+void openDataFile(GuiContext& ctx, const std::string& path) {
   try {
-    const int dim = pointFileDimension(path);
-    Scene s = ctx.scene();
-    s.mode = dim == 2 ? SceneMode::Implicit2d : SceneMode::Implicit3d;
-    s.data = DataSpec{};
-    s.data.file = path;
-    s.data.resolvedFile = path;
-    std::vector<std::string> warnings;
-    // Read now, so a malformed file is reported here and not as a failed fit.
-    if (dim == 2) sceneSamples<2>(s, warnings);
-    else sceneSamples<3>(s, warnings);
-    s.view.bounds.reset();
-    ctx.document.apply(s, "open " + path);
+    DataFileScene d = loadDataFileScene(path);
+    ctx.document.reset(d.scene, "");
+    ctx.setHomeFromScene();
     ctx.selected = -1;
-    ctx.setStatus("loaded " + path);
+    ctx.savePath = std::filesystem::path(path).replace_extension(".json").string();
+    ctx.loadedData = GuiContext::LoadedData{d.scene.data, d.samples, d.spacing, d.warnings};
+    std::string status = "loaded " + path + ": " + std::to_string(d.samples) + " samples (" +
+                         std::to_string(d.scene.dimension()) + "D)";
+    if (!d.warnings.empty()) status += "; " + d.warnings.front();
+    ctx.setStatus(status);
   } catch (const std::exception& e) {
     ctx.setStatus(e.what(), true);
   }
@@ -47,12 +46,16 @@ void openPointFile(GuiContext& ctx, const std::string& path) {
 }  // namespace
 
 void openFile(GuiContext& ctx, const std::string& path) {
-  if (path.size() > 5 && path.substr(path.size() - 5) == ".json")
-    openScene(ctx, path);
-  else if (ctx.scene().mode == SceneMode::HoleFill)
-    openHoleFillMesh(ctx, path);
-  else
-    openPointFile(ctx, path);
+  try {
+    if (isSceneFilePath(path))
+      openScene(ctx, path);
+    else if (ctx.scene().mode == SceneMode::HoleFill && isMeshFileExtension(path))
+      openHoleFillMesh(ctx, path);
+    else
+      openDataFile(ctx, path);
+  } catch (const std::exception& e) {
+    ctx.setStatus(e.what(), true);
+  }
 }
 
 void openHoleFillMesh(GuiContext& ctx, const std::string& path) {

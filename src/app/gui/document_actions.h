@@ -11,8 +11,9 @@ namespace hermite::app {
 
 // A scene file replaces the document (and Home becomes its camera).
 void openScene(GuiContext& ctx, const std::string& path);
-// A scene (.json) opens; in hole-fill mode any other file is the mesh to fill; else a point file
-// replaces the data, keeping the fit and view settings.
+// A scene (.json) opens; in hole-fill mode a mesh file is the mesh to fill; any other point or
+// mesh file opens as the default scene around it (loadDataFileScene, as `hermite-lab FILE`); an
+// unknown extension is an error naming the accepted ones.
 void openFile(GuiContext& ctx, const std::string& path);
 // Hole-fill mode: `path` is the mesh to fill.
 void openHoleFillMesh(GuiContext& ctx, const std::string& path);

@@ -1,6 +1,9 @@
 #include "app/gui/drag_refit.h"
 
 #include <chrono>
+#include <cstdint>
+
+#include "scene/scene_fit_memory.h"
 
 namespace hermite::app {
 
@@ -8,8 +11,8 @@ namespace {
 
 bool eligible(const Scene& scene) {
   return (scene.mode == SceneMode::Implicit2d || scene.mode == SceneMode::Implicit3d) &&
-         scene.fit.method == FitMethod::Hrbf && !scene.fit.partition.enabled && scene.transform.isIdentity() &&
-         scene.data.isInline();
+         scene.fit.method == FitMethod::Hrbf && scene.transform.isIdentity() && scene.data.isInline() &&
+         !choosePartition(scene, std::int64_t(scene.data.points.size())).pu;
 }
 
 // The one sample whose point or normal differs, or −1 (none, or more than one).

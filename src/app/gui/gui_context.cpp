@@ -3,12 +3,17 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <filesystem>
 
 namespace hermite::app {
 
 GuiContext::GuiContext(Document doc, GuiOptions opts) : document(std::move(doc)), options(std::move(opts)) {
   setHomeFromScene();
-  savePath = document.path().empty() ? "scene.json" : document.path();
+  // A data file opened as a scene (no scene path) saves beside it as FILE.json.
+  const std::string& data = document.scene().data.file;
+  savePath = !document.path().empty() ? document.path()
+             : !data.empty()          ? std::filesystem::path(data).replace_extension(".json").string()
+                                      : "scene.json";
 }
 
 void GuiContext::setStatus(std::string message, bool error) { status.set(std::move(message), error); }

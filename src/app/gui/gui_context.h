@@ -7,6 +7,7 @@
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/gui/document.h"
 #include "app/gui/fit_presenter.h"
@@ -69,6 +70,14 @@ struct GuiContext {
   bool showPartitionBoxes = false;
   double colourRange = 0;  // 2D heat map: 0 = automatic
   std::string savePath;    // the path Save writes (the Data panel's field, Ctrl+S)
+  // What the last opened data file held (the Data panel describes it while its fit runs).
+  struct LoadedData {
+    DataSpec data;  // the scene's data it describes
+    int samples = 0;
+    double spacing = 0;
+    std::vector<std::string> warnings;
+  };
+  std::optional<LoadedData> loadedData;
   std::map<std::string, std::array<float, 4>> widgets;  // this frame's named widget rectangles
   // A screenshot taken after this frame is drawn: the whole window (withUi) or the view image.
   struct ScreenshotRequest {

@@ -105,12 +105,14 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
 
 int runDefault(const SceneArgs& args) {
   const Scene scene = framedOnLoad(loadCommandScene(args));
+  // A data file is not the document's file: Save writes a scene beside it (gui_context.cpp).
+  const std::string documentPath = args.scenePath.empty() || !isSceneFilePath(args.scenePath) ? "" : args.scenePath;
   std::unique_ptr<render::RenderContext> context;
   try {
     render::ContextOptions co;
     co.width = 1280;
     co.height = 800;
-    co.title = documentTitle(Document(scene, args.scenePath));
+    co.title = documentTitle(Document(scene, documentPath));
     context = render::createContext("glfw", co);
   } catch (const EnvironmentError& e) {
     std::fprintf(stderr, "note: the GUI needs a display (%s); printing the scene's fit report instead.\n", e.what());
@@ -124,7 +126,7 @@ int runDefault(const SceneArgs& args) {
 
   GuiOptions options;
   options.iniFile = false;  // the layout is fixed; nothing worth remembering
-  GuiApp app(Document(scene, args.scenePath), options);
+  GuiApp app(Document(scene, documentPath), options);
   double last = glfwGetTime();
   std::string title = documentTitle(app.document());
   while (!glfwWindowShouldClose(window) && !app.quitRequested()) {

@@ -83,7 +83,8 @@ void DataPanel::drawFiles() {
   if (ImGui::Button("Open")) {
     openFile(ctx_, openPath_);
   }
-  helpMarker("A scene (.json) or a point file (.xyz .pwn .xyzn .xyn ...). Files can also be dropped onto the window.");
+  helpMarker("A scene (.json), a point file (.xyz .pwn .xyzn .xyn) or a mesh file (.ply .obj .gltf .glb .off): a data "
+             "file opens as a default scene around it. Files can also be dropped onto the window.");
   inputText("##save", ctx_.savePath);
   ImGui::SameLine();
   if (ImGui::Button("Save scene")) saveScene(ctx_, ctx_.savePath);
@@ -164,18 +165,22 @@ void DataPanel::drawSummary() {
   // Always three lines, so nothing below (the Fit panel's r slider) moves while one drags it;
   // the warnings themselves are listed in Diagnostics.
   const int dim = ctx_.dimension();
+  // A fit of other data (the file just opened is still fitting) describes nothing shown here.
   const FitOutcome* f = ctx_.currentFit();
-  int n = 0;
-  double spacing = 0;
+  if (f && !(f->scene.data == ctx_.scene().data)) f = nullptr;
+  const auto& loaded = ctx_.loadedData;
+  const bool fresh = !f && loaded && loaded->data == ctx_.scene().data;
+  int n = fresh ? loaded->samples : 0;
+  double spacing = fresh ? loaded->spacing : 0;
   if (f) f->visitImplicit([&](const auto& fit) {
     n = fit.samples.size();
     spacing = meanSampleSpacing<std::decay_t<decltype(fit)>::kDim>(fit.samples.points);
   });
-  if (n > 0) ImGui::Text("%d samples (%dD), mean spacing %.4g", n, dim, spacing);
+  if (n > 0) ImGui::Text("%d samples (%dD), mean spacing %.4g%s", n, dim, spacing, fresh ? ", fitting..." : "");
   else ImGui::TextDisabled("samples: fitting...");
   if (ctx_.selected >= 0) ImGui::Text("selected: sample %d (N flips, Del deletes)", ctx_.selected);
   else ImGui::TextDisabled("no sample selected");
-  const std::size_t warnings = f ? f->warnings().size() : 0;
+  const std::size_t warnings = f ? f->warnings().size() : fresh ? loaded->warnings.size() : 0;
   if (warnings > 0) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %zu data / fit warnings (Diagnostics)", warnings);
   else ImGui::TextDisabled("no warnings");
 }

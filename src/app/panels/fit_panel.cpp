@@ -70,13 +70,15 @@ void drawRadius(GuiContext& ctx, const FitSpec& fit) {
 void drawPartition(GuiContext& ctx, FitSpec fit) {
   ImGui::Separator();
   ImGui::TextDisabled("partition of unity");
-  bool pu = fit.partition.enabled;
-  if (ImGui::Checkbox("enabled", &pu)) {
-    fit.partition.enabled = pu;
-    editFit(ctx, fit, pu ? "partition on" : "partition off");
+  // fit.partition.enabled: "auto" chooses by size (dense up to 10 000 unknowns), on, off.
+  static const char* const kSwitchNames[] = {"auto", "on", "off"};
+  int choice = static_cast<int>(fit.partition.enabled);
+  if (ImGui::Combo("enabled", &choice, kSwitchNames, 3)) {
+    fit.partition.enabled = static_cast<PartitionSwitch>(choice);
+    editFit(ctx, fit, std::string("partition ") + kSwitchNames[choice]);
     fit = ctx.scene().fit;
   }
-  ImGui::BeginDisabled(!fit.partition.enabled);
+  ImGui::BeginDisabled(fit.partition.enabled == PartitionSwitch::Off);
   int maxPoints = fit.partition.maxPointsPerBox;
   if (ImGui::InputInt("max points / box", &maxPoints, 1, 10, ImGuiInputTextFlags_EnterReturnsTrue) && maxPoints >= 1) {
     fit.partition.maxPointsPerBox = maxPoints;

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <queue>
+#include <string>
 #include <vector>
 
 #include <Eigen/Eigenvalues>
@@ -29,98 +31,239 @@ template <int Dim>
 using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CloudAdaptor<Dim>>,
                                                    CloudAdaptor<Dim>, Dim, std::uint32_t>;
 
-}  // namespace
+// The symmetric k-nearest-neighbour graph: `nbr` holds each point's k nearest (itself included,
+// row-major N × k), `reverse` the points that list it.
+struct NeighbourGraph {
+  int k = 0;
+  std::vector<std::uint32_t> nbr;
+  std::vector<std::vector<std::uint32_t>> reverse;
+  const std::uint32_t* of(int i) const { return nbr.data() + static_cast<std::size_t>(i) * k; }
+};
 
 template <int Dim>
-Points<Dim> estimateNormals(const Points<Dim>& points, const NormalEstimationOptions& options) {
+NeighbourGraph neighbourGraph(const Points<Dim>& points, int k) {
   const int n = static_cast<int>(points.cols());
-  if (n < 2) throw InputError("normal estimation: needs at least 2 points (got " + std::to_string(n) + ")");
-  const int k = std::min(std::max(options.neighbours, Dim), n);
+  NeighbourGraph g;
+  g.k = k;
+  g.nbr.resize(static_cast<std::size_t>(n) * k);
   CloudAdaptor<Dim> cloud{points};
   KdTree<Dim> tree(Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
-  // k nearest neighbours of every point (the point itself included), row-major n × k.
-  std::vector<std::uint32_t> nbr(static_cast<std::size_t>(n) * k);
-  Points<Dim> normals(Dim, n);
 #pragma omp parallel
   {
     std::vector<double> d2(static_cast<std::size_t>(k));
 #pragma omp for schedule(dynamic, 1024)
     for (int i = 0; i < n; ++i) {
-      std::uint32_t* idx = nbr.data() + static_cast<std::size_t>(i) * k;
+      std::uint32_t* idx = g.nbr.data() + static_cast<std::size_t>(i) * k;
       const Vec<Dim> p = points.col(i);
       const std::size_t found = tree.knnSearch(p.data(), static_cast<std::size_t>(k), idx, d2.data());
       for (std::size_t j = found; j < static_cast<std::size_t>(k); ++j) idx[j] = static_cast<std::uint32_t>(i);
-      Vec<Dim> mean = Vec<Dim>::Zero();
-      for (int j = 0; j < k; ++j) mean += points.col(idx[j]);
-      mean /= k;
-      Mat<Dim> C = Mat<Dim>::Zero();
-      for (int j = 0; j < k; ++j) {
-        const Vec<Dim> d = points.col(idx[j]) - mean;
-        C += d * d.transpose();
-      }
-      Eigen::SelfAdjointEigenSolver<Mat<Dim>> eig(C);
-      Vec<Dim> nrm = eig.eigenvectors().col(0);  // smallest eigenvalue first
-      if (!(nrm.norm() > 0) || !nrm.allFinite()) nrm = Vec<Dim>::UnitX();
-      normals.col(i) = nrm.normalized();
     }
   }
-
-  // Orientation: Prim's minimum spanning tree over the symmetric k-NN graph, cost 1 − |nᵢ·nⱼ|;
-  // each tree edge copies the parent's orientation to the child.
-  std::vector<std::vector<std::uint32_t>> reverse(static_cast<std::size_t>(n));
+  g.reverse.resize(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < k; ++j) {
-      const std::uint32_t o = nbr[static_cast<std::size_t>(i) * k + j];
-      if (static_cast<int>(o) != i) reverse[o].push_back(static_cast<std::uint32_t>(i));
+      const std::uint32_t o = g.of(i)[j];
+      if (static_cast<int>(o) != i) g.reverse[o].push_back(static_cast<std::uint32_t>(i));
     }
-  std::vector<char> done(static_cast<std::size_t>(n), 0);
-  using Item = std::pair<double, std::pair<std::uint32_t, std::uint32_t>>;  // cost, (child, parent)
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  std::vector<int> component;
-  for (int seed = 0; seed < n; ++seed) {
-    if (done[seed]) continue;
-    component.clear();
-    done[seed] = 1;
-    component.push_back(seed);
-    auto push = [&](std::uint32_t from) {
-      auto edge = [&](std::uint32_t to) {
-        if (done[to]) return;
-        heap.push({1.0 - std::abs(normals.col(from).dot(normals.col(to))), {to, from}});
-      };
-      for (int j = 0; j < k; ++j) edge(nbr[static_cast<std::size_t>(from) * k + j]);
-      for (std::uint32_t to : reverse[from]) edge(to);
-    };
-    push(static_cast<std::uint32_t>(seed));
-    while (!heap.empty()) {
-      const auto [cost, e] = heap.top();
-      heap.pop();
-      const auto [child, parent] = e;
-      if (done[child]) continue;
-      done[child] = 1;
-      if (normals.col(child).dot(normals.col(parent)) < 0) normals.col(child) = -normals.col(child);
-      component.push_back(static_cast<int>(child));
-      push(child);
-    }
-    // Outward: the component's farthest sample from its centroid points away from it.
-    Vec<Dim> centroid = Vec<Dim>::Zero();
-    for (int i : component) centroid += points.col(i);
-    centroid /= static_cast<double>(component.size());
-    int far = component.front();
-    double farD = -1;
-    for (int i : component) {
-      const double d = (points.col(i) - centroid).squaredNorm();
-      if (d > farD) {
-        farD = d;
-        far = i;
-      }
-    }
-    if (normals.col(far).dot(points.col(far) - centroid) < 0)
-      for (int i : component) normals.col(i) = -normals.col(i);
+  return g;
+}
+
+// The unit eigenvector of the smallest eigenvalue of the covariance of the points `idx`.
+template <int Dim>
+Vec<Dim> pcaNormal(const Points<Dim>& points, const std::uint32_t* idx, int count) {
+  Vec<Dim> mean = Vec<Dim>::Zero();
+  for (int j = 0; j < count; ++j) mean += points.col(idx[j]);
+  mean /= count;
+  Mat<Dim> C = Mat<Dim>::Zero();
+  for (int j = 0; j < count; ++j) {
+    const Vec<Dim> d = points.col(idx[j]) - mean;
+    C += d * d.transpose();
   }
+  Eigen::SelfAdjointEigenSolver<Mat<Dim>> eig(C);
+  Vec<Dim> nrm = eig.eigenvectors().col(0);  // smallest eigenvalue first
+  if (!(nrm.norm() > 0) || !nrm.allFinite()) nrm = Vec<Dim>::UnitX();
+  return nrm.normalized();
+}
+
+// The normal of the hyperplane through pᵢ and its neighbours j (and l in 3D), or zero when they
+// span no hyperplane.
+template <int Dim>
+Vec<Dim> planeNormal(const Vec<Dim>& a, const Vec<Dim>& b) {
+  if constexpr (Dim == 2) {
+    (void)b;
+    return Vec<Dim>(-a.y(), a.x());
+  } else {
+    return a.cross(b);
+  }
+}
+
+// Point i's normal, robust to a second sheet among its neighbours: of the hyperplanes through pᵢ
+// and Dim − 1 of its neighbours, the one with the most neighbours within 0.3 × the neighbourhood
+// radius of it (a sheet's own neighbours; another sheet a gap away is off it), then PCA over
+// those. Plain PCA over all k when no hyperplane holds Dim + 1 of them or at least 2 more than
+// PCA's own.
+template <int Dim>
+Vec<Dim> robustNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, std::vector<std::uint32_t>& inliers) {
+  const std::uint32_t* idx = g.of(i);
+  const Vec<Dim> p = points.col(i);
+  double radius = 0;
+  for (int j = 0; j < g.k; ++j) radius = std::max(radius, (points.col(idx[j]) - p).norm());
+  const double tol = 0.3 * radius;
+  int best = 0;
+  Vec<Dim> bestNormal = Vec<Dim>::Zero();
+  for (int a = 0; a < g.k; ++a)
+    for (int b = Dim == 2 ? a : a + 1; b < (Dim == 2 ? a + 1 : g.k); ++b) {
+      Vec<Dim> n = planeNormal<Dim>(points.col(idx[a]) - p, points.col(idx[b]) - p);
+      const double len = n.norm();
+      if (!(len > 1e-12 * radius * radius)) continue;
+      n /= len;
+      int count = 0;
+      for (int j = 0; j < g.k; ++j) count += std::abs(n.dot(points.col(idx[j]) - p)) <= tol;
+      if (count > best) best = count, bestNormal = n;
+    }
+  // PCA's own hyperplane through pᵢ stands unless another holds clearly more neighbours (on a
+  // curved sheet the chords' hyperplanes hold about as many, and PCA is the better estimate).
+  const Vec<Dim> pca = pcaNormal<Dim>(points, idx, g.k);
+  int pcaCount = 0;
+  for (int j = 0; j < g.k; ++j) pcaCount += std::abs(pca.dot(points.col(idx[j]) - p)) <= tol;
+  if (best < Dim + 1 || best < pcaCount + 2) return pca;
+  inliers.clear();
+  for (int j = 0; j < g.k; ++j)
+    if (std::abs(bestNormal.dot(points.col(idx[j]) - p)) <= tol) inliers.push_back(idx[j]);
+  return pcaNormal<Dim>(points, inliers.data(), static_cast<int>(inliers.size()));
+}
+
+// How an orientation crosses the edge i → j, and at what cost (see the header):
+//   along a sheet   d = pⱼ − pᵢ in both tangent planes, normals agree: copy, cost 1 − |nᵢ·nⱼ| < 1;
+//   across a gap    d along both normals, normals parallel: the sheets of a closed surface face
+//                   each other there (both away from or both toward the region between), so nⱼ
+//                   takes the opposite orientation, cost 2 + (1 − |nᵢ·nⱼ|) + (1 − the smaller
+//                   |d̂·n|);
+//   any other edge  (a fold, a crease, noise): copy, cost 4 + (1 − |nᵢ·nⱼ|), the last resort.
+struct EdgeRule {
+  double cost = 0;
+  bool opposite = false;
+};
+
+template <int Dim>
+EdgeRule edgeRule(const Points<Dim>& P, const Points<Dim>& N, int i, int j, const NormalEstimationOptions& o) {
+  const Vec<Dim> ni = N.col(i).normalized(), nj = N.col(j).normalized();
+  const double agree = std::abs(ni.dot(nj));
+  const Vec<Dim> d = P.col(j) - P.col(i);
+  const double len = d.norm();
+  if (!(len > 0)) return {1.0 - agree, false};  // a duplicate point: the same sheet
+  const double li = std::abs(d.dot(ni)) / len, lj = std::abs(d.dot(nj)) / len;
+  if (agree >= o.agreeCosine && std::max(li, lj) <= o.gapSine) return {1.0 - agree, false};
+  if (agree >= o.acrossCosine && std::min(li, lj) >= o.acrossCosine)
+    return {2.0 + (1.0 - agree) + (1.0 - std::min(li, lj)), true};
+  return {4.0 + (1.0 - agree), false};
+}
+
+// The next seed among the points not yet oriented: per axis the one with the largest coordinate
+// (`order` holds each axis's indices by decreasing coordinate, `cursor` skips oriented ones),
+// over the axes the one whose normal is most aligned with its axis. Returns −1 when all are done.
+template <int Dim>
+int nextSeed(const Points<Dim>& N, const std::vector<char>& done, const std::vector<std::vector<int>>& order,
+             std::vector<std::size_t>& cursor, int& axis) {
+  int best = -1;
+  double bestAlign = -1;
+  for (int a = 0; a < Dim; ++a) {
+    while (cursor[a] < order[a].size() && done[order[a][cursor[a]]]) ++cursor[a];
+    if (cursor[a] == order[a].size()) return -1;
+    const int i = order[a][cursor[a]];
+    const double align = std::abs(N(a, i)) / N.col(i).norm();
+    if (align > bestAlign) bestAlign = align, best = i, axis = a;
+  }
+  return best;
+}
+
+// Orients the normals of the points with `done[i]` == 0 (Prim's tree from the others, then from
+// seeds); each tree edge passes the parent's orientation to the child by its EdgeRule.
+template <int Dim>
+void orientNormals(const Points<Dim>& P, Points<Dim>& N, std::vector<char> done, const NeighbourGraph& g,
+                   const NormalEstimationOptions& o) {
+  const int n = static_cast<int>(P.cols());
+  struct Item {
+    double cost;
+    std::uint32_t child, parent;
+    bool opposite;  // the child takes the orientation opposite to its parent's (across a gap)
+    bool operator>(const Item& o) const { return cost > o.cost; }
+  };
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+  auto push = [&](std::uint32_t from) {
+    auto edge = [&](std::uint32_t to) {
+      if (done[to]) return;
+      const EdgeRule r = edgeRule<Dim>(P, N, int(from), int(to), o);
+      heap.push({r.cost, to, from, r.opposite});
+    };
+    for (int j = 0; j < g.k; ++j) edge(g.of(int(from))[j]);
+    for (std::uint32_t to : g.reverse[from]) edge(to);
+  };
+  for (int i = 0; i < n; ++i)
+    if (done[i]) push(static_cast<std::uint32_t>(i));
+  std::vector<std::vector<int>> order(Dim, std::vector<int>(static_cast<std::size_t>(n)));
+  for (int a = 0; a < Dim; ++a) {
+    std::iota(order[a].begin(), order[a].end(), 0);
+    std::sort(order[a].begin(), order[a].end(), [&](int x, int y) { return P(a, x) > P(a, y); });
+  }
+  std::vector<std::size_t> cursor(Dim, 0);
+  for (;;) {
+    while (!heap.empty()) {
+      const Item e = heap.top();
+      heap.pop();
+      if (done[e.child]) continue;
+      done[e.child] = 1;
+      if ((N.col(e.child).dot(N.col(e.parent)) < 0) != e.opposite) N.col(e.child) = -N.col(e.child);
+      push(e.child);
+    }
+    int axis = 0;
+    const int seed = nextSeed<Dim>(N, done, order, cursor, axis);
+    if (seed < 0) return;
+    if (N(axis, seed) < 0) N.col(seed) = -N.col(seed);
+    done[seed] = 1;
+    push(static_cast<std::uint32_t>(seed));
+  }
+}
+
+}  // namespace
+
+template <int Dim>
+int completeNormals(const Points<Dim>& points, Points<Dim>& normals, const NormalEstimationOptions& options) {
+  const int n = static_cast<int>(points.cols());
+  std::vector<char> known(static_cast<std::size_t>(n));
+  int missing = 0;
+  for (int i = 0; i < n; ++i) {
+    known[i] = normals.col(i).isZero(0) ? 0 : 1;
+    missing += 1 - known[i];
+  }
+  if (missing == 0) return 0;
+  if (n < 2)
+    throw InputError("normal estimation: needs at least 2 points (got " + std::to_string(n) + ")");
+  const int k = std::min(std::max(options.neighbours, Dim), n);
+  const NeighbourGraph g = neighbourGraph<Dim>(points, k);
+#pragma omp parallel
+  {
+    std::vector<std::uint32_t> inliers;
+#pragma omp for schedule(dynamic, 1024)
+    for (int i = 0; i < n; ++i)
+      if (!known[i]) normals.col(i) = robustNormal<Dim>(points, g, i, inliers);
+  }
+  orientNormals<Dim>(points, normals, std::move(known), g, options);
+  return missing;
+}
+
+template <int Dim>
+Points<Dim> estimateNormals(const Points<Dim>& points, const NormalEstimationOptions& options) {
+  const int n = static_cast<int>(points.cols());
+  if (n < 2) throw InputError("normal estimation: needs at least 2 points (got " + std::to_string(n) + ")");
+  Points<Dim> normals = Points<Dim>::Zero(Dim, n);
+  completeNormals<Dim>(points, normals, options);
   return normals;
 }
 
 template Points<2> estimateNormals<2>(const Points<2>&, const NormalEstimationOptions&);
 template Points<3> estimateNormals<3>(const Points<3>&, const NormalEstimationOptions&);
+template int completeNormals<2>(const Points<2>&, Points<2>&, const NormalEstimationOptions&);
+template int completeNormals<3>(const Points<3>&, Points<3>&, const NormalEstimationOptions&);
 
 }  // namespace hermite

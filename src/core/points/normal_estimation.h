@@ -2,21 +2,46 @@
 // Normals for raw clouds (docs/maths.md, Normal estimation): PCA over the k nearest
 // neighbours (the normal is the eigenvector of the smallest eigenvalue of the neighbourhood's
 // covariance), then consistent orientation by propagation over a minimum spanning tree of the
-// k-nearest-neighbour graph with edge cost 1 − |nᵢ·nⱼ| (Hoppe et al. 1992), and per connected
-// component a final flip so the sample farthest from the component's centroid points away
-// from it (outward for closed shapes).
+// symmetric k-nearest-neighbour graph (Hoppe et al. 1992) with edge cost 1 − |nᵢ·nⱼ|.
+//
+// Thin parts: two sheets closer than the neighbourhood share neighbours, and their normals are
+// parallel up to sign, so a plain 1 − |nᵢ·nⱼ| tree copies an orientation across the gap and
+// flips a whole sheet. Each edge is classified by its direction d = pⱼ − pᵢ:
+//   along a sheet  d leaves neither tangent plane by more than asin(gapSine) and the normals
+//                  agree (|nᵢ·nⱼ| ≥ agreeCosine): the orientation is copied, cost 1 − |nᵢ·nⱼ|;
+//   across a gap   d runs along both normals (|d̂·nᵢ|, |d̂·nⱼ| ≥ acrossCosine) and they are
+//                  parallel (|nᵢ·nⱼ| ≥ acrossCosine): two sheets of a closed surface face each
+//                  other, so the orientation is reversed, cost 2 + …;
+//   otherwise      copied, cost 4 + … (folds, creases, noise).
+// Prim's tree takes the cheapest edge out of the oriented set, so it crosses a gap only where no
+// edge along a sheet reaches the rest of the part, and uses any other edge only where neither does.
+//
+// Seeds: each part of the graph that no fixed normal reaches starts at its extreme point along
+// a coordinate axis (the largest coordinate among the points not yet oriented, over the axes,
+// the one whose normal is most aligned with its axis) with its normal pointing along +axis:
+// the outward side of a closed shape there.
 
 #include "core/base/geometry.h"
 
 namespace hermite {
 
 struct NormalEstimationOptions {
-  int neighbours = 10;  // k ≥ Dim (PCA needs a spread); 10 fits typical scanned clouds
+  int neighbours = 10;       // k ≥ Dim (PCA needs a spread); 10 fits typical scanned clouds
+  double gapSine = 0.5;      // an edge leaving a tangent plane by more than 30° crosses a gap
+  double agreeCosine = 0.5;  // normals more than 60° apart are not along one sheet
+  double acrossCosine = 0.85;  // across a gap: normals within 32° of parallel, d within 32° of them
 };
 
 // Unit normals (Dim × N) for the columns of `points` (Dim × N, N ≥ 2). InputError when N < 2.
 template <int Dim>
 Points<Dim> estimateNormals(const Points<Dim>& points, const NormalEstimationOptions& options = {});
+
+// Fills the columns of `normals` (Dim × N, beside `points`) that are exactly zero with estimated
+// unit normals oriented consistently with the non-zero ones (which are kept, unnormalised, and
+// seed the orientation); all zero is estimateNormals. Returns how many were filled.
+// InputError when a normal is missing and N < 2.
+template <int Dim>
+int completeNormals(const Points<Dim>& points, Points<Dim>& normals, const NormalEstimationOptions& options = {});
 
 // Flips every normal (the GUI's "flip" button): n ↦ −n.
 template <int Dim>

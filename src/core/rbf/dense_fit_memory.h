@@ -35,7 +35,7 @@ PlannedAllocation denseFitPlan(std::int64_t unknowns, SolverChoice solver, std::
 
 // What a refused global fit suggests.
 inline constexpr const char* kDenseFitRemedy =
-    "use partition of unity (fit.partition.enabled: true) or fewer points";
+    "use partition of unity (fit.partition.enabled: true, or \"auto\" to choose by size) or fewer points";
 
 // Throws MemoryLimitError when the fit does not fit in the available memory.
 void checkDenseFitMemory(std::int64_t unknowns, SolverChoice solver, std::int64_t polynomialTerms);

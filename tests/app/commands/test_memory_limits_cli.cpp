@@ -78,7 +78,8 @@ TEST_CASE("work beyond the memory limit is refused before it starts: exit 4, the
   }
   SUBCASE("a global fit of 50 000 points") {
     const std::string big = writeTemp("memory_big.json", R"({"version": 1, "mode": "implicit3d",
-        "data": {"preset": "sphere", "count": 50000}, "fit": {"kernel": "gaussian", "radius": 1.0, "polynomial": "linear"}})");
+        "data": {"preset": "sphere", "count": 50000}, "fit": {"kernel": "gaussian", "radius": 1.0, "polynomial": "linear",
+        "partition": {"enabled": false}}})");
     for (const char* command : {"fit", "sweep"}) {
       CAPTURE(command);
       const std::string dir = (std::filesystem::temp_directory_path() / "hermite_sweep_refused").string();
@@ -110,7 +111,8 @@ TEST_CASE("under an address-space limit near the fit's size the process never ha
   // 2 000 points: a 512 MB system matrix. The limits run from a clear refusal to a clear fit,
   // through the boundary where the check passes and a later allocation may still fail.
   const std::string scene = writeTemp("oom_sphere.json", R"({"version": 1, "mode": "implicit3d",
-      "data": {"preset": "sphere", "count": 2000}, "fit": {"kernel": "cubic", "radius": 1.0, "polynomial": "linear"}})");
+      "data": {"preset": "sphere", "count": 2000}, "fit": {"kernel": "cubic", "radius": 1.0, "polynomial": "linear",
+      "partition": {"enabled": false}}})");
   for (long mib : {600L, 900L, 950L}) {
     for (const char* threads : {"1", "4096"}) {
       CAPTURE(mib);
@@ -126,7 +128,8 @@ TEST_CASE("under an address-space limit near the fit's size the process never ha
 TEST_CASE("the GUI's fit of a scene too large for this machine ends in the refusal as its message") {
   hermite::setAvailableMemorySource(hermite::querySystemMemory);
   const hermite::Scene scene = hermite::parseScene(nlohmann::json::parse(R"({"version": 1, "mode": "implicit3d",
-      "data": {"preset": "sphere", "count": 50000}, "fit": {"kernel": "cubic", "radius": 1.0, "polynomial": "linear"}})"),
+      "data": {"preset": "sphere", "count": 50000}, "fit": {"kernel": "cubic", "radius": 1.0, "polynomial": "linear",
+      "partition": {"enabled": false}}})"),
                                                    "big.json", ".");
   const auto outcome = hermite::app::fitOutcome(scene);
   hermite::setAvailableMemorySource(nullptr);

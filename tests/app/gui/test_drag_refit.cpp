@@ -80,7 +80,7 @@ TEST_CASE("drag refit: moving or turning one sample takes the bordered solve and
   CHECK(refit.fit(scene)->as<SceneFit<2>>()->report.solver != "bordered-lu");
   scene = moved<2>(moved<2>(scene, 3, Vec<2>(0.01, 0.0)), 4, Vec<2>(0.0, 0.01));
   CHECK(refit.fit(scene)->as<SceneFit<2>>()->report.solver != "bordered-lu");
-  scene.fit.partition.enabled = true;
+  scene.fit.partition.enabled = PartitionSwitch::On;
   scene = moved<2>(scene, 5, Vec<2>(0.01, 0.0));
   auto pu = refit.fit(scene);
   REQUIRE(pu->ok());

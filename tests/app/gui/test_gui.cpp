@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include <imgui.h>
 
@@ -442,7 +443,7 @@ TEST_CASE("UI: dragging a patch tangent handle edits the knot data; the Bézier 
 
 TEST_CASE("UI: a partition-of-unity fit shows its boxes; Flip all normals is one undoable edit") {
   Scene s = scene2d(120);
-  s.fit.partition.enabled = true;
+  s.fit.partition.enabled = PartitionSwitch::On;
   s.fit.partition.maxPointsPerBox = 10;
   Harness h(s, true, 1000, 700);
   h.frames(2);
@@ -558,4 +559,44 @@ TEST_CASE("UI: a mesh dropped in hole-fill mode is the mesh to fill; each hole's
   }
   h.key(GLFW_KEY_Z, true);
   CHECK(h.app->document().scene().holefill.mesh.empty());
+}
+
+TEST_CASE("UI: a point file dropped on the window opens as the default scene around it, described at once") {
+  Scene s;
+  s.data.preset = "sphere6";
+  s.sourceName = "test-drop-points";
+  Harness h(s, true, 900, 650);
+  h.frames(2);
+  // 300 points of a sphere, positions only: normals estimated on opening.
+  std::string text;
+  for (int i = 0; i < 300; ++i) {
+    const double z = 1 - (2 * i + 1) / 300.0, r = std::sqrt(1 - z * z), a = i * 2.399963229728653;
+    text += std::to_string(r * std::cos(a)) + " " + std::to_string(r * std::sin(a)) + " " + std::to_string(z) + "\n";
+  }
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / "hermite_gui_drop_points";
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "cloud.xyz").string();
+  std::ofstream(path) << text;
+  h.input.droppedFiles = {path};
+  h.frames(3);
+  const Scene& opened = h.app->document().scene();
+  CHECK(opened.mode == SceneMode::Implicit3d);
+  CHECK(opened.data.file == path);
+  CHECK(opened.fit.kernel == KernelType::Cubic);
+  CHECK(opened.fit.partition.enabled == PartitionSwitch::Auto);
+  CHECK(h.app->document().path().empty());  // the data file is not the scene's file
+  CHECK(documentTitle(h.app->document()) == "Hermite Lab — cloud.xyz");
+  CHECK(h.app->status().message.find("loaded " + path + ": 300 samples (3D)") != std::string::npos);
+  REQUIRE(h.app->currentFit());
+  CHECK(h.app->currentFit()->scene.data == opened.data);
+  // Saving writes the scene with data.file relative to the scene's folder.
+  std::filesystem::create_directories(dir / "saved");
+  h.app->document().save((dir / "saved" / "cloud.json").string());
+  const Scene back = loadSceneFile((dir / "saved" / "cloud.json").string());
+  CHECK(back.data.file == "../cloud.xyz");
+  // An unknown extension is refused with the accepted ones, the document unchanged.
+  h.input.droppedFiles = {(dir / "notes.txt").string()};
+  h.frames(1);
+  CHECK(h.app->status().message.find("unknown file type '.txt'") != std::string::npos);
+  CHECK(h.app->document().scene().data.file == path);
 }

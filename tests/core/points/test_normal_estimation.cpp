@@ -6,6 +6,8 @@
 #include "core/base/errors.h"
 #include "core/points/normal_estimation.h"
 #include "core/shapes/analytic_shapes.h"
+#include "core/shapes/mesh_shapes.h"
+#include "support/mesh_samples.h"
 #include "support/test_data.h"
 
 using namespace hermite;
@@ -60,4 +62,55 @@ TEST_CASE("normal estimation: a 2D circle, flipping, and too few points") {
   flipNormals<2>(n);
   for (int i = 0; i < c.size(); ++i) CHECK(n.col(i).dot(c.normals.col(i)) < -0.999);
   CHECK_THROWS_AS(estimateNormals<2>(Points<2>::Zero(2, 1)), InputError);
+}
+
+// Thin parts: two sheets 2.5 sample spacings apart, well inside one another's neighbourhood (the
+// 10 nearest neighbours reach about 1.8 spacings, so a neighbourhood 3.6 spacings across spans
+// both sheets and the k-NN graph links them). A tree that copies orientations across the gap
+// flips a whole sheet (half the normals); the estimate keeps at most 0.5 % against the truth.
+TEST_CASE("normal estimation: a thin slab keeps both sheets oriented outward") {
+  const int n = 20000;
+  const double spacing = std::sqrt(2.0 / n);  // the slab's area is ≈ 2 (two unit squares)
+  const double thickness = 2.5 * spacing;
+  const HermiteSamples<3> slab =
+      testing::sampleMesh(testing::boxMesh(Vec<3>(0, 0, 0), Vec<3>(1, 1, thickness)), n, 7);
+  CHECK(meanSampleSpacing<3>(slab.points) < thickness);
+  const Points<3> estimated = estimateNormals<3>(slab.points);
+  CHECK(testing::flippedFraction(estimated, slab.normals) <= 0.005);
+}
+
+TEST_CASE("normal estimation: a hollow ball's inner sheet points inward, across the gap from the outer") {
+  // The solid between spheres of radius 1 and 1 − t: outward normals outside, inward inside.
+  const int n = 40000;
+  const double spacing = std::sqrt(8 * M_PI / n);  // the two spheres' area ≈ 8π
+  const double thickness = 2.5 * spacing;
+  TriMesh outer = uvSphereMesh(256, 128);
+  TriMesh inner = outer;
+  inner.vertices *= 1 - thickness;
+  inner.triangles.row(1).swap(inner.triangles.row(2));  // counter-clockwise seen from the hollow
+  TriMesh shell;
+  shell.vertices.resize(3, outer.vertexCount() + inner.vertexCount());
+  shell.vertices << outer.vertices, inner.vertices;
+  shell.triangles.resize(3, outer.triangleCount() + inner.triangleCount());
+  shell.triangles << outer.triangles, (inner.triangles.array() + outer.vertexCount()).matrix();
+  const HermiteSamples<3> s = testing::sampleMesh(shell, n, 11);
+  const Points<3> estimated = estimateNormals<3>(s.points);
+  CHECK(testing::flippedFraction(estimated, s.normals) <= 0.005);
+}
+
+TEST_CASE("normal estimation: zero normals are filled and follow the given ones") {
+  const HermiteSamples<3> s = testing::goldenSphere(1500, 1.0);
+  // Every fifth normal missing, the others given inward: the filled ones point inward too.
+  Points<3> normals = -s.normals;
+  for (int i = 0; i < s.size(); i += 5) normals.col(i).setZero();
+  const Points<3> given = normals;
+  CHECK(completeNormals<3>(s.points, normals) == 300);
+  for (int i = 0; i < s.size(); ++i) {
+    if (i % 5 == 0) CHECK(normals.col(i).dot(s.normals.col(i)) < -0.99);
+    else CHECK(normals.col(i) == given.col(i));  // kept as given
+  }
+  Points<3> complete = s.normals;
+  CHECK(completeNormals<3>(s.points, complete) == 0);
+  Points<3> lone = Points<3>::Zero(3, 1);
+  CHECK_THROWS_AS(completeNormals<3>(Points<3>::Zero(3, 1), lone), InputError);
 }
