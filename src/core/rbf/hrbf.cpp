@@ -128,6 +128,7 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
   checkDenseFitMemory(std::int64_t(samples.size()) * (Dim + 1) + m, plannedSolverPath(options.solver, m, sign), m);
   // The polynomial part about `origin` (docs/maths.md, Centring): P is built from the centred
   // points, the kernel block is unchanged (it sees only exact differences pᵢ − pⱼ).
+  throwIfCancelled(options.cancel);
   SaddleSystem sys;
   if (origin.isZero()) {
     sys = assembleHrbf(samples, options);
@@ -136,6 +137,7 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
     centred.points.colwise() -= origin;
     sys = assembleHrbf(centred, options);
   }
+  sys.cancel = options.cancel;
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;
   const int N = samples.size();
