@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <utility>
+
 #include "app/tools/spec_vectors.h"
 
 namespace hermite::app {
