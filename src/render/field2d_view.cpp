@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/base/errors.h"
-#include "core/points/hermite_samples.h"
+#include "core/trace/mark_sizes.h"
 #include "core/trace/color_map.h"
 #include "render/gl/offscreen.h"
 #include "render/gl/shader_library.h"
@@ -102,17 +102,9 @@ void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, co
                      float(width)});
   };
   const Field2dStyle& st = options.style;
-  // Marks scaled to the mean sample spacing s (pixels), so that a dense cloud is not a hairball:
-  // normals at most 2·s long, dots at most s/2 wide (radius ≥ 1.5 px); sparse clouds keep the style's.
-  double normalPx = st.normalLengthPx, dotRadiusPx = st.pointRadiusPx;
-  if (points.cols() > 1) {
-    const double pxPerUnit = (view.worldToPixel(Vec<2>(1, 0)) - view.worldToPixel(Vec<2>(0, 0))).norm();
-    const double spacingPx = meanSampleSpacing<2>(points) * pxPerUnit;
-    if (spacingPx > 0) {
-      normalPx = std::min(normalPx, 2.0 * spacingPx);
-      dotRadiusPx = std::clamp(0.25 * spacingPx, std::min(1.5, dotRadiusPx), dotRadiusPx);
-    }
-  }
+  // Marks scaled to the mean sample spacing (mark_sizes.h), as the reference draws them.
+  const MarkSizes marksPx = markSizes2d(st, view, points);
+  const double normalPx = marksPx.normalLengthPx, dotRadiusPx = marksPx.pointRadiusPx;
   if (options.showNormals && normals.cols() == points.cols() && normalPx > 0)
     for (Eigen::Index s = 0; s < points.cols(); ++s) {
       const double len = normals.col(s).norm();
