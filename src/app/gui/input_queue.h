@@ -5,6 +5,7 @@
 // of a key it already saw change: a click that arrived during a slow frame is replayed over the
 // next frames at the position where it happened, and a press and release within one frame are
 // still seen as a press, then a release. GLFW-free (key codes are GLFW's), so tests script it.
+// The UI tests drive GuiApp through it; the GLFW window does not yet (docs/design.md).
 
 #include <cstddef>
 #include <deque>
