@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/base/errors.h"
+#include "core/trace/mark_sizes.h"
 #include "core/trace/color_map.h"
 #include "render/gl/offscreen.h"
 #include "render/gl/shader_library.h"
@@ -101,26 +102,29 @@ void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, co
                      float(width)});
   };
   const Field2dStyle& st = options.style;
-  if (options.showNormals && normals.cols() == points.cols() && st.normalLengthPx > 0)
+  // Marks scaled to the mean sample spacing (mark_sizes.h), as the reference draws them.
+  const MarkSizes marksPx = markSizes2d(st, view, points);
+  const double normalPx = marksPx.normalLengthPx, dotRadiusPx = marksPx.pointRadiusPx;
+  if (options.showNormals && normals.cols() == points.cols() && normalPx > 0)
     for (Eigen::Index s = 0; s < points.cols(); ++s) {
       const double len = normals.col(s).norm();
       if (!(len > 0) || !points.col(s).allFinite()) continue;
       const Vec<2> a = toGl(points.col(s));
       const Vec<2> dir = normals.col(s) / len;  // GL pixels have +y up like the world
-      const Vec<2> b = a + st.normalLengthPx * dir;
+      const Vec<2> b = a + normalPx * dir;
       add(a, b, 1.5, st.normalColor);
       if (options.arrowHeadPx > 0) {
         const Vec<2> side(-dir.y(), dir.x());
-        const double h = options.arrowHeadPx;
+        const double h = std::min(options.arrowHeadPx, 0.4 * normalPx);  // 18 px normals keep 5 px barbs
         add(b, b - h * (0.87 * dir + 0.5 * side), 1.5, st.normalColor);  // barbs at ±30°
         add(b, b - h * (0.87 * dir - 0.5 * side), 1.5, st.normalColor);
       }
     }
-  if (options.showPoints && st.pointRadiusPx > 0)
+  if (options.showPoints && dotRadiusPx > 0)
     for (Eigen::Index s = 0; s < points.cols(); ++s) {
       if (!points.col(s).allFinite()) continue;
       const Vec<2> a = toGl(points.col(s));
-      add(a, a, 2.0 * st.pointRadiusPx, st.pointColor);
+      add(a, a, 2.0 * dotRadiusPx, st.pointColor);
     }
   markCount_ = int(marks.size());
   if (!marks.empty()) {

@@ -601,6 +601,7 @@ struct ImplicitTracer::Gpu {
   std::array<double, 10> shiftedPoly{};
   Vec<3> origin = Vec<3>::Zero();
   int paddedCentres = 0;  // centres in the SSBOs: N rounded up to a multiple of 4 (α = β = 0 pads)
+  double sampleSpacing = 0;  // mean nearest-neighbour distance of the uploaded samples (0: none)
   bool softwareLoopLimit = isMesaSoftwareRenderer();
 
   const Program& program(TraceProgramKind kind, bool slice) {
@@ -620,6 +621,7 @@ struct ImplicitTracer::Gpu {
   void bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget);
   long long drawTracePass(const TraceFrame& frame);
   ImageRgba8 drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples);
+  void scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const;
 };
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
@@ -690,6 +692,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
   if (radialSum_) gpu_->uploadModel(*radialSum_, bounds.center());
   hasSamples_ = samples != nullptr && samples->size() > 0;
   if (hasSamples_) samples_ = *samples;
+  gpu_->sampleSpacing = hasSamples_ ? meanSampleSpacing<3>(samples_.points) : 0.0;
   bake_ = std::move(bake);
   glFinish();
   checkGl("implicit tracer upload");
@@ -837,6 +840,23 @@ long long ImplicitTracer::Gpu::drawTracePass(const TraceFrame& frame) {
   return traced;
 }
 
+// Points and normals scaled to the mean sample spacing s, so that a dense cloud is not a hairball
+// of normals over a carpet of dots: normals at most kNormalSpacings·s long (else 5 % of the
+// bounds diagonal, the length sparse clouds keep), dots at most kDotSpacings·s wide at the
+// camera's target distance, between 2 and 4 px.
+void ImplicitTracer::Gpu::scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const {
+  constexpr double kNormalSpacings = 2.0, kDotSpacings = 0.5;
+  const double diagonal = frame.bounds.extent().norm();
+  if (!(sampleSpacing > 0) || !(diagonal > 0)) return;
+  content.normalLength = std::min(content.normalLength, kNormalSpacings * sampleSpacing / diagonal);
+  const Camera& c = frame.camera;
+  // World units per pixel at the bounds' centre.
+  const double depth = std::max((frame.bounds.center() - c.eye()).dot(c.forward()), 1e-12);
+  const double unitsPerPx = c.projection() == Projection::Orthographic ? 2 * c.halfHeight() / c.height()
+                                                                        : 2 * depth * c.tanHalfFov() / c.height();
+  content.pointSize = float(std::clamp(kDotSpacings * sampleSpacing / unitsPerPx, 2.0, double(content.pointSize)));
+}
+
 // Draws the overlays (points, normals, bounds box) depth-tested against the traced depth, and
 // reads the final colour back, flipped so that row 0 = top.
 ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples) {
@@ -849,6 +869,7 @@ ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const Herm
   content.showNormals = settings.showNormals;
   content.showBounds = settings.showBounds;
   content.bounds = frame.bounds;
+  scaleMarksToSpacing(frame, content);
   overlay->draw(frame.camera, frame.viewProj, content);
   target->setAllBuffers();
   const std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target->color, GL_RGBA, GL_UNSIGNED_BYTE, 4);

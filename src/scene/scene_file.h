@@ -113,6 +113,10 @@ struct SliceSpec {
   bool operator==(const SliceSpec&) const = default;
 };
 
+// `view.show_normals: "auto"` (the default) draws the normals of clouds of up to this many
+// samples: beyond it they hide the surface.
+inline constexpr int kAutoNormalsMaxSamples = 1000;
+
 struct ViewSpec {
   std::array<int, 2> size{800, 600};           // pixels, each in [1, 16384]
   std::array<double, 3> background{1, 1, 1};   // each in [0, 1]
@@ -122,10 +126,13 @@ struct ViewSpec {
   std::array<double, 2> center2d{0, 0};        // view2d.center
   double halfHeight2d = 1.5;                   // view2d.half_height > 0
   bool showPoints = true;
-  bool showNormals = true;
+  std::optional<bool> showNormals;             // true, false, or none = "auto" (kAutoNormalsMaxSamples)
   bool showBounds = false;
+  bool showAxes = false;                       // the axes gizmo in the lower-left corner (3D, GUI)
   TraceMode trace = TraceMode::Auto;
   SliceSpec slice;
+  // Whether the normals of `samples` samples are drawn (show_normals, with "auto" decided here).
+  bool normalsShown(int samples) const { return showNormals ? *showNormals : samples <= kAutoNormalsMaxSamples; }
   bool operator==(const ViewSpec&) const = default;
 };
 

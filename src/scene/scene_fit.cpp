@@ -102,7 +102,7 @@ FittedModel<Dim> keptModel(const Scene& scene, FittedModel<Dim> updated, const P
 // scaled by |det A|^(1/Dim)), compared with the composed field on probes.
 template <int Dim>
 void verifyAffine(const Scene& scene, const Mat<Dim>& A, const HermiteSamples<Dim>& moved,
-                  const ImplicitField<Dim>& composed, SceneFit<Dim>& out) {
+                  const ImplicitField<Dim>& composed, SceneFit<Dim>& out, const CancelToken* cancel) {
   TransformReport& tr = out.transform;
   const auto t0 = std::chrono::steady_clock::now();
   Scene re = scene;
@@ -117,9 +117,11 @@ void verifyAffine(const Scene& scene, const Mat<Dim>& A, const HermiteSamples<Di
   re.fit.radius *= s;
   re.fit.shift *= s;
   try {
-    const SceneFit<Dim> resolved = fitScene<Dim>(re);
+    const SceneFit<Dim> resolved = fitScene<Dim>(re, cancel);
     tr.resolveMs = msSince(t0);
     compareOnProbes<Dim>(composed, resolved.field(), moved.points, tr);
+  } catch (const Cancelled&) {
+    throw;  // not a failure of the re-solve: the whole fit stops
   } catch (const std::exception& e) {
     out.warnings.push_back(std::string("transform: the re-solve for comparison failed: ") + e.what());
   }
@@ -129,7 +131,7 @@ void verifyAffine(const Scene& scene, const Mat<Dim>& A, const HermiteSamples<Di
 // the exact composition, which is not the re-solved interpolant of the transformed data (points
 // Apᵢ + b, normals A⁻ᵀnᵢ normalised); transform.verify says how far it is from one.
 template <int Dim>
-void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
+void composeAffine(const Scene& scene, SceneFit<Dim>& out, const CancelToken* cancel) {
   const Similarity<Dim> S = sceneSimilarity<Dim>(scene.transform);
   Mat<Dim> M;
   for (int i = 0; i < Dim; ++i)
@@ -145,7 +147,7 @@ void composeAffine(const Scene& scene, SceneFit<Dim>& out) {
   HermiteSamples<Dim> moved;
   moved.points = (A * out.samples.points).colwise() + S.t;
   moved.normals = (A.inverse().transpose() * out.samples.normals).colwise().normalized();
-  if (scene.transform.verify) verifyAffine(scene, A, moved, *composed, out);
+  if (scene.transform.verify) verifyAffine(scene, A, moved, *composed, out, cancel);
   tr.exact = false;
   tr.method = "composition";
   out.warnings.push_back(
@@ -173,18 +175,20 @@ FittedModel<Dim> updatedModel(const PuModel<Dim>& m, const Similarity<Dim>& T) {
 
 // The global model of fit.method on `s`, with radius and shift scaled by `scale`.
 template <int Dim>
-FittedModel<Dim> fitGlobal(const FitSpec& f, const HermiteSamples<Dim>& s, double scale, FitReport* rep) {
+FittedModel<Dim> fitGlobal(const FitSpec& f, const HermiteSamples<Dim>& s, double scale, FitReport* rep,
+                           const CancelToken* cancel) {
   const Kernel kernel{f.kernel, f.radius * scale};
   if (f.method == FitMethod::Hrbf)
-    return std::make_unique<HrbfModel<Dim>>(fitHrbf<Dim>(s, {kernel, f.polynomial, f.smoothing, f.solver}, rep));
+    return std::make_unique<HrbfModel<Dim>>(
+        fitHrbf<Dim>(s, {kernel, f.polynomial, f.smoothing, f.solver, cancel}, rep));
   return std::make_unique<RbfOffsetModel<Dim>>(
-      fitRbfOffset<Dim>(s, {kernel, f.polynomial, f.smoothing, f.shift * scale, f.solver}, rep));
+      fitRbfOffset<Dim>(s, {kernel, f.polynomial, f.smoothing, f.shift * scale, f.solver, cancel}, rep));
 }
 
 // The partition-of-unity fit of `out.samples` and its report in the scene's FitReport terms.
 template <int Dim>
-void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
-  out.model = std::make_unique<PuModel<Dim>>(fitPu<Dim>(out.samples, scenePuOptions(scene.fit), &out.puReport));
+void fitScenePu(const Scene& scene, SceneFit<Dim>& out, const CancelToken* cancel) {
+  out.model = std::make_unique<PuModel<Dim>>(fitPu<Dim>(out.samples, scenePuOptions(scene.fit, cancel), &out.puReport));
   const PuReport& pr = out.puReport;
   out.report.nSamples = out.samples.size();
   out.report.nUnknowns = pr.unknowns;
@@ -200,33 +204,33 @@ void fitScenePu(const Scene& scene, SceneFit<Dim>& out) {
 // PU construction with its tree built in the frame T (so only the local solves differ).
 template <int Dim>
 FittedModel<Dim> resolvedModel(const Scene& scene, const SceneFit<Dim>& out, const HermiteSamples<Dim>& moved,
-                               const Similarity<Dim>& T) {
+                               const Similarity<Dim>& T, const CancelToken* cancel) {
   if (const PuModel<Dim>* pu = out.pu())
     return std::make_unique<PuModel<Dim>>(
-        fitPu<Dim>(moved, scenePuOptions(scene.fit), nullptr, composeSimilarity<Dim>(T, pu->frame())));
+        fitPu<Dim>(moved, scenePuOptions(scene.fit, cancel), nullptr, composeSimilarity<Dim>(T, pu->frame())));
   FitReport rep;
-  return fitGlobal<Dim>(scene.fit, moved, T.q, &rep);
+  return fitGlobal<Dim>(scene.fit, moved, T.q, &rep, cancel);
 }
 
 // A similarity `transform`: the coefficient update or the re-solve (keptModel).
 template <int Dim>
-void transformBySimilarity(const Scene& scene, SceneFit<Dim>& out) {
+void transformBySimilarity(const Scene& scene, SceneFit<Dim>& out, const CancelToken* cancel) {
   const Similarity<Dim> T = sceneSimilarity<Dim>(scene.transform);
   const auto t0 = std::chrono::steady_clock::now();
   FittedModel<Dim> updated = std::visit([&](const auto& m) { return updatedModel<Dim>(*m, T); }, out.model);
   out.transform.updateMs = msSince(t0);
   const HermiteSamples<Dim> moved = transformSamples(out.samples, T);
   out.model = keptModel<Dim>(scene, std::move(updated), moved.points, out,
-                             [&] { return resolvedModel<Dim>(scene, out, moved, T); });
+                             [&] { return resolvedModel<Dim>(scene, out, moved, T, cancel); });
   out.transformed = true;
   out.data = moved;
 }
 
 }  // namespace
 
-PuOptions scenePuOptions(const FitSpec& f) {
+PuOptions scenePuOptions(const FitSpec& f, const CancelToken* cancel) {
   PuOptions o;
-  o.local = HrbfOptions{Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, f.solver};
+  o.local = HrbfOptions{Kernel{f.kernel, f.radius}, f.polynomial, f.smoothing, f.solver, cancel};
   o.maxPointsPerBox = f.partition.maxPointsPerBox;
   o.boxSize = f.partition.boxSize;
   o.overlap = f.partition.overlap;
@@ -282,7 +286,7 @@ Similarity<Dim> sceneSimilarity(const TransformSpec& spec) {
 }
 
 template <int Dim>
-SceneFit<Dim> fitScene(const Scene& scene) {
+SceneFit<Dim> fitScene(const Scene& scene, const CancelToken* cancel) {
   if (scene.dimension() != Dim || (scene.mode != SceneMode::Implicit2d && scene.mode != SceneMode::Implicit3d))
     throw InputError(scene.sourceName + ": mode: '" + std::string(sceneModeName(scene.mode)) +
                      "' scenes have no implicit fit");
@@ -294,16 +298,16 @@ SceneFit<Dim> fitScene(const Scene& scene) {
   const PartitionChoice choice = choosePartition(scene, out.samples.size());
   if (!choice.message.empty()) out.warnings.push_back(choice.message);
   if (choice.pu)
-    fitScenePu(scene, out);
+    fitScenePu(scene, out, cancel);
   else
-    out.model = fitGlobal<Dim>(scene.fit, out.samples, 1.0, &out.report);
+    out.model = fitGlobal<Dim>(scene.fit, out.samples, 1.0, &out.report, cancel);
   out.warnings.insert(out.warnings.end(), out.report.warnings.begin(), out.report.warnings.end());
   if (scene.transform.isIdentity())
     out.data = out.samples;
   else if (!scene.transform.matrixIsIdentity())
-    composeAffine(scene, out);
+    composeAffine(scene, out, cancel);
   else
-    transformBySimilarity(scene, out);
+    transformBySimilarity(scene, out, cancel);
   return out;
 }
 
@@ -327,7 +331,7 @@ template Similarity<2> sceneSimilarity<2>(const TransformSpec&);
 template Similarity<3> sceneSimilarity<3>(const TransformSpec&);
 template FitResiduals fitResiduals<2>(const SceneFit<2>&);
 template FitResiduals fitResiduals<3>(const SceneFit<3>&);
-template SceneFit<2> fitScene<2>(const Scene&);
-template SceneFit<3> fitScene<3>(const Scene&);
+template SceneFit<2> fitScene<2>(const Scene&, const CancelToken*);
+template SceneFit<3> fitScene<3>(const Scene&, const CancelToken*);
 
 }  // namespace hermite

@@ -95,11 +95,12 @@ template <int Dim>
 FitResiduals fitResiduals(const SceneFit<Dim>& fit);
 
 // The PU options of a scene's `fit` (kernel, polynomial, smoothing, solver, `fit.partition`).
-PuOptions scenePuOptions(const FitSpec& fit);
+PuOptions scenePuOptions(const FitSpec& fit, const CancelToken* cancel = nullptr);
 
 // Throws InputError for scene settings that cannot be fitted (wrong mode, partition of unity
-// with a method other than hrbf) and NumericalError from the solver.
+// with a method other than hrbf) and NumericalError from the solver; Cancelled once `cancel`
+// (optional, polled between boxes, phases and factorisation tiles) is set.
 template <int Dim>
-SceneFit<Dim> fitScene(const Scene& scene);
+SceneFit<Dim> fitScene(const Scene& scene, const CancelToken* cancel = nullptr);
 
 }  // namespace hermite

@@ -83,6 +83,16 @@ void readBounds(const Reader& r, const json& x, const std::string& p, ViewSpec& 
   v.bounds = std::move(b);
 }
 
+// true, false or "auto" (none).
+void readShowNormals(const Reader& r, const json& x, const std::string& p, ViewSpec& v, int) {
+  if (x.is_boolean())
+    v.showNormals = x.get<bool>();
+  else if (x.is_string() && x.get<std::string>() == "auto")
+    v.showNormals.reset();
+  else
+    r.fail(p, "must be true, false or \"auto\" (got " + describeJson(x) + ")");
+}
+
 void readCamera(const Reader& r, const json& x, const std::string& p, ViewSpec& v, int dim) {
   v.camera = readObject<CameraSpec>(r, x, p, kCameraKeys, dim);
   checkCameraBasis(r, p, v.camera);
@@ -101,8 +111,10 @@ constexpr SceneKey<ViewSpec> kViewKeys[] = {
     {"camera", readCamera, [](const ViewSpec& v, int dim) -> Written { return writeObject<CameraSpec>(v.camera, kCameraKeys, dim); }},
     {"view2d", readView2d, [](const ViewSpec& v, int dim) -> Written { return writeObject<ViewSpec>(v, kView2dKeys, dim); }},
     valueKey<ViewSpec, &ViewSpec::showPoints, &Reader::boolean>("show_points"),
-    valueKey<ViewSpec, &ViewSpec::showNormals, &Reader::boolean>("show_normals"),
+    {"show_normals", readShowNormals,
+     [](const ViewSpec& v, int) -> Written { return v.showNormals ? json(*v.showNormals) : json("auto"); }},
     valueKey<ViewSpec, &ViewSpec::showBounds, &Reader::boolean>("show_bounds"),
+    valueKey<ViewSpec, &ViewSpec::showAxes, &Reader::boolean>("show_axes"),
     enumKey<ViewSpec, &ViewSpec::trace, kTraceModeNames>("trace"),
     {"slice",
      [](const Reader& r, const json& x, const std::string& p, ViewSpec& v, int dim) { v.slice = readObject<SliceSpec>(r, x, p, kSliceKeys, dim); },

@@ -95,6 +95,7 @@ Scene nonDefaultScene3d() {
   s.view.showPoints = false;
   s.view.showNormals = false;
   s.view.showBounds = true;
+  s.view.showAxes = true;
   s.view.trace = hermite::TraceMode::Exact;
   s.view.slice = {true, {1, 1, 0}, -0.3};
   s.sourceName = "x.json";
@@ -126,6 +127,13 @@ TEST_CASE("scene: minimal scene takes the documented defaults") {
   CHECK(s.view.camera.fovYDeg == 40.0);
   CHECK(s.view.halfHeight2d == 1.5);
   CHECK(s.view.trace == hermite::TraceMode::Auto);
+  CHECK(!s.view.showNormals.has_value());  // "auto"
+  CHECK(s.view.normalsShown(hermite::kAutoNormalsMaxSamples));
+  CHECK(!s.view.normalsShown(hermite::kAutoNormalsMaxSamples + 1));
+  CHECK(hermite::sceneToJson(s)["view"]["show_normals"] == "auto");
+  CHECK(parse(scene3d(R"("view": {"show_normals": "auto"})")).view.showNormals == std::nullopt);
+  CHECK(parse(scene3d(R"("view": {"show_normals": true})")).view.normalsShown(100000));
+  CHECK(!parse(scene3d(R"("view": {"show_normals": false})")).view.normalsShown(1));
   CHECK(s.sourceName == "x.json");
 
   const Scene s2 = parse(scene2d());
@@ -402,7 +410,10 @@ TEST_CASE("scene: view validation") {
                    "x.json: view.view2d.center: must be an array of 2 numbers [x, y]"));
   CHECK(errorOf(scene3d(R"("view": {"show_points": "yes"})")) ==
         "x.json: view.show_points: must be true or false (got string \"yes\")");
-  CHECK(errorOf(scene3d(R"("view": {"show_normals": 1})")) == "x.json: view.show_normals: must be true or false (got 1)");
+  CHECK(errorOf(scene3d(R"("view": {"show_normals": 1})")) ==
+        "x.json: view.show_normals: must be true, false or \"auto\" (got 1)");
+  CHECK(errorOf(scene3d(R"("view": {"show_normals": "yes"})")) ==
+        "x.json: view.show_normals: must be true, false or \"auto\" (got string \"yes\")");
   CHECK(errorOf(scene3d(R"("view": {"show_bounds": null})")) ==
         "x.json: view.show_bounds: must be true or false (got null)");
   CHECK(errorOf(scene3d(R"("view": {"trace": "fast"})")) ==
@@ -441,7 +452,7 @@ TEST_CASE("scene: sceneToJson writes every key and parseScene reproduces the sce
     for (const char* key : {"translate", "rotate_axis_angle_deg", "scale"}) CHECK(doc["transform"].contains(key));
     CHECK(!doc["transform"].contains("rotate_deg"));
     for (const char* key : {"size", "background", "bounds", "projection", "camera", "view2d", "show_points",
-                            "show_normals", "show_bounds", "trace", "slice"})
+                            "show_normals", "show_bounds", "show_axes", "trace", "slice"})
       CHECK(doc["view"].contains(key));
     CHECK(doc["view"]["view2d"].contains("center"));
     CHECK(doc["view"]["view2d"].contains("half_height"));

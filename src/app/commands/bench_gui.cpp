@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <thread>
 #include <vector>
 
@@ -104,6 +105,98 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   r.height = height;
   r.moves = moves;
   return r;
+}
+
+namespace {
+
+// GuiApp on an OSMesa context, frames paced at 60 Hz as under vsync, each timed.
+struct PacedApp {
+  std::unique_ptr<render::RenderContext> context;
+  render::OffscreenTarget target;
+  GuiApp app;
+  FrameInput in;
+  std::chrono::steady_clock::time_point lastFrame = std::chrono::steady_clock::now();
+  std::vector<double> frameMs;
+
+  PacedApp(const Scene& scene, int width, int height)
+      : context(offscreenContext("osmesa", width, height)), target(width, height, false), app(Document(scene), {}) {
+    in.width = width;
+    in.height = height;
+  }
+  void frame() {
+    std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
+    lastFrame = std::chrono::steady_clock::now();
+    target.bind();
+    app.frame(in);
+    context->present();
+    frameMs.push_back(msSince(lastFrame));
+  }
+  bool settled() { return app.viewIsCurrent() && !app.worker().busy(); }
+  // Frames until settled (at most `limitSeconds`); throws when it never settles.
+  void settle(double limitSeconds) {
+    const auto t0 = std::chrono::steady_clock::now();
+    while (!settled()) {
+      if (msSince(t0) > limitSeconds * 1000)
+        throw EnvironmentError("bench: the view did not settle in " + std::to_string(limitSeconds) +
+                               " s: " + app.status().message);
+      frame();
+    }
+    // The settled quality follows a few frames after the last interaction.
+    for (int k = 0; k < 6; ++k) frame();
+  }
+  BusyFramesResult result(int samples, double totalMs) const {
+    BusyFramesResult r;
+    r.worstMs = frameMs.empty() ? 0 : *std::max_element(frameMs.begin(), frameMs.end());
+    r.medianMs = median(frameMs);
+    r.frames = int(frameMs.size());
+    r.totalMs = totalMs;
+    r.samples = samples;
+    r.width = in.width;
+    r.height = in.height;
+    return r;
+  }
+};
+
+Scene bunnyScene(int samples, bool partition) {
+  Scene s;
+  s.mode = SceneMode::Implicit3d;
+  s.data.preset = "bunny";
+  s.data.count = samples;
+  s.fit.partition.enabled = partition;
+  return s;
+}
+
+}  // namespace
+
+BusyFramesResult benchFramesDuringDenseFit(int samples, int width, int height) {
+  PacedApp p(bunnyScene(50, false), width, height);
+  p.settle(60);
+  p.frameMs.clear();
+  const auto t0 = std::chrono::steady_clock::now();
+  p.app.document().apply(bunnyScene(samples, false), "count");
+  p.settle(3600);
+  return p.result(samples, msSince(t0));
+}
+
+BusyFramesResult benchFramesDuringSettledRender(int samples, int width, int height) {
+  PacedApp p(bunnyScene(samples, true), width, height);
+  p.settle(600);
+  // Orbit: press in the view's lower-left corner (empty), move, release.
+  const Vec<2> o = p.app.viewOrigin();
+  p.in.mouseX = o.x() + 30;
+  p.in.mouseY = o.y() + p.app.viewSize().y() - 40;
+  p.frame();
+  p.in.mouseDown[0] = true;
+  p.frame();
+  for (int k = 0; k < 5; ++k) {
+    p.in.mouseX += 12;
+    p.frame();
+  }
+  p.in.mouseDown[0] = false;
+  p.frameMs.clear();
+  const auto t0 = std::chrono::steady_clock::now();
+  p.settle(600);
+  return p.result(samples, msSince(t0));
 }
 
 }  // namespace hermite::app

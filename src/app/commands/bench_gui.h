@@ -23,4 +23,22 @@ struct DragLatencyResult {
 // (the demo settings).
 DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int width, int height);
 
+// Frame times while long work runs (issue 18: every frame ≤ 33 ms at 1280×800 on llvmpipe):
+// frames paced at 60 Hz from the moment the work starts until the view shows its settled result.
+struct BusyFramesResult {
+  double worstMs = 0;   // the slowest frame (GuiApp::frame + present)
+  double medianMs = 0;
+  int frames = 0;
+  double totalMs = 0;   // from the start of the work to the settled view
+  int samples = 0;
+  int width = 0, height = 0;
+};
+
+// A dense HRBF fit of the bunny preset with `samples` points submitted from a settled 50-point
+// view; frames until it is on screen.
+BusyFramesResult benchFramesDuringDenseFit(int samples, int width, int height);
+// A partition-of-unity fit of the bunny preset with `samples` points, settled, orbited by a short
+// drag; frames from the release until the settled (baked + refined) render is on screen.
+BusyFramesResult benchFramesDuringSettledRender(int samples, int width, int height);
+
 }  // namespace hermite::app

@@ -445,6 +445,19 @@ void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
     });
   }
 
+  // Frame times while a fit or a settled render runs (issue 18: ≤ 33 ms at 1280×800).
+  jobs.emplace_back("gui/frames-during-dense-fit/N=5000", [quick = args.quick]() -> Result {
+    const BusyFramesResult r = benchFramesDuringDenseFit(quick ? 300 : 5000, quick ? 400 : 1280, quick ? 300 : 800);
+    return {"gui/frames-during-dense-fit/N=5000", {{"samples", r.samples}, {"width", r.width}, {"height", r.height},
+            {"median_ms", r.medianMs}, {"frames", r.frames}, {"total_ms", r.totalMs}}, r.worstMs, "ms worst frame"};
+  });
+  jobs.emplace_back("gui/frames-during-settled-render/pu-N=5000", [quick = args.quick]() -> Result {
+    const BusyFramesResult r = benchFramesDuringSettledRender(quick ? 300 : 5000, quick ? 400 : 1280, quick ? 300 : 800);
+    return {"gui/frames-during-settled-render/pu-N=5000", {{"samples", r.samples}, {"width", r.width},
+            {"height", r.height}, {"median_ms", r.medianMs}, {"frames", r.frames}, {"total_ms", r.totalMs}},
+            r.worstMs, "ms worst frame"};
+  });
+
   // Partition of unity at scale: run on their own (--only pu3d), they take a while.
   for (const auto& [label, N] : {std::pair<const char*, int>{"1e5", 100000}, {"1e6", 1000000}}) {
     const int n = args.quick ? N / 100 : N;

@@ -20,8 +20,9 @@ void Document::apply(const Scene& next, const std::string& label) {
   undo_.push_back({scene_, label});
   if (undo_.size() > kMaxHistory) undo_.erase(undo_.begin());
   redo_.clear();
+  const Scene before = std::move(scene_);
   scene_ = next;
-  bump();
+  bump(before);
 }
 
 void Document::begin(const std::string& label) {
@@ -37,9 +38,10 @@ void Document::update(const Scene& next) {
     return;
   }
   if (next == scene_) return;
+  const Scene before = std::move(scene_);
   scene_ = next;
   gestureChanged_ = true;
-  bump();
+  bump(before);
 }
 
 void Document::end() {
@@ -76,8 +78,9 @@ void Document::restore(Scene scene) {
   scene.view.camera = scene_.view.camera;
   scene.view.center2d = scene_.view.center2d;
   scene.view.halfHeight2d = scene_.view.halfHeight2d;
+  const Scene before = std::move(scene_);
   scene_ = std::move(scene);
-  bump();
+  bump(before);
 }
 
 void Document::reset(Scene scene, std::string path) {
@@ -87,6 +90,7 @@ void Document::reset(Scene scene, std::string path) {
   redo_.clear();
   gesture_ = false;
   ++version_;
+  bumpAllConcerns(versions_);
   saved_ = scene_;
   dirty_ = false;
 }
@@ -104,6 +108,7 @@ void Document::setCamera(const CameraSpec& camera, const std::array<double, 2>& 
   v.camera = camera;
   v.center2d = center2d;
   v.halfHeight2d = halfHeight2d;
+  ++versions_.camera;
   updateDirty();  // saved with the scene, but no refit: the version stays
 }
 

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "app/gui/concern_versions.h"
 #include "core/points/hermite_samples.h"
 #include "scene/scene_file.h"
 
@@ -24,6 +25,8 @@ class Document {
 
   const Scene& scene() const { return scene_; }
   std::uint64_t version() const { return version_; }
+  // The counters of each concern (concern_versions.h): what changed since a part last looked.
+  const ConcernVersions& versions() const { return versions_; }
   const std::string& path() const { return path_; }
   // The scene differs from the one last opened or saved (undo back to it clears the flag).
   bool dirty() const { return dirty_; }
@@ -48,7 +51,7 @@ class Document {
   // Saves atomically (temporary + rename) and remembers the path; clears the dirty flag.
   void save(const std::string& path);
   // Camera moves (3D camera, 2D centre and half height): saved with the scene, not undone, and
-  // not a refit (the version stays).
+  // not a refit (the version stays; versions().camera grows).
   void setCamera(const CameraSpec& camera, const std::array<double, 2>& center2d, double halfHeight2d);
 
  private:
@@ -56,8 +59,10 @@ class Document {
     Scene scene;
     std::string label;
   };
-  void bump() {
+  // After scene_ changed from `before`.
+  void bump(const Scene& before) {
     ++version_;
+    bumpChangedConcerns(versions_, before, scene_);
     updateDirty();
   }
   void updateDirty() { dirty_ = !(scene_ == saved_); }
@@ -67,6 +72,7 @@ class Document {
   Scene saved_;  // as last opened or saved
   std::string path_;
   std::uint64_t version_ = 1;
+  ConcernVersions versions_;
   bool dirty_ = false;
   bool gesture_ = false;
   bool gestureChanged_ = false;

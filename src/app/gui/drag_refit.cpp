@@ -57,16 +57,17 @@ void DragRefit::prepareDim(const Scene& scene, int sample) {
   }
 }
 
-std::shared_ptr<const FitOutcome> DragRefit::fit(const Scene& scene, const std::function<bool(double)>& progress) {
+std::shared_ptr<const FitOutcome> DragRefit::fit(const Scene& scene, const std::function<bool(double)>& progress,
+                                                 const CancelToken* cancel) {
   if (!eligible(scene)) {
     last_ = std::monostate{};
-    return fitOutcome(scene, progress);
+    return fitOutcome(scene, progress, cancel);
   }
-  return scene.mode == SceneMode::Implicit2d ? fitDim<2>(scene) : fitDim<3>(scene);
+  return scene.mode == SceneMode::Implicit2d ? fitDim<2>(scene, cancel) : fitDim<3>(scene, cancel);
 }
 
 template <int Dim>
-std::shared_ptr<const FitOutcome> DragRefit::fitDim(const Scene& scene) {
+std::shared_ptr<const FitOutcome> DragRefit::fitDim(const Scene& scene, const CancelToken* cancel) {
   const auto t0 = std::chrono::steady_clock::now();
   std::vector<std::string> dataWarnings;
   HermiteSamples<Dim> samples;
@@ -74,11 +75,11 @@ std::shared_ptr<const FitOutcome> DragRefit::fitDim(const Scene& scene) {
     samples = sceneSamples<Dim>(scene, dataWarnings);
   } catch (const std::exception&) {
     last_ = std::monostate{};
-    return fitOutcome(scene);  // says what is wrong with the data
+    return fitOutcome(scene, {}, cancel);  // says what is wrong with the data
   }
   auto fromScratch = [&] {
     last_ = State<Dim>{scene.fit, samples, nullptr};
-    return fitOutcome(scene);
+    return fitOutcome(scene, {}, cancel);
   };
   State<Dim>* last = std::get_if<State<Dim>>(&last_);
   if (!last || !(last->fit == scene.fit)) return fromScratch();

@@ -21,8 +21,10 @@ namespace hermite::app {
 class DragRefit {
  public:
   // The fit of `scene`: through the kept factorisation when `scene` differs from the last scene
-  // fitted here in one sample only, else from scratch (fitOutcome, given `progress`). Never throws.
-  std::shared_ptr<const FitOutcome> fit(const Scene& scene, const std::function<bool(double)>& progress = {});
+  // fitted here in one sample only, else from scratch (fitOutcome, given `progress` and `cancel`).
+  // Never throws.
+  std::shared_ptr<const FitOutcome> fit(const Scene& scene, const std::function<bool(double)>& progress = {},
+                                        const CancelToken* cancel = nullptr);
 
   // Factorises for a drag of `sample` about to begin (the GUI calls it when a sample is grabbed),
   // so that the first move is as quick as the next ones. `scene` must be the inline scene the
@@ -35,7 +37,7 @@ class DragRefit {
 
  private:
   template <int Dim>
-  std::shared_ptr<const FitOutcome> fitDim(const Scene& scene);
+  std::shared_ptr<const FitOutcome> fitDim(const Scene& scene, const CancelToken* cancel);
   template <int Dim>
   void prepareDim(const Scene& scene, int sample);
 

@@ -15,12 +15,6 @@ bool sameCompare(const CompareSettings& a, const CompareSettings& b) {
 
 }  // namespace
 
-bool sameFitInputs(const Scene& a, const Scene& b) {
-  Scene withBView = a;
-  withBView.view = b.view;
-  return withBView == b;
-}
-
 std::optional<Scene> compareScene(const Scene& s, const CompareSettings& compare) {
   if (!compare.enabled || (s.mode != SceneMode::Implicit2d && s.mode != SceneMode::Implicit3d)) return std::nullopt;
   Scene c = s;
@@ -33,10 +27,10 @@ std::optional<Scene> compareScene(const Scene& s, const CompareSettings& compare
   return c;
 }
 
-void FitPresenter::submitIfStale(const Scene& scene, std::uint64_t version, const CompareSettings& compare,
-                                 bool synchronous) {
+void FitPresenter::submitIfStale(const Scene& scene, std::uint64_t version, std::uint64_t fitInputs,
+                                 const CompareSettings& compare, bool synchronous) {
   if (version == submittedVersion_ && sameCompare(compare, submittedCompare_)) return;
-  if (submittedScene_ && sameCompare(compare, submittedCompare_) && sameFitInputs(scene, *submittedScene_)) {
+  if (fitInputs == submittedFitInputs_ && sameCompare(compare, submittedCompare_)) {
     // Only the view changed: the submitted fit (shown or still running) stands for this version.
     if (submittedShown_) shownVersion_ = version;
     submittedVersion_ = version;
@@ -45,7 +39,7 @@ void FitPresenter::submitIfStale(const Scene& scene, std::uint64_t version, cons
   submittedVersion_ = fittedVersion_ = version;
   submittedShown_ = false;
   submittedCompare_ = compare;
-  submittedScene_ = scene;
+  submittedFitInputs_ = fitInputs;
   ++submissions_;
   worker_.submit(scene, version, compareScene(scene, compare));
   if (synchronous)

@@ -24,9 +24,6 @@ struct CompareSettings {
   double radius = 0.5;
 };
 
-// The scenes fit the same: they differ at most in `view` (camera, what is drawn, bounds).
-bool sameFitInputs(const Scene& a, const Scene& b);
-
 // The scene the right half fits: `scene` with the compared setting changed; none when compare is
 // off or the mode has no implicit fit.
 std::optional<Scene> compareScene(const Scene& scene, const CompareSettings& compare);
@@ -47,11 +44,13 @@ class FitPresenter {
   }
   const std::string& lastError() const { return lastError_; }  // of the last fit, empty when it succeeded
 
-  // Queues a fit of version `version` of `scene` when its fit inputs or `compare` changed since
-  // the last submission; a version that changed only the view takes the submitted fit as its own.
+  // Queues a fit of version `version` of `scene` when its fit inputs (`fitInputs`:
+  // ConcernVersions::fitInputs) or `compare` changed since the last submission; a version that
+  // changed only the view or the camera takes the submitted fit as its own.
   // synchronous: waits for it (render --ui, tests); else a fit as quick as the last one is
   // waited for briefly, so it shows in this frame.
-  void submitIfStale(const Scene& scene, std::uint64_t version, const CompareSettings& compare, bool synchronous);
+  void submitIfStale(const Scene& scene, std::uint64_t version, std::uint64_t fitInputs, const CompareSettings& compare,
+                     bool synchronous);
   // Takes a finished job: its results go on screen, or its errors into `status`.
   void adoptFinished(GuiStatus& status);
   // Discards the running job; `version` is not resubmitted.
@@ -63,7 +62,7 @@ class FitPresenter {
   FitWorker worker_;
   std::uint64_t submittedVersion_ = 0;  // the newest document version the submitted fit stands for
   std::uint64_t fittedVersion_ = 0;     // the version whose scene the worker fits
-  std::optional<Scene> submittedScene_;
+  std::uint64_t submittedFitInputs_ = 0;  // 0: nothing submitted yet
   bool submittedShown_ = false;  // the worker's result for fittedVersion_ is on screen
   CompareSettings submittedCompare_;
   int submissions_ = 0;

@@ -23,14 +23,15 @@ std::shared_ptr<const FitOutcome> failedOutcome(const Scene& scene, std::string 
 
 }  // namespace
 
-std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene, const std::function<bool(double)>& progress) {
+std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene, const std::function<bool(double)>& progress,
+                                                    const CancelToken* cancel) {
   auto out = std::make_shared<FitOutcome>();
   out->scene = scene;
   const auto t0 = std::chrono::steady_clock::now();
   if (scene.mode == SceneMode::Implicit2d)
-    out->result = fitScene<2>(scene);
+    out->result = fitScene<2>(scene, cancel);
   else if (scene.mode == SceneMode::Implicit3d)
-    out->result = fitScene<3>(scene);
+    out->result = fitScene<3>(scene, cancel);
   else if (scene.mode == SceneMode::Patch)
     out->result = buildPatchDisplay(scene.patch);
   else
@@ -39,9 +40,16 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene, const st
   return out;
 }
 
-std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene, const std::function<bool(double)>& progress) {
+std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene, const std::function<bool(double)>& progress,
+                                             const CancelToken* cancel) {
   try {
-    return fitOutcomeOrThrow(scene, progress);
+    return fitOutcomeOrThrow(scene, progress, cancel);
+  } catch (const Cancelled& e) {
+    auto out = std::make_shared<FitOutcome>();
+    out->scene = scene;
+    out->error = e.what();
+    out->cancelled = true;
+    return out;
   } catch (const InputError& e) {
     return failedOutcome(scene, std::string("input: ") + e.what());
   } catch (const NumericalError& e) {
@@ -79,16 +87,17 @@ FitWorker::~FitWorker() {
     stop_ = true;
     pending_.reset();
     abandon_ = true;
+    cancel_.cancel();
   }
   wake_.notify_all();
-  thread_.join();  // a running fit finishes first (LAPACK cannot be interrupted)
+  thread_.join();  // a running fit stops at its next poll of cancel_
 }
 
 void FitWorker::submit(const Scene& scene, std::uint64_t version, std::optional<Scene> compare) {
   {
     std::lock_guard lock(mutex_);
     pending_ = Job{scene, std::move(compare), version};
-    if (running_) abandon_ = true;
+    if (running_) abandon_ = true, cancel_.cancel();
   }
   wake_.notify_all();
 }
@@ -112,7 +121,7 @@ void FitWorker::cancel() {
   std::lock_guard lock(mutex_);
   pending_.reset();
   done_.reset();
-  if (running_) discardUpTo_ = std::max(discardUpTo_, runningVersion_), abandon_ = true;
+  if (running_) discardUpTo_ = std::max(discardUpTo_, runningVersion_), abandon_ = true, cancel_.cancel();
 }
 
 bool FitWorker::waitIdle(double timeoutSeconds) {
@@ -160,6 +169,7 @@ void FitWorker::loop() {
     pending_.reset();
     running_ = true;
     abandon_ = false;
+    cancel_.reset();
     runningVersion_ = job.version;
     runningSince_ = std::chrono::steady_clock::now();
     const double n = sampleCount(job.scene) * (job.scene.dimension() + 1);
@@ -168,8 +178,8 @@ void FitWorker::loop() {
 
     FitJobResult result;
     result.version = job.version;
-    result.main = dragRefit_->fit(job.scene, [this](double) { return !abandon_; });
-    if (job.compare) result.compare = fitOutcome(*job.compare);
+    result.main = dragRefit_->fit(job.scene, [this](double) { return !abandon_; }, &cancel_);
+    if (job.compare && !result.main->cancelled) result.compare = fitOutcome(*job.compare, {}, &cancel_);
 
     lock.lock();
     running_ = false;

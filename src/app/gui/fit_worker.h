@@ -2,8 +2,9 @@
 // Fits the document's scene on a worker thread (docs/design.md, Threads: long work off the main thread,
 // GL calls on it). The main thread submits (scene, version) and polls each frame:
 //   - a newer submission supersedes the pending one (only the latest waits);
-//   - a fit already running cannot be interrupted inside LAPACK, so cancel() and superseding
-//     discard its result when it completes instead: the UI keeps the last good result;
+//   - cancel() and superseding set the running job's CancelToken: implicit fits stop at their
+//     next poll (box by box, phase by phase, factorisation tile by tile; core/base/cancel_token.h)
+//     and their result is discarded: the UI keeps the last good result;
 //   - progress is the elapsed time against an estimate from the previous fit's size and time
 //     (dense fits scale as N³), shown as a bar with a Cancel button.
 // A compare scene (the right half of the split view) is fitted in the same job.
@@ -39,6 +40,7 @@ struct FitOutcome {
   Scene scene;  // as fitted
   FitResult result;
   std::string error;  // non-empty: no result
+  bool cancelled = false;  // the fit stopped because its cancel token was set (error "cancelled")
   double wallMs = 0;  // whole fitScene call, incl. the transform re-solve check
 
   bool ok() const { return error.empty(); }
@@ -63,11 +65,15 @@ struct FitOutcome {
 std::string fittedModelJson(const FitOutcome& fit);
 
 // Fits `scene` (any mode with a fit); exceptions become FitOutcome::error. `progress`
-// (optional) is passed to the long jobs that report it (hole filling: runHoleFillStages).
-std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene, const std::function<bool(double)>& progress = {});
-// The same, throwing the fit's errors (InputError, NumericalError) for the command line.
+// (optional) is passed to the long jobs that report it (hole filling: runHoleFillStages);
+// `cancel` (optional) to the implicit fits, which stop within ~50 ms of work once it is set
+// (FitOutcome::cancelled).
+std::shared_ptr<const FitOutcome> fitOutcome(const Scene& scene, const std::function<bool(double)>& progress = {},
+                                             const CancelToken* cancel = nullptr);
+// The same, throwing the fit's errors (InputError, NumericalError, Cancelled) for the command line.
 std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene,
-                                                    const std::function<bool(double)>& progress = {});
+                                                    const std::function<bool(double)>& progress = {},
+                                                    const CancelToken* cancel = nullptr);
 
 struct FitJobResult {
   std::uint64_t version = 0;
@@ -120,8 +126,10 @@ class FitWorker {
   std::uint64_t runningVersion_ = 0;
   std::uint64_t discardUpTo_ = 0;  // results of versions ≤ this are dropped
   // Set by cancel, a newer submit and the destructor while a job runs: the jobs that report
-  // progress (hole filling) stop at their next report.
+  // progress (hole filling) stop at their next report, the implicit fits at their next poll of
+  // cancel_ (set at the same moments).
   std::atomic<bool> abandon_{false};
+  CancelToken cancel_;
   std::chrono::steady_clock::time_point runningSince_;
   double estimateMs_ = 50;         // expected duration of the running job
   double lastMsPerCube_ = 0;       // last job: ms / (unknowns³), for the estimate

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <type_traits>
 
+#include "app/gui/axes_overlay.h"
 #include "app/gui/document_actions.h"
 #include "app/gui/gui_widgets.h"
 #include "app/gui/partition_box_overlay.h"
@@ -71,7 +72,8 @@ void GuiApp::frame(const FrameInput& in) {
   handleShortcuts(in);
   handleViewInput(in);
   if (!ctx_.panels.hideUi) drawPanels();
-  ctx_.fits.submitIfStale(ctx_.scene(), ctx_.document.version(), ctx_.compare, ctx_.options.synchronousFits);
+  ctx_.fits.submitIfStale(ctx_.scene(), ctx_.document.version(), ctx_.document.versions().fitInputs(), ctx_.compare,
+                          ctx_.options.synchronousFits);
   ctx_.fits.adoptFinished(ctx_.status);  // synchronous fits (and fast ones) show in this very frame
   ctx_.image.redrawIfStale(ctx_);
   ctx_.image.draw(ctx_);
@@ -98,6 +100,7 @@ void GuiApp::drawOverlays() {
   patch_.drawHandles();
   holeFill_.drawLabels();
   if (ctx_.showPartitionBoxes) drawPartitionBoxes(ctx_);
+  drawAxesGizmo(ctx_);
   const SceneMode mode = ctx_.scene().mode;
   if (ctx_.showGizmo && (mode == SceneMode::Implicit2d || mode == SceneMode::Implicit3d)) gizmo_.draw();
   if (ctx_.panels.help) drawHelpOverlay(ctx_);

@@ -55,6 +55,8 @@ class GuiApp {
   // The fit on screen when it is of the document's mode, else null (fit_presenter.h).
   const FitOutcome* currentFit() const { return ctx_.currentFit(); }
   std::uint64_t shownVersion() const { return ctx_.fits.shownVersion(); }
+  // Fits submitted to the worker so far (view, camera and overlay changes submit none).
+  int fitSubmissions() const { return ctx_.fits.submissions(); }
   const GuiStatus& status() const { return ctx_.status; }
   // Screen position (view pixels) of a patch handle of the current document; nullopt if behind.
   std::optional<Vec<2>> patchHandleScreenPosition(const PatchHandle& h) const { return patch_.handlePosition(h); }

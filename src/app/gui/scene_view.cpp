@@ -70,7 +70,7 @@ void SceneViewRenderer::renderField2d(const std::shared_ptr<const FitOutcome>& f
   if (!view2d_) view2d_ = std::make_unique<render::Field2dView>();
   render::Field2dViewOptions o;
   o.showPoints = v.showPoints;
-  o.showNormals = v.showNormals;
+  o.showNormals = v.normalsShown(f.data.size());
   o.bounds = viewBounds<2>(v, f.data.points);
   o.outsideColor = v.background;
   // While dragging: f and ∇f every 6 px, bilinear between, so a drag frame fits in one 60 Hz
@@ -121,7 +121,7 @@ void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& f
   s.mode = exact ? render::TracerMode::Exact : render::TracerMode::Baked;
   s.refineExact = quality == ViewQuality::Settled;
   s.showPoints = v.showPoints;
-  s.showNormals = v.showNormals;
+  s.showNormals = v.normalsShown(f.data.size());
   s.showBounds = v.showBounds;
   s.slice.enabled = v.slice.enabled;
   s.slice.normal = v.slice.normal;

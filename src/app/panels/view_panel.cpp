@@ -16,8 +16,7 @@ void ViewPanel::draw() {
   std::string label = "view";
   if (s.mode == SceneMode::Implicit2d || s.mode == SceneMode::Implicit3d) {
     changed |= ImGui::Checkbox("points", &v.showPoints);
-    ImGui::SameLine();
-    changed |= ImGui::Checkbox("normals", &v.showNormals);
+    changed |= drawNormalsChoice(v);
   } else {
     const Projection projections[] = {Projection::Perspective, Projection::Orthographic};
     changed |= comboOf("projection", v.projection, projections, projectionName);
@@ -41,6 +40,20 @@ void ViewPanel::draw() {
   }
   if (changed) ctx_.document.apply(s, label);
   drawCameraButtons();
+}
+
+// view.show_normals: auto (shown up to kAutoNormalsMaxSamples samples), shown or hidden; true
+// when it changed.
+bool ViewPanel::drawNormalsChoice(ViewSpec& v) {
+  const char* choices[] = {"auto", "shown", "hidden"};
+  int choice = !v.showNormals ? 0 : *v.showNormals ? 1 : 2;
+  const int before = choice;
+  ImGui::Combo("normals", &choice, choices, 3);
+  ctx_.recordWidget("view.normals");
+  helpMarker("auto: drawn for clouds of up to 1000 samples (view.show_normals).");
+  if (choice == before) return false;
+  v.showNormals = choice == 0 ? std::optional<bool>() : std::optional<bool>(choice == 1);
+  return true;
 }
 
 // The mode switch; true when it switched (the rest of the panel waits for the next frame).
@@ -85,7 +98,10 @@ bool ViewPanel::draw3dOptions(ViewSpec& v) {
   changed |= ImGui::Checkbox("slice plane", &v.slice.enabled);
   if (v.slice.enabled) changed |= drawSliceOptions(v);
   changed |= ImGui::Checkbox("bounds box", &v.showBounds);
+  ctx_.recordWidget("view.bounds_box");
   ImGui::SameLine();
+  changed |= ImGui::Checkbox("axes", &v.showAxes);
+  ctx_.recordWidget("view.axes");
   return changed;
 }
 

@@ -18,6 +18,7 @@ class ViewPanel {
  private:
   bool drawModeChoice();
   bool draw3dOptions(ViewSpec& v);
+  bool drawNormalsChoice(ViewSpec& v);
   bool drawSliceOptions(ViewSpec& v);
   void drawCameraButtons();
 

@@ -186,6 +186,7 @@ class LeafFitter {
              const PuOptions& options, const HrbfOptions& local, SupportLimits limits)
       : samples_(samples), frameY_(frameY), tree_(tree), options_(options), local_(local), limits_(limits) {}
 
+  const CancelToken* cancel() const { return local_.cancel; }
   // Fits leaf i; throws NumericalError when its system stays singular after growing.
   void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     const Box<Dim>& box = tree_.leafBox(i);
@@ -292,7 +293,9 @@ void checkLocalFitMemory(int samples, const SupportLimits& limits, const HrbfOpt
 }
 
 // Fits every leaf, in parallel over boxes with one BLAS thread each (the local systems are
-// small); rethrows the first failure after all threads are done.
+// small); rethrows the first failure after all threads are done. The cancel token is polled box
+// by box (a box is milliseconds of work): once it is set the remaining boxes are skipped and
+// Cancelled is rethrown.
 template <int Dim>
 void fitLeaves(const LeafFitter<Dim>& fitter, std::vector<typename PuModel<Dim>::Leaf>& leaves,
                std::vector<FitReport>& reports) {
@@ -307,6 +310,7 @@ void fitLeaves(const LeafFitter<Dim>& fitter, std::vector<typename PuModel<Dim>:
 #pragma omp for schedule(dynamic, 8)
     for (int i = 0; i < leafCount; ++i) {
       try {
+        throwIfCancelled(fitter.cancel());
         fitter.fit(i, leaves[i], reports[i], scratch);
       } catch (...) {
         std::lock_guard<std::mutex> lock(failureMutex);

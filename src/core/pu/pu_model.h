@@ -21,7 +21,9 @@
 namespace hermite {
 
 struct PuOptions {
-  HrbfOptions local;            // kernel, polynomial, smoothing, solver of every local fit
+  // Kernel, polynomial, smoothing, solver of every local fit; its cancel token is also polled box
+  // by box (fitPu throws Cancelled).
+  HrbfOptions local;
   int maxPointsPerBox = 20;     // ≥ 1: the default of `fit.partition.max_points_per_box`
   double boxSize = 0.0;         // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;         // ≥ 1: support = box scaled about its centre (1.5: 25 % margin per side)

@@ -148,6 +148,7 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
                       m);
   // The polynomial part about `origin` (docs/maths.md, Centring): P is built from the centred
   // points, the kernel block is unchanged (it sees only exact differences pᵢ − pⱼ).
+  throwIfCancelled(options.cancel);
   SaddleSystem sys;
   if (origin.isZero()) {
     sys = assembleHrbf(samples, options);
@@ -156,6 +157,7 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
     centred.points.colwise() -= origin;
     sys = assembleHrbf(centred, options);
   }
+  sys.cancel = options.cancel;
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;
   const int N = samples.size();

@@ -25,6 +25,9 @@ struct HrbfOptions {
   Polynomial polynomial = Polynomial::Linear;  // linear: enough for every kernel but polyharmonic
   double smoothing = 0.0;                      // λ in [0, kMaxSmoothing]; 0 = interpolation
   SolverChoice solver = SolverChoice::Auto;    // auto: cheapest path the kernel allows
+  // Polled before assembly and by the factorisation (SaddleSystem::cancel): the fit throws
+  // Cancelled once it is set. Null: never cancelled. Not owned.
+  const CancelToken* cancel = nullptr;
 };
 
 // What a fit reports besides the model (the `fit --json` keys come from here).

@@ -24,7 +24,9 @@ RbfOffsetModel<Dim> fitRbfOffset(const HermiteSamples<Dim>& samples, const RbfOf
   // Centres per sample i: pᵢ, pᵢ + δnᵢ, pᵢ − δnᵢ with values 0, +δ, −δ.
   const Eigen::Index n = Eigen::Index(N) * 3;
   Points<Dim> centres(Dim, n);
+  throwIfCancelled(options.cancel);
   SaddleSystem sys;
+  sys.cancel = options.cancel;
   sys.b.resize(n);
   for (int i = 0; i < N; ++i) {
     centres.col(3 * i) = samples.points.col(i);

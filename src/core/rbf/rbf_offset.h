@@ -12,6 +12,7 @@ struct RbfOffsetOptions {
   double smoothing = 0.0;  // λ ≥ 0, same sign rule as HRBF
   double shift = 0.01;     // δ > 0, in data units
   SolverChoice solver = SolverChoice::Auto;
+  const CancelToken* cancel = nullptr;  // as HrbfOptions::cancel
 };
 
 template <int Dim>

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/trace/color_map.h"
+#include "core/trace/mark_sizes.h"
 #include "core/trace/shading.h"
 
 namespace hermite {
@@ -89,17 +90,18 @@ Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d&
   }
 
   const bool withNormals = normals.cols() == points.cols();
-  if (withNormals && style.normalLengthPx > 0)
+  const MarkSizes marks = markSizes2d(style, view, points);  // scaled to the sample spacing
+  if (withNormals && marks.normalLengthPx > 0)
     for (Eigen::Index s = 0; s < points.cols(); ++s) {
       const Vec<2> a = view.worldToPixel(points.col(s));
       const Vec<2> nrm = normals.col(s).normalized();
-      const Vec<2> b = a + style.normalLengthPx * Vec<2>(nrm.x(), -nrm.y());  // rows grow downwards
+      const Vec<2> b = a + marks.normalLengthPx * Vec<2>(nrm.x(), -nrm.y());  // rows grow downwards
       drawSegment(color, W, H, a, b, 1.5, toVec(style.normalColor));
     }
-  if (style.pointRadiusPx > 0)
+  if (marks.pointRadiusPx > 0)
     for (Eigen::Index s = 0; s < points.cols(); ++s) {
       const Vec<2> a = view.worldToPixel(points.col(s));
-      drawSegment(color, W, H, a, a, 2.0 * style.pointRadiusPx, toVec(style.pointColor));
+      drawSegment(color, W, H, a, a, 2.0 * marks.pointRadiusPx, toVec(style.pointColor));
     }
 
   out.image = ImageRgba8(W, H);

@@ -16,6 +16,7 @@
 #include <imgui.h>
 
 #include "app/gui/gui_app.h"
+#include "app/gui/input_queue.h"
 #include "app/gui/scene_view.h"
 #include "io/mesh_file.h"
 #include "render/gl/context.h"
@@ -75,6 +76,13 @@ struct Harness {
     frame();
   }
   void click(double x, double y) { drag(x, y, x, y, 0); }
+  // Frames until the events recorded in `queue` are all taken (as the window's loop does).
+  void replay(InputQueue& queue) {
+    while (queue.pending() > 0) {
+      input = queue.takeFrame(input.width, input.height);
+      frame();
+    }
+  }
   void key(int code, bool ctrl = false, bool shift = false) {
     input.ctrl = ctrl;
     input.shift = shift;
@@ -269,6 +277,77 @@ TEST_CASE("UI: view-only changes redraw without a refit; a fit setting refits") 
   CHECK(h.app->shownFit() != fitted);
   CHECK(h.app->shownFit()->scene.fit.smoothing == 1e-6);
   CHECK(h.app->viewIsCurrent());
+}
+
+TEST_CASE("UI: ticking the bounds box or the partition boxes redraws and submits no fit; r submits one") {
+  Harness h(scene3d(), true, 1000, 1000);  // tall enough for the whole View panel
+  h.frames(2);
+  const FitOutcome* fitted = h.app->shownFit();
+  REQUIRE(fitted);
+  const int submitted = h.app->fitSubmissions();
+  const ConcernVersions v0 = h.app->document().versions();
+  const auto box = h.app->widgetRect("view.bounds_box");
+  REQUIRE(box);
+  h.click(0.5 * ((*box)[0] + (*box)[2]), 0.5 * ((*box)[1] + (*box)[3]));
+  h.frames(2);
+  CHECK(h.app->document().scene().view.showBounds);
+  CHECK(h.app->document().versions().view > v0.view);
+  CHECK(h.app->document().versions().fitInputs() == v0.fitInputs());
+  CHECK(h.app->fitSubmissions() == submitted);
+  CHECK(h.app->shownFit() == fitted);
+  CHECK(h.app->viewIsCurrent());  // redrawn with the same fit
+  // An overlay outside the document: not even a new document version.
+  const std::uint64_t version = h.app->document().version();
+  const auto overlay = h.app->widgetRect("view.partition_boxes");
+  REQUIRE(overlay);
+  h.click(0.5 * ((*overlay)[0] + (*overlay)[2]), 0.5 * ((*overlay)[1] + (*overlay)[3]));
+  h.frames(2);
+  CHECK(h.app->document().version() == version);
+  CHECK(h.app->fitSubmissions() == submitted);
+  // A fit setting: exactly one new fit.
+  Scene s = h.app->document().scene();
+  s.fit.radius *= 1.5;
+  h.app->document().apply(s, "radius");
+  h.frames(2);
+  CHECK(h.app->fitSubmissions() == submitted + 1);
+  CHECK(h.app->shownFit() != fitted);
+}
+
+TEST_CASE("UI: a click recorded during a slow frame lands where it happened, not where the mouse went after") {
+  Harness h(scene3d(), true, 1000, 1000);
+  h.frames(2);
+  const auto box = h.app->widgetRect("view.bounds_box");
+  REQUIRE(box);
+  const CameraSpec camera = h.app->document().scene().view.camera;
+  const Vec<2> o = h.app->viewOrigin();
+  // During one frame of 2 s: to the checkbox, press, release, then on into the view.
+  InputQueue queue;
+  const auto at = [](double t, double x, double y) {
+    InputEvent e;
+    e.time = t;
+    e.x = x;
+    e.y = y;
+    return e;
+  };
+  const auto left = [](double t, bool down) {
+    InputEvent e;
+    e.kind = InputEvent::Kind::Button;
+    e.time = t;
+    e.down = down;
+    return e;
+  };
+  queue.push(at(0.1, 0.5 * ((*box)[0] + (*box)[2]), 0.5 * ((*box)[1] + (*box)[3])));
+  queue.push(left(0.2, true));
+  queue.push(left(0.25, false));
+  queue.push(at(1.5, o.x() + 200, o.y() + 200));
+  queue.push(at(1.9, o.x() + 260, o.y() + 220));
+  // The frame after the slow one takes them in order (the old per-frame snapshot saw the press at
+  // the last position, in the view, and orbited or selected there).
+  h.replay(queue);
+  h.frames(2);
+  CHECK(h.app->document().scene().view.showBounds);  // the click toggled the checkbox
+  CHECK(h.app->document().scene().view.camera == camera);  // and did not orbit the view
+  CHECK(h.app->selectedSample() == -1);
 }
 
 TEST_CASE("UI: orbit, zoom and fit-to-view move the 3D camera and never touch the undo history") {
