@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "core/base/cancel_token.h"
@@ -24,12 +25,13 @@ template <int Dim>
 struct MarchingGrid;
 
 // One block of the octree: its lower corner in grid cells, its size in cells, and the Lipschitz
-// bound it uses (its own above kOwnBoundCells, else the nearest such ancestor's).
+// bound it uses (its own above kOwnBoundCells or where the ancestor's is ∞, else the nearest
+// such ancestor's).
 template <int Dim>
 struct CullBlock {
   std::array<int, Dim> lo{};
   int size = 0;
-  double lipschitz = 0;
+  double lipschitz = std::numeric_limits<double>::infinity();  // none yet: the block computes its own
 };
 
 inline constexpr int kFinestCells = 4;     // cells per axis of a finest block
@@ -101,7 +103,9 @@ std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& fie
     for (std::int64_t i = 0; i < m; ++i) {
       CullBlock<Dim>& b = level[static_cast<size_t>(i)];
       const Box<Dim> box = cullBlockBox(g, b);
-      if (b.size >= kOwnBoundCells) b.lipschitz = field.lipschitzBound(box);
+      // Its own bound when large, or when the ancestor's proves nothing (∞ where the ancestor
+      // reaches the edge of a field's data, while the block may lie wholly on one side).
+      if (b.size >= kOwnBoundCells || !std::isfinite(b.lipschitz)) b.lipschitz = field.lipschitzBound(box);
       centres.col(i) = box.center();
       radius[i] = 0.5 * box.extent().norm();
     }

@@ -145,9 +145,9 @@ TEST_CASE("pu no data: a flat cloud fits only its occupied boxes (unknowns withi
   const int globalUnknowns = 4 * N + 4;
   MESSAGE("flat cloud: " << report.boxes << " boxes, " << report.fittedBoxes << " fitted, " << report.unknowns
                          << " unknowns (global fit " << globalUnknowns << ")");
-  // Each sample lies in about overlap² = 2.25 supports of a plane; before, the empty boxes of
-  // the octree (most of it) fitted grown supports too: 158 352 unknowns here, 870 928 for CGAL's
-  // point_set_2.xyz (3 634 samples).
+  // Each sample lies in about overlap² = 2.25 supports of a plane. Empty boxes (most of the
+  // octree) no longer fit grown supports: issue 17 counted 870 928 unknowns for CGAL's flat
+  // point_set_2.xyz (3 634 samples) when they did.
   CHECK(report.unknowns <= 3 * globalUnknowns);  // overlap² = 2.25 and the edges of the patch
   CHECK(pu.valid(Vec<3>(0.5, 0.5, 0.0)));
   CHECK_FALSE(pu.valid(Vec<3>(0.5, 0.5, 0.5)));
