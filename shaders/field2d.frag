@@ -4,7 +4,7 @@
 // Drawn with fullscreen.vert. Line widths use the distance estimate |f − level| / ‖∇f‖ in pixels,
 // with the same coverage ramp as the CPU reference (core/trace/field2d_reference.cpp).
 
-uniform sampler2D u_field;      // RGB32F (f, ∂f/∂x, ∂f/∂y), world units; GL row order (row 0 = bottom)
+uniform sampler2D u_field;      // RGBA32F (f, ∂f/∂x, ∂f/∂y, no data: 1 / 0), world units; GL row order (row 0 = bottom)
 uniform vec2 u_viewport;        // W, H in pixels
 uniform float u_pixel_size;     // world units per pixel
 uniform float u_range;          // colour map covers [−range, range]
@@ -17,6 +17,9 @@ uniform vec4 u_bounds_px;       // (x0, y0, x1, y1) GL pixel rectangle of view.b
 uniform bool u_use_bounds;
 uniform vec3 u_outside_color;   // the heat map fades towards it outside the bounds
 uniform float u_outside_mix;
+uniform vec3 u_no_data_color;   // no data: this grey, hatched diagonally (color_map.h, kNoDataColor)
+uniform vec3 u_no_data_hatch_color;
+uniform ivec2 u_no_data_hatch;  // (period, width) of the hatching in pixels
 
 out vec4 frag_color;
 
@@ -28,7 +31,14 @@ float coverage(float d, float w) { return clamp(0.5 * w + 0.5 - d, 0.0, 1.0); }
 void main() {
   // One fetch for both grids (a ternary of texelFetch and texture would run both on llvmpipe):
   // on the pixel grid the sampler filters NEAREST, and a pixel centre's coordinate selects its texel.
-  vec3 s = texture(u_field, gl_FragCoord.xy / u_viewport).xyz;
+  vec4 texel = texture(u_field, gl_FragCoord.xy / u_viewport);
+  if (texel.w > 0.5) {  // no data: hatched grey, no lines
+    ivec2 px = ivec2(gl_FragCoord.xy);
+    bool hatch = (px.x + px.y) % u_no_data_hatch.x < u_no_data_hatch.y;
+    frag_color = vec4(hatch ? u_no_data_hatch_color : u_no_data_color, 1.0);
+    return;
+  }
+  vec3 s = texel.xyz;
   float v = s.x;
   float grad_px = length(s.yz) * u_pixel_size;  // change of f per pixel
   vec3 c = divergingColorAt(v / u_range);

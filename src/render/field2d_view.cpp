@@ -56,6 +56,8 @@ void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, co
   Eigen::VectorXd f;
   Points<2> G;
   field.evaluateBatch(X, f, &G);
+  std::vector<char> valid;
+  field.validBatch(X, valid);
 
   // RGBA32F, not RGB32F: llvmpipe fetches 3-channel float textures through a slow generic path.
   std::vector<float> texels(4 * n);
@@ -64,14 +66,14 @@ void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, co
     texels[4 * p] = float(f(p));
     texels[4 * p + 1] = float(G(0, p));
     texels[4 * p + 2] = float(G(1, p));
-    texels[4 * p + 3] = 0.0f;
+    texels[4 * p + 3] = valid[std::size_t(p)] ? 0.0f : 1.0f;  // 1: no data
   }
 
   range_ = options.style.range;
   if (!(range_ > 0)) {
     double m = 0;
     for (std::size_t p = 0; p < n; ++p) {
-      if (!std::isfinite(f(Eigen::Index(p)))) continue;
+      if (!valid[p] || !std::isfinite(f(Eigen::Index(p)))) continue;
       if (options.bounds && !options.bounds->contains(X.col(Eigen::Index(p)))) continue;
       m = std::max(m, std::abs(f(Eigen::Index(p))));
     }
@@ -159,6 +161,9 @@ void Field2dView::draw() {
   heat_.setUniform("u_iso_width", float(st.isoWidthPx));
   heat_.setUniform("u_iso_darken", float(kIsoLineDarken));
   heat_.setUniform("u_zero_color", toGlm(kZeroCurveColor));
+  heat_.setUniform("u_no_data_color", toGlm(kNoDataColor));
+  heat_.setUniform("u_no_data_hatch_color", toGlm(kNoDataHatchColor));
+  heat_.setUniform("u_no_data_hatch", glm::ivec2(kNoDataHatchPeriod, kNoDataHatchWidth));
   if (options_.bounds) {
     const Vec<2> lo = view.worldToPixel(options_.bounds->lo);  // image rows grow downwards
     const Vec<2> hi = view.worldToPixel(options_.bounds->hi);

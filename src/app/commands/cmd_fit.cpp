@@ -92,7 +92,8 @@ json puModelJson(const Scene& scene, const PuModel<Dim>& pu) {
     json b = boxJson<Dim>(pu.tree().leafBox(i));
     b["support"] = boxJson<Dim>(leaf.support);
     b["samples"] = leaf.samples;
-    b["model"] = modelJson<Dim>(scene, leaf.model);
+    b["blended"] = leaf.blended;
+    if (leaf.blended) b["model"] = modelJson<Dim>(scene, leaf.model);
     boxes.push_back(std::move(b));
   }
   out["boxes"] = std::move(boxes);
@@ -133,6 +134,8 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
                         {"max_box_samples", fit.puReport.maxBoxSamples},
                         {"max_support_samples", fit.puReport.maxSupportSamples},
                         {"grown_supports", fit.puReport.grownSupports},
+                        {"fitted_boxes", fit.puReport.fittedBoxes},
+                        {"unknowns", fit.puReport.unknowns},
                         {"blend", std::string(puBlendName(pu->options().blend))}};
   } else {
     out["partition"] = nullptr;

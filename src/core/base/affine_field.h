@@ -19,6 +19,8 @@ class AffineComposedField final : public ImplicitField<Dim> {
 
   double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override;
   void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
+  bool valid(const Vec<Dim>& x) const override { return field_->valid(Ainv_ * (x - b_)); }
+  bool everywhereValid() const override { return field_->everywhereValid(); }
   // L_f over the box's preimage (its bounding box) times ‖A⁻¹‖₂ (‖∇g‖ ≤ ‖A⁻ᵀ‖‖∇f‖).
   double lipschitzBound(const Box<Dim>& box) const override;
 

@@ -15,6 +15,21 @@ void ImplicitField<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f,
   }
 }
 
+template <int Dim>
+void ImplicitField<Dim>::validBatch(const Points<Dim>& X, std::vector<char>& out) const {
+  const Eigen::Index n = X.cols();
+  out.assign(static_cast<std::size_t>(n), 1);
+  if (everywhereValid()) return;
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = valid(X.col(i)) ? 1 : 0;
+}
+
+template <int Dim>
+void ImplicitField<Dim>::evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const {
+  evaluateBatch(X, f);
+  validBatch(X, valid);
+}
+
 template class ImplicitField<2>;
 template class ImplicitField<3>;
 

@@ -2,6 +2,8 @@
 // The interface render/ and meshing consume: any scalar field f with gradient and Hessian.
 // Convention (docs/maths.md, Conventions): f < 0 inside, f > 0 outside, ∇f points outward.
 
+#include <vector>
+
 #include "core/base/geometry.h"
 
 namespace hermite {
@@ -34,6 +36,21 @@ class ImplicitField {
   // Batch evaluation of f (N) and, when G is not null, ∇f (Dim × N) at the columns of X
   // (Dim × N), in parallel over points. Fields override it with vectorised loops.
   virtual void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const;
+
+  // Whether f at x rests on data ("no data" otherwise: e.g. a partition-of-unity point that no
+  // box holding samples covers). Where it is false f is a finite stand-in (docs/maths.md,
+  // "No data") that the mesh export, the tracers and the 2D view never show as surface.
+  virtual bool valid(const Vec<Dim>& x) const {
+    (void)x;
+    return true;
+  }
+  // valid() at the columns of X (Dim × N) into out (N entries, 1 = valid), in parallel.
+  void validBatch(const Points<Dim>& X, std::vector<char>& out) const;
+  // f and valid() at the columns of X in one pass where the field can share the work (the
+  // partition of unity finds its supports once); by default evaluateBatch then validBatch.
+  virtual void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const;
+  // False when valid() may return false somewhere (callers skip the validity pass otherwise).
+  virtual bool everywhereValid() const { return true; }
 
   // L ≥ sup over the box of ‖∇f‖: |f(x) − f(y)| ≤ L‖x − y‖ inside the box (safe ray steps).
   virtual double lipschitzBound(const Box<Dim>& box) const = 0;

@@ -65,6 +65,7 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
   int insideMask = 0;
   for (int c = 0; c < 8; ++c) {
     const std::int64_t idx = origin + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
+    if (!g.isValid(idx)) return;  // no data at a corner: no geometry in the cube
     v[c] = g.values[idx];
     if (v[c] < 0) insideMask |= 1 << c;
   }
@@ -139,6 +140,27 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
   }
 }
 
+// Removes vertices no triangle uses (edge vertices whose cubes all touch a no-data point),
+// renumbering the triangles; keeps the order of the rest.
+void dropUnusedVertices(TriMesh& mesh) {
+  std::vector<int> id(static_cast<size_t>(mesh.vertexCount()), -1);
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    for (int k = 0; k < 3; ++k) id[static_cast<size_t>(mesh.triangles(k, t))] = 0;
+  int kept = 0;
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    if (id[static_cast<size_t>(v)] < 0) continue;
+    id[static_cast<size_t>(v)] = kept;
+    mesh.vertices.col(kept) = mesh.vertices.col(v);
+    if (mesh.hasNormals()) mesh.normals.col(kept) = mesh.normals.col(v);
+    ++kept;
+  }
+  const bool normals = mesh.hasNormals();
+  mesh.vertices.conservativeResize(3, kept);
+  if (normals) mesh.normals.conservativeResize(3, kept);
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = id[static_cast<size_t>(mesh.triangles(k, t))];
+}
+
 }  // namespace
 
 TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
@@ -194,6 +216,7 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
     if (len > 1e-300 && std::isfinite(len)) mesh.normals.col(v) /= len;
     else mesh.normals.col(v) = fallback.col(v);
   }
+  if (!g.valid.empty()) dropUnusedVertices(mesh);
   if (report) report->totalMs = msSince(t0);
   return mesh;
 }

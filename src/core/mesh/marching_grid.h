@@ -12,6 +12,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/mesh/marching_cull.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_options.h"
 
@@ -25,6 +26,9 @@ struct MarchingGrid {
   std::array<std::int64_t, Dim> stride{};  // point-index step per axis (points: n + 1 per axis)
   std::int64_t pointCount = 0;
   Eigen::VectorXd values;              // f at every grid point
+  // valid[p] = 0: grid point p has no data (ImplicitField::valid); empty when every point is
+  // valid. Edges and cells touching such a point get no vertex and no geometry.
+  std::vector<char> valid;
 
   // Sign-changing grid edges, key = pointIndex · Dim + axis (from the point to its +axis
   // neighbour), sorted; vertex v of the contour sits on edge edgeKeys[v].
@@ -47,6 +51,7 @@ struct MarchingGrid {
     return x;
   }
   bool inside(std::int64_t idx) const { return values[idx] < 0; }
+  bool isValid(std::int64_t idx) const { return valid.empty() || valid[static_cast<size_t>(idx)]; }
   // The contour vertex on the edge from point idx along axis, or -1.
   int vertexOn(std::int64_t idx, int axis) const {
     const std::int64_t key = idx * Dim + axis;
@@ -55,104 +60,23 @@ struct MarchingGrid {
   }
 };
 
-// Culling (MarchingOptions::cull): fills g.values with a same-signed stand-in at the points of
-// blocks that cannot contain the zero set and returns which points still need f.
+// f and ∇f at the columns of X in chunks of 2¹⁴ points, polling `cancel` between them.
 template <int Dim>
-std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field) {
-  constexpr int B = 4, Super = 4;  // block: B cells per axis; super-block: Super blocks per axis
-  std::array<int, Dim> nb{};
-  std::int64_t blocks = 1;
-  for (int a = 0; a < Dim; ++a) {
-    nb[a] = (g.n[a] + B - 1) / B;
-    blocks *= nb[a];
-  }
-  auto blockCoords = [&](std::int64_t b) {
-    std::array<int, Dim> c{};
-    for (int a = 0; a < Dim; ++a) {
-      c[a] = static_cast<int>(b % nb[a]);
-      b /= nb[a];
-    }
-    return c;
-  };
-  // Block b spans grid points [B·c, min(B·c + B, n)] per axis.
-  auto blockBox = [&](const std::array<int, Dim>& c, int size) {
-    Box<Dim> box;
-    for (int a = 0; a < Dim; ++a) {
-      box.lo[a] = g.lo[a] + g.h[a] * (B * c[a]);
-      box.hi[a] = g.lo[a] + g.h[a] * std::min(B * (c[a] + size), g.n[a]);
-    }
-    return box;
-  };
-  Points<Dim> centres(Dim, blocks);
-  Eigen::VectorXd radius(blocks), lipschitz(blocks);
-  // One Lipschitz bound per super-block, valid for every block inside it.
-  std::array<int, Dim> ns{};
-  std::int64_t supers = 1;
-  for (int a = 0; a < Dim; ++a) {
-    ns[a] = (nb[a] + Super - 1) / Super;
-    supers *= ns[a];
-  }
-  Eigen::VectorXd superL(supers);
-#pragma omp parallel for schedule(dynamic, 4)
-  for (std::int64_t sb = 0; sb < supers; ++sb) {
-    std::array<int, Dim> c{};
-    std::int64_t rest = sb;
-    for (int a = 0; a < Dim; ++a) {
-      c[a] = static_cast<int>(rest % ns[a]) * Super;
-      rest /= ns[a];
-    }
-    superL[sb] = field.lipschitzBound(blockBox(c, Super));
-  }
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    const std::array<int, Dim> c = blockCoords(b);
-    const Box<Dim> box = blockBox(c, 1);
-    centres.col(b) = box.center();
-    radius[b] = 0.5 * box.extent().norm();
-    std::int64_t sb = 0, stride = 1;
-    for (int a = 0; a < Dim; ++a) {
-      sb += (c[a] / Super) * stride;
-      stride *= ns[a];
-    }
-    lipschitz[b] = superL[sb];
-  }
+void evaluateChunked(const ImplicitField<Dim>& field, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>& G,
+                     const CancelToken* cancel) {
+  constexpr Eigen::Index kChunk = 1 << 14;
+  const Eigen::Index n = X.cols();
+  f.resize(n);
+  G.resize(Dim, n);
   Eigen::VectorXd fc;
-  field.evaluateBatch(centres, fc);
-  std::vector<char> needed(static_cast<size_t>(g.pointCount), 0);
-  std::vector<char> culled(static_cast<size_t>(blocks), 0);
-  for (std::int64_t b = 0; b < blocks; ++b) {
-    const double margin = lipschitz[b] * radius[b] * (1 + 1e-9);
-    culled[b] = std::isfinite(fc[b]) && std::isfinite(margin) && std::abs(fc[b]) > margin;
-    if (culled[b]) continue;
-    const std::array<int, Dim> c = blockCoords(b);
-    std::array<int, Dim> lo{}, hi{};
-    for (int a = 0; a < Dim; ++a) {
-      lo[a] = B * c[a];
-      hi[a] = std::min(B * c[a] + B, g.n[a]);
-    }
-    if constexpr (Dim == 2) {
-      for (int j = lo[1]; j <= hi[1]; ++j)
-        for (int i = lo[0]; i <= hi[0]; ++i) needed[static_cast<size_t>(i + g.stride[1] * j)] = 1;
-    } else {
-      for (int k = lo[2]; k <= hi[2]; ++k)
-        for (int j = lo[1]; j <= hi[1]; ++j)
-          for (int i = lo[0]; i <= hi[0]; ++i)
-            needed[static_cast<size_t>(i + g.stride[1] * j + g.stride[2] * k)] = 1;
-    }
+  Points<Dim> Gc;
+  for (Eigen::Index begin = 0; begin < n; begin += kChunk) {
+    throwIfCancelled(cancel);
+    const Eigen::Index count = std::min(kChunk, n - begin);
+    field.evaluateBatch(X.middleCols(begin, count), fc, &Gc);
+    f.segment(begin, count) = fc;
+    G.middleCols(begin, count) = Gc;
   }
-  // Points only in culled blocks: every block holding them is culled and has their true sign;
-  // the stand-in |f(c)| − L·r is a lower bound of |f| there, with that sign.
-  for (std::int64_t p = 0; p < g.pointCount; ++p) {
-    if (needed[static_cast<size_t>(p)]) continue;
-    const std::array<int, Dim> pc = g.coords(p);
-    std::int64_t b = 0, stride = 1;
-    for (int a = 0; a < Dim; ++a) {
-      b += std::min(pc[a] / B, nb[a] - 1) * stride;
-      stride *= nb[a];
-    }
-    const double bound = std::max(std::abs(fc[b]) - lipschitz[b] * radius[b], 1e-300);
-    g.values[p] = fc[b] < 0 ? -bound : bound;
-  }
-  return needed;
 }
 
 // Grid layout and f at every grid point (batched by slabs of the last axis to bound memory).
@@ -179,17 +103,28 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
   g.values.resize(s);
   // needed[p]: f must be evaluated at grid point p (all of them without culling).
   std::vector<char> needed;
-  if (options.cull) needed = cullBlocks(g, field);
+  if (options.cull) needed = cullBlocks(g, field, options.cancel);
   else needed.assign(static_cast<size_t>(s), 1);
-  // Evaluated in batches of up to 2²⁰ points (bounded memory whatever the resolution).
+  // Evaluated in batches of up to 2¹⁴ points (bounded memory whatever the resolution; cancel and
+  // progress between batches).
   std::int64_t total = 0;
   std::vector<std::int64_t> todo;
   Points<Dim> X;
   Eigen::VectorXd f;
+  // Validity only where f is evaluated: culled points lie in blocks without a sign change, whose
+  // cells make no geometry whatever their validity.
+  const bool checkValid = !field.everywhereValid();
+  if (checkValid) g.valid.assign(static_cast<size_t>(s), 1);
+  std::vector<char> ok;
   auto flush = [&] {
     X.resize(Dim, static_cast<Eigen::Index>(todo.size()));
     for (size_t i = 0; i < todo.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = g.point(todo[i]);
-    field.evaluateBatch(X, f);
+    if (checkValid) {
+      field.evaluateValidBatch(X, f, ok);
+      for (size_t i = 0; i < todo.size(); ++i) g.valid[static_cast<size_t>(todo[i])] = ok[i];
+    } else {
+      field.evaluateBatch(X, f);
+    }
     for (size_t i = 0; i < todo.size(); ++i) {
       if (!std::isfinite(f[static_cast<Eigen::Index>(i)])) {
         std::string where;
@@ -201,12 +136,20 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
     total += static_cast<std::int64_t>(todo.size());
     todo.clear();
   };
+  std::int64_t neededCount = 0;
+  for (char c : needed) neededCount += c;
   for (std::int64_t p = 0; p < s; ++p) {
     if (!needed[static_cast<size_t>(p)]) continue;
     todo.push_back(p);
-    if (todo.size() == (1u << 20)) flush();
+    if (todo.size() == (1u << 14)) {
+      throwIfCancelled(options.cancel);
+      flush();
+      if (options.progress) options.progress(double(total) / double(std::max<std::int64_t>(neededCount, 1)));
+    }
   }
+  throwIfCancelled(options.cancel);
   if (!todo.empty()) flush();
+  if (options.progress) options.progress(1.0);
   if (report) {
     report->gridPoints = s;
     report->evaluatedPoints = total;
@@ -233,7 +176,8 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
     for (std::int64_t p = begin; p < end; ++p) {
       const std::array<int, Dim> c = g.coords(p);
       for (int a = 0; a < Dim; ++a)
-        if (c[a] < g.n[a] && g.inside(p) != g.inside(p + g.stride[a])) out.push_back(p * Dim + a);
+        if (c[a] < g.n[a] && g.inside(p) != g.inside(p + g.stride[a]) && g.isValid(p) && g.isValid(p + g.stride[a]))
+          out.push_back(p * Dim + a);
     }
   }
   g.edgeKeys.clear();
@@ -264,7 +208,7 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
   Points<Dim> G;
   g.vertices.resize(Dim, V);
   for (int v = 0; v < V; ++v) g.vertices.col(v) = position(v);
-  field.evaluateBatch(g.vertices, f, &G);
+  evaluateChunked(field, g.vertices, f, G, options.cancel);
   // Only vertices not yet converged (Newton step above 1e-9 of a cell) are iterated and
   // re-evaluated: for RBF fields each evaluation with ∇f is the expensive part.
   std::vector<int> active(static_cast<size_t>(V));
@@ -274,6 +218,7 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
   Eigen::VectorXd fa;
   Points<Dim> Ga;
   for (int step = 0; step < options.newtonSteps && !active.empty(); ++step) {
+    throwIfCancelled(options.cancel);
     next.clear();
     for (int v : active) {
       const double slope = G(axis[v], v) * g.h[axis[v]];  // df/dt
@@ -298,7 +243,7 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
     }
     X.resize(Dim, static_cast<Eigen::Index>(next.size()));
     for (size_t k = 0; k < next.size(); ++k) X.col(static_cast<Eigen::Index>(k)) = position(next[k]);
-    field.evaluateBatch(X, fa, &Ga);
+    evaluateChunked(field, X, fa, Ga, options.cancel);
     for (size_t k = 0; k < next.size(); ++k) {
       const int v = next[k];
       g.vertices.col(v) = X.col(static_cast<Eigen::Index>(k));

@@ -18,9 +18,14 @@
 // t ← t − f / (∇f · (b − a)), safeguarded by the sign bracket (Illinois false position when a
 // step leaves it) and kept within [τ, 1 − τ] of the edge (τ = 1e-3), so the mesh's combinatorics
 // stay those of the grid and no triangle degenerates; normals are ∇f / ‖∇f‖ at the final positions.
+//
+// No data (ImplicitField::valid): a cube (square) with a corner where the field has no data makes
+// no geometry, and a grid edge with such an end gets no vertex; the contour is open there.
 
 #include <array>
+#include <functional>
 
+#include "core/base/cancel_token.h"
 #include "core/base/geometry.h"
 
 namespace hermite {
@@ -28,12 +33,20 @@ namespace hermite {
 struct MarchingOptions {
   int resolution = 64;  // cells along the box's longest side (≥ 1); the others in proportion
   int newtonSteps = 4;  // Newton iterations along each vertex's grid edge (0: linear interpolation)
-  // Skip f at grid points far from the zero set: f is evaluated at the centre c of every block of
-  // 4³ cells, and a block with |f(c)| > L·r (L = lipschitzBound over its 16³-cell super-block, r
-  // its half-diagonal) cannot change sign, so its points only need that sign. Exact: the mesh is
-  // identical to the dense one (every value the mesh uses — on sign-changing edges and ambiguous
-  // faces — lies in a block that is not skipped).
+  // Skip f at grid points far from the zero set (an octree, marching_cull.h): blocks of 64³, 32³,
+  // …, 4³ cells are tested coarse to fine; a block with |f(c)| > L·r at its centre c (L =
+  // lipschitzBound over the block, or over its 16³ ancestor for smaller blocks where that is
+  // finite; r its
+  // half-diagonal) cannot change sign, so its points only need that sign, and only the 4³ blocks
+  // left need f at every point. Exact: the mesh is identical to the dense one (every value the mesh
+  // uses — on sign-changing edges and ambiguous faces — lies in a block that is not skipped).
   bool cull = true;
+  // Cooperative cancellation (null: none): polled between batches of at most 2¹⁴ evaluations of
+  // f, so a cancel is seen within ~100 ms; throws Cancelled.
+  const CancelToken* cancel = nullptr;
+  // Receives the fraction (0 … 1) of the grid evaluations done, on the calling thread, after each
+  // batch (empty: none). The culling octree and the vertex refinement are not counted.
+  std::function<void(double)> progress = {};
 };
 
 // What the contouring measured.

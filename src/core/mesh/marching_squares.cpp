@@ -25,6 +25,7 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
   for (int j = 0; j < g.n[1]; ++j)
     for (int i = 0; i < g.n[0]; ++i) {
       const std::int64_t c[4] = {i + sy * j, i + 1 + sy * j, i + 1 + sy * (j + 1), i + sy * (j + 1)};
+      if (!(g.isValid(c[0]) && g.isValid(c[1]) && g.isValid(c[2]) && g.isValid(c[3]))) continue;  // no data
       // Vertex on the side from corner k to k + 1.
       const int side[4] = {g.vertexOn(c[0], 0), g.vertexOn(c[1], 1), g.vertexOn(c[3], 0), g.vertexOn(c[0], 1)};
       int ids[4], isA[4], n = 0;
@@ -61,6 +62,7 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
       chain.push_back(v);
       v = next[static_cast<size_t>(v)];
     }
+    if (chain.size() < 2) return;  // a vertex whose cells all touch a no-data point
     Polyline2d line;
     line.closed = v == start;
     line.points.resize(2, static_cast<Eigen::Index>(chain.size()));

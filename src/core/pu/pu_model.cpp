@@ -191,6 +191,13 @@ class LeafFitter {
   void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     const Box<Dim>& box = tree_.leafBox(i);
     const int n = samples_.size();
+    if (!leaf.blended) {
+      // Not blended (no data there): no fit, its nominal support for display.
+      leaf.support = scaledBox<Dim>(box, options_.overlap);
+      leaf.factor = options_.overlap;
+      leaf.samples = 0;
+      return;
+    }
     std::vector<int>& idx = scratch.idx;
     double s = initialFactor(box, scratch);
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
@@ -270,6 +277,45 @@ class LeafFitter {
   const HrbfOptions& local_;
   SupportLimits limits_;
 };
+
+// Which leaves the blend uses (docs/maths.md, "No data"). Smooth blend: the boxes holding
+// samples, and the empty boxes touching one of them that are at most twice its longest edge and
+// whose support at `overlap` holds a sample (a support that must grow to reach any sample would
+// fit distant ones, e.g. across the thin boxes of a flat cloud) —
+// a margin of about one box beyond the data, so the cells of a coarser mesh across the surface
+// still have data at every corner, without the far extrapolations of big empty boxes. Each is
+// fitted on its own support (borrowing a neighbour's fit instead extrapolates that fit a whole box
+// and grows sheets). Hard blend: every leaf.
+template <int Dim>
+std::vector<char> blendedLeaves(const PuTree<Dim>& tree, const Points<Dim>& frameY, PuBlend blend, double overlap) {
+  const int n = tree.leafCount();
+  std::vector<char> out(static_cast<std::size_t>(n), 1);
+  if (blend == PuBlend::Hard) return out;
+  const auto& nodes = tree.nodes();
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < n; ++i) {
+    if (tree.leafSampleCount(i) > 0) continue;
+    const Box<Dim>& b = tree.leafBox(i);
+    // A relative 1e-9 for rounding (edges are powers-of-two fractions of the root's).
+    const double edge = (1.0 - 1e-9) * b.extent().maxCoeff();
+    bool near = false;
+    int stack[64 * PuTree<Dim>::kChildren];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0 && !near) {
+      const auto& nd = nodes[stack[--top]];
+      if (nd.begin == nd.end || !boxesIntersect<Dim>(nd.box, b)) continue;
+      if (nd.firstChild >= 0) {
+        for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+      } else {
+        near = 2.0 * nd.box.extent().maxCoeff() >= edge;
+      }
+    }
+    near = near && tree.countInBox(frameY, scaledBox<Dim>(b, overlap), 1) >= 1;
+    out[static_cast<std::size_t>(i)] = near ? 1 : 0;
+  }
+  return out;
+}
 
 // Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
 // than is available: each holds a system of at most min(n, limits.max) samples, as the
@@ -356,10 +402,12 @@ PuReport summariseFits(const PuTree<Dim>& tree, const std::vector<typename PuMod
   r.boxes = leafCount;
   r.warnings = polynomialOrderWarnings(local.kernel, local.polynomial);
   std::map<std::string, int> solvers;
+  for (int i = 0; i < leafCount; ++i) r.fittedBoxes += leaves[i].blended ? 1 : 0;
   for (int i = 0; i < leafCount; ++i) {
     r.maxBoxSamples = std::max(r.maxBoxSamples, tree.leafSampleCount(i));
+    if (!leaves[i].blended) continue;
     r.maxSupportSamples = std::max(r.maxSupportSamples, leaves[i].samples);
-    r.meanSupportSamples += leaves[i].samples / double(leafCount);
+    r.meanSupportSamples += leaves[i].samples / double(r.fittedBoxes);
     if (leaves[i].factor > options.overlap) ++r.grownSupports;
     r.unknowns += reports[i].nUnknowns;
     r.maxConditionEstimate = std::max(r.maxConditionEstimate, reports[i].conditionEstimate);
@@ -391,8 +439,11 @@ PuModel<Dim>::PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOption
                       const Similarity<Dim>& frame)
     : tree_(std::move(tree)), leaves_(std::move(leaves)), options_(options), frame_(frame) {
   identityFrame_ = isIdentity(frame_);
-  minFactor_ = leaves_.empty() ? 1.0 : leaves_.front().factor;
-  for (const Leaf& l : leaves_) minFactor_ = std::min(minFactor_, l.factor);
+  minFactor_ = std::numeric_limits<double>::infinity();
+  for (const Leaf& l : leaves_)
+    if (l.blended) minFactor_ = std::min(minFactor_, l.factor);
+  if (!std::isfinite(minFactor_)) minFactor_ = 1.0;
+  noData_ = tree_.nodes().empty() ? 1.0 : frame_.q * tree_.root().extent().norm();
   buildReach();
 }
 
@@ -400,17 +451,26 @@ template <int Dim>
 void PuModel<Dim>::buildReach() {
   const auto& nodes = tree_.nodes();
   reach_.assign(nodes.size(), Box<Dim>{});
+  allBlended_.assign(nodes.size(), 1);
   // Children come after their parent: a backward pass sees them first.
   for (int id = static_cast<int>(nodes.size()) - 1; id >= 0; --id) {
     const auto& nd = nodes[id];
     if (nd.firstChild < 0) {
-      reach_[id] = leaves_[nd.leaf].support;
+      if (leaves_[nd.leaf].blended) {
+        reach_[id] = leaves_[nd.leaf].support;
+      } else {  // never blended: an empty reach
+        allBlended_[static_cast<std::size_t>(id)] = 0;
+        reach_[id].lo.setConstant(std::numeric_limits<double>::infinity());
+        reach_[id].hi.setConstant(-std::numeric_limits<double>::infinity());
+      }
     } else {
       Box<Dim> r = reach_[nd.firstChild];
       for (int ch = 1; ch < PuTree<Dim>::kChildren; ++ch) {
         r.lo = r.lo.cwiseMin(reach_[nd.firstChild + ch].lo);
         r.hi = r.hi.cwiseMax(reach_[nd.firstChild + ch].hi);
       }
+      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch)
+        if (!allBlended_[static_cast<std::size_t>(nd.firstChild + ch)]) allBlended_[static_cast<std::size_t>(id)] = 0;
       reach_[id] = r;
     }
   }
@@ -456,12 +516,16 @@ void PuModel<Dim>::forSupportsTouching(const Box<Dim>& b, F&& visit) const {
 
 template <int Dim>
 double PuModel<Dim>::evaluate(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H) const {
+  return evaluateValid(x, g, H, nullptr);
+}
+
+template <int Dim>
+double PuModel<Dim>::evaluateValid(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H, bool* valid) const {
+  if (valid) *valid = true;
   const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
   if (options_.blend == PuBlend::Hard) return leaves_[tree_.locateLeaf(y)].model.evaluate(x, g, H);
-  const Box<Dim>& root = tree_.root();
-  const Vec<Dim> yc = y.cwiseMax(root.lo).cwiseMin(root.hi);
-  bool frozen[Dim];
-  for (int k = 0; k < Dim; ++k) frozen[k] = yc(k) != y(k);
+  const bool frozen[Dim] = {};
+  const Vec<Dim>& yc = y;
   const bool needG = g != nullptr || H != nullptr;
   const bool needH = H != nullptr;
   // f = N/S with N = Σ wᵢfᵢ, S = Σ wᵢ; derivatives of N and S by the product rule.
@@ -495,10 +559,7 @@ double PuModel<Dim>::evaluate(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H) const
       HN += fi * Hw + gw * gi.transpose() + gi * gw.transpose() + w * Hi;
     }
   });
-  if (!(S > 0)) {
-    // No support reaches y (only with overlap 1 on shared faces): the containing box's fit.
-    return leaves_[tree_.locateLeaf(yc)].model.evaluate(x, g, H);
-  }
+  if (!(S > 0)) return evaluateUncovered(x, y, g, H, valid);
   const double f = N / S;
   if (needG) {
     const Vec<Dim> gf = (gN - f * gS) / S;
@@ -506,6 +567,49 @@ double PuModel<Dim>::evaluate(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H) const
     if (needH) *H = (HN - gf * gS.transpose() - gS * gf.transpose() - f * HS) / S;
   }
   return f;
+}
+
+template <int Dim>
+double PuModel<Dim>::evaluateUncovered(const Vec<Dim>& x, const Vec<Dim>& y, Vec<Dim>* g, Mat<Dim>* H,
+                                       bool* valid) const {
+  if (tree_.root().contains(y)) {
+    const Leaf& own = leaves_[tree_.locateLeaf(y)];
+    if (own.blended) return own.model.evaluate(x, g, H);
+  }
+  if (valid) *valid = false;
+  if (g) g->setZero();
+  if (H) H->setZero();
+  return noData_;
+}
+
+template <int Dim>
+bool PuModel<Dim>::valid(const Vec<Dim>& x) const {
+  if (options_.blend == PuBlend::Hard) return true;
+  const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
+  const bool frozen[Dim] = {};
+  bool reached = false;
+  forSupportsAt(y, [&](int i) {
+    if (!reached && bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0) reached = true;
+  });
+  return reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended);
+}
+
+template <int Dim>
+bool PuModel<Dim>::coveredByData(const Box<Dim>& yb) const {
+  const Box<Dim>& root = tree_.root();
+  if (!((yb.lo.array() >= root.lo.array()).all() && (yb.hi.array() <= root.hi.array()).all())) return false;
+  const auto& nodes = tree_.nodes();
+  int stack[64 * PuTree<Dim>::kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int id = stack[--top];
+    const auto& nd = nodes[id];
+    if (!boxesIntersect<Dim>(nd.box, yb) || allBlended_[static_cast<std::size_t>(id)]) continue;
+    if (nd.firstChild < 0) return false;  // a leaf without data meets yb
+    for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+  }
+  return true;
 }
 
 template <int Dim>
@@ -526,6 +630,19 @@ void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Point
 }
 
 template <int Dim>
+void PuModel<Dim>::evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const {
+  const Eigen::Index n = X.cols();
+  f.resize(n);
+  valid.assign(static_cast<std::size_t>(n), 1);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Eigen::Index i = 0; i < n; ++i) {
+    bool ok = true;
+    f(i) = evaluateValid(X.col(i), nullptr, nullptr, &ok);
+    valid[static_cast<std::size_t>(i)] = ok ? 1 : 0;
+  }
+}
+
+template <int Dim>
 std::vector<std::pair<int, double>> PuModel<Dim>::weights(const Vec<Dim>& x) const {
   std::vector<std::pair<int, double>> out;
   const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
@@ -533,11 +650,10 @@ std::vector<std::pair<int, double>> PuModel<Dim>::weights(const Vec<Dim>& x) con
     out.emplace_back(tree_.locateLeaf(y), 1.0);
     return out;
   }
-  const Vec<Dim> yc = y.cwiseMax(tree_.root().lo).cwiseMin(tree_.root().hi);
-  const bool frozen[3] = {false, false, false};
+  const bool frozen[Dim] = {};
   double S = 0;
-  forSupportsAt(yc, [&](int i) {
-    const double w = bump<Dim>(leaves_[i].support, yc, frozen, nullptr, nullptr);
+  forSupportsAt(y, [&](int i) {
+    const double w = bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr);
     if (w > 0) {
       out.emplace_back(i, w);
       S += w;
@@ -565,17 +681,16 @@ double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
       yb.hi = yb.hi.cwiseMax(y);
     }
   }
-  const Box<Dim>& root = tree_.root();
-  yb.lo = yb.lo.cwiseMax(root.lo).cwiseMin(root.hi);
-  yb.hi = yb.hi.cwiseMax(root.lo).cwiseMin(root.hi);
-  // Every root point lies in a leaf box, whose support is at least minFactor times larger: there
-  // |tₖ| ≤ 1/minFactor on every axis, so S ≥ (1 − 1/minFactor²)^(3·Dim).
+  // Every point of a blended leaf box lies in its support, at least minFactor times larger: there
+  // |tₖ| ≤ 1/minFactor on every axis, so S ≥ (1 − 1/minFactor²)^(3·Dim) where such boxes cover yb.
   const double u0 = 1.0 - 1.0 / (minFactor_ * minFactor_);
   const double s0 = std::pow(u0, 3 * Dim);
   const Vec<Dim> xc = box.center();
   const double reach = 0.5 * box.extent().norm();
   double sumGF = 0, sumG = 0, fMax = 0, lMax = 0, sMin = 0;
+  int touching = 0;
   forSupportsTouching(yb, [&](int i) {
+    ++touching;
     const Leaf& leaf = leaves_[i];
     double inv2 = 0, wMin = 1;
     for (int k = 0; k < Dim; ++k) {
@@ -595,7 +710,10 @@ double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
     lMax = std::max(lMax, L);
     sMin += wMin;
   });
-  sMin = std::max(sMin, s0);
+  if (touching == 0) return 0.0;  // no data reaches the box: f is the constant noDataValue()
+  if (coveredByData(yb)) sMin = std::max(sMin, s0);
+  // Where S has no positive lower bound f may jump to noDataValue(): no finite bound.
+  if (!(sMin > 0)) return std::numeric_limits<double>::infinity();
   // Rounding of the sums: a relative 1e-12 margin.
   return (1.0 + 1e-12) * ((sumGF + fMax * sumG) / sMin + lMax);
 }
@@ -621,12 +739,16 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   treeOptions.boxSize = options.boxSize;
   treeOptions.maxSupportSamples = limits.max;
   treeOptions.overlap = options.overlap;
+  treeOptions.splitEmpty = options.blend == PuBlend::Hard;
   PuTree<Dim> tree(frameY, treeOptions);
   const double treeMs = msSince(t0);
 
   const auto leafCount = static_cast<std::size_t>(tree.leafCount());
   std::vector<typename PuModel<Dim>::Leaf> leaves(leafCount);
   std::vector<FitReport> reports(leafCount);
+  const std::vector<char> blended =
+      blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
+  for (std::size_t i = 0; i < leafCount; ++i) leaves[i].blended = blended[i] != 0;
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;
   checkLocalFitMemory<Dim>(n, limits, local);
@@ -644,7 +766,8 @@ PuModel<Dim> transformPu(const PuModel<Dim>& model, const Similarity<Dim>& T) {
   std::vector<typename PuModel<Dim>::Leaf> leaves = model.leaves();
   const int count = static_cast<int>(leaves.size());
 #pragma omp parallel for schedule(dynamic, 64)
-  for (int i = 0; i < count; ++i) leaves[i].model = transformModel<Dim>(leaves[i].model, T);
+  for (int i = 0; i < count; ++i)
+    if (leaves[i].blended) leaves[i].model = transformModel<Dim>(leaves[i].model, T);
   return PuModel<Dim>(model.tree(), std::move(leaves), model.options(), composeSimilarity<Dim>(T, model.frame()));
 }
 

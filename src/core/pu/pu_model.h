@@ -5,10 +5,11 @@
 //   f(x) = Σᵢ wᵢ(y) fᵢ(x) / Σᵢ wᵢ(y),   y = T⁻¹x  (T: the model's frame, identity until transformed)
 //
 // with wᵢ the C² tensor-product bump Πₖ (1 − tₖ²)³₊, tₖ = (yₖ − cₖ)/hₖ over support i (centre c,
-// half-extents h). f, ∇f and the Hessian are C² wherever the local fits are. Outside the root box
-// the weights are those of the nearest root point (y clamped to the root box): f stays continuous
-// and finite everywhere, never NaN. Boxes whose support holds too few samples for their local
-// system grow it (borrow neighbours) by `growth` steps until it does.
+// half-extents h). f, ∇f and the Hessian are C² wherever the local fits are. The smooth blend
+// sums only the leaves whose box holds samples or borders one that does (MPU-style): where none of their supports reaches
+// x, the field has "no data" (valid(x) false) and f is the constant noDataValue() > 0 ("outside"),
+// so no zero set grows away from the data. Boxes whose support holds too few samples for their
+// local system grow it (borrow neighbours) by `growth` steps until it does.
 
 #include <memory>
 #include <string>
@@ -42,6 +43,7 @@ struct PuOptions {
 // What the fit reports besides the model (`fit --json` "partition").
 struct PuReport {
   int boxes = 0;
+  int fittedBoxes = 0;     // leaves fitted and blended: holding samples or bordering a box that does
   int maxBoxSamples = 0;   // most samples in one leaf box
   int maxSupportSamples = 0;  // most samples in one local fit
   double meanSupportSamples = 0;
@@ -60,7 +62,10 @@ class PuModel : public ImplicitField<Dim> {
   struct Leaf {
     Box<Dim> support;     // in frame coordinates: the leaf box scaled by `factor` about its centre
     double factor = 1.5;  // overlap, or more for a grown support, or less (≥ the floor) for a capped one
-    int samples = 0;      // samples in the support (the local fit's data)
+    int samples = 0;      // samples in the support (the local fit's data); 0 when not fitted
+    // Whether the leaf is blended: its box holds samples or borders one that does (pu_model.cpp,
+    // blendedLeaves; the hard blend uses every leaf). f has no data where no blended support reaches.
+    bool blended = true;
     HrbfModel<Dim> model;  // in world coordinates
   };
 
@@ -71,7 +76,15 @@ class PuModel : public ImplicitField<Dim> {
   void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
   // Smooth blend: Σᵢ (Gᵢ Fᵢ + F_max Gᵢ) / S_min + maxᵢ Lᵢ over the supports reaching the box, with
   // Gᵢ ≥ ‖∇wᵢ‖, Fᵢ ≥ |fᵢ| on the box, S_min ≤ Σ wᵢ; infinite for the hard blend (f jumps).
+  // Zero where no data support reaches the box (f is constant there), infinite where the box
+  // reaches the edge of the data (f may jump to noDataValue()).
   double lipschitzBound(const Box<Dim>& box) const override;
+  // Some blended support reaches x (its box, with overlap 1); always for the hard blend.
+  bool valid(const Vec<Dim>& x) const override;
+  bool everywhereValid() const override { return options_.blend == PuBlend::Hard; }
+  void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const override;
+  // f where there is no data: the root box's diagonal in world units (positive: "outside").
+  double noDataValue() const { return noData_; }
 
   const PuTree<Dim>& tree() const { return tree_; }
   const std::vector<Leaf>& leaves() const { return leaves_; }
@@ -79,8 +92,8 @@ class PuModel : public ImplicitField<Dim> {
   // World x = frame.apply(y) for frame coordinates y of boxes and supports.
   const Similarity<Dim>& frame() const { return frame_; }
 
-  // Normalised weights Wᵢ(x) of the leaves whose support contains y = T⁻¹x (clamped to the root
-  // box), for tests: pairs (leaf, Wᵢ). Empty where no support reaches (overlap 1 on a face).
+  // Normalised weights Wᵢ(x) of the data leaves whose support contains y = T⁻¹x, for tests:
+  // pairs (leaf, Wᵢ). Empty where no support reaches (no data, or overlap 1 on a face).
   std::vector<std::pair<int, double>> weights(const Vec<Dim>& x) const;
 
  private:
@@ -89,14 +102,23 @@ class PuModel : public ImplicitField<Dim> {
   void forSupportsAt(const Vec<Dim>& y, F&& visit) const;
   template <class F>
   void forSupportsTouching(const Box<Dim>& b, F&& visit) const;
+  // Every point of the frame box yb lies in the root and in a blended leaf box.
+  bool coveredByData(const Box<Dim>& yb) const;
+  // f and derivatives where no support reaches y: the own data box's fit (overlap 1 on a shared
+  // face), else the no-data constant.
+  double evaluateUncovered(const Vec<Dim>& x, const Vec<Dim>& y, Vec<Dim>* g, Mat<Dim>* H, bool* valid) const;
+  // evaluate(), also saying whether x has data when `valid` is not null.
+  double evaluateValid(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H, bool* valid) const;
 
   PuTree<Dim> tree_;
   std::vector<Leaf> leaves_;
-  std::vector<Box<Dim>> reach_;  // per tree node: union of the supports of its leaves
+  std::vector<Box<Dim>> reach_;  // per tree node: union of the supports of its blended leaves
+  std::vector<char> allBlended_;  // per tree node: every leaf below it is blended
   PuOptions options_;
   Similarity<Dim> frame_;
   bool identityFrame_ = true;
-  double minFactor_ = 1.0;  // smallest support factor (the weight sum's lower bound needs it)
+  double minFactor_ = 1.0;  // smallest support factor of a data leaf (the weight sum's lower bound needs it)
+  double noData_ = 1.0;
 };
 
 // Fits a PU model to validated samples. The tree is built on frame.applyInverse(points) (its

@@ -96,6 +96,7 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
       const int id = stack.back();
       stack.pop_back();
       if (nodes_[id].depth >= options.maxDepth) continue;
+      if (!options.splitEmpty && nodes_[id].begin == nodes_[id].end) continue;
       if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
       const int first = splitNode(id);
       for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);

@@ -3,8 +3,8 @@
 // octree (3D) over the samples' bounding box (grown by a small margin so no sample sits on the
 // root's faces). A box holding samples is split into 2^Dim equal children while it holds more
 // than `maxPointsPerBox` samples or, when `boxSize` > 0, while its longest edge exceeds
-// `boxSize`, or while its support holds more than `maxSupportSamples` (when set); other empty
-// boxes are never split. The leaves tile the root box.
+// `boxSize`, or while its support holds more than `maxSupportSamples` (when set; empty boxes only
+// with `splitEmpty`); other empty boxes are never split. The leaves tile the root box.
 
 #include <string_view>
 #include <vector>
@@ -33,6 +33,9 @@ struct PuTreeOptions {
   // thousands of samples from its margin.
   int maxSupportSamples = 0;
   double overlap = 1.5;
+  // Whether the support rule splits empty boxes too: the hard blend fits every box; the smooth
+  // blend fits only boxes holding samples, so splitting empty ones would only add boxes.
+  bool splitEmpty = true;
 };
 
 template <int Dim>

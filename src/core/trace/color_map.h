@@ -26,6 +26,14 @@ inline constexpr std::array<ColorStop, 5> kDivergingStops{{
 
 // Zero curve: pure black. Every map colour has a channel ≥ 0.6, so black is ≥ 0.6 away from it.
 inline constexpr std::array<double, 3> kZeroCurveColor{0.0, 0.0, 0.0};
+// No data (ImplicitField::valid false): light grey with diagonal hatching, neither a map colour
+// nor a line. A pixel in GL column i, row r (r = 0 at the bottom) is hatched when
+// (i + r) mod kNoDataHatchPeriod < kNoDataHatchWidth. Neither iso-lines nor the zero curve are
+// drawn there.
+inline constexpr std::array<double, 3> kNoDataColor{0.80, 0.80, 0.80};
+inline constexpr std::array<double, 3> kNoDataHatchColor{0.62, 0.62, 0.62};
+inline constexpr int kNoDataHatchPeriod = 8;
+inline constexpr int kNoDataHatchWidth = 2;
 // Iso-lines: the map colour scaled by this factor (darker, still of the map's hue).
 inline constexpr double kIsoLineDarken = 0.72;
 

@@ -81,6 +81,13 @@ void CpuTracer::advance(RayState& s, double value) const {
   const double tol = options_.refineTolerance * diagonal_;
   ++s.steps;
   auto hitAt = [&](double t) {
+    // A zero where the field has no data, on either side of the root (the jump of f to its
+    // no-data value at the edge of the data), is no surface: the ray shows the background.
+    const double before = s.phase == RayState::Bisect ? s.bracket.lo() : s.t;
+    if (!field_.everywhereValid() && !(field_.valid(s.ray.at(t)) && field_.valid(s.ray.at(before)))) {
+      s.phase = RayState::Miss;
+      return;
+    }
     s.t = t;
     s.phase = RayState::Hit;
   };

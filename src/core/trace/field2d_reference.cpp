@@ -52,13 +52,15 @@ Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d&
   Eigen::VectorXd f;
   Points<2> G;
   field.evaluateBatch(X, f, &G);
+  std::vector<char> valid;
+  field.validBatch(X, valid);
 
   Field2dImage out;
   out.range = style.range;
   if (!(out.range > 0)) {
     double m = 0;
     for (Eigen::Index p = 0; p < f.size(); ++p)
-      if (std::isfinite(f(p))) m = std::max(m, std::abs(f(p)));
+      if (valid[std::size_t(p)] && std::isfinite(f(p))) m = std::max(m, std::abs(f(p)));
     out.range = m > 0 ? m : 1.0;
   }
   out.isoSpacing = style.isoSpacing == 0 ? niceIsoSpacing(out.range) : style.isoSpacing;
@@ -71,6 +73,14 @@ Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d&
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p) {
     const double v = f(p);
+    out.value[p] = float(v);
+    if (!valid[std::size_t(p)]) {
+      const int i = int(p % W), row = H - 1 - int(p / W);  // GL row: 0 at the bottom
+      const bool hatch = (i + row) % kNoDataHatchPeriod < kNoDataHatchWidth;
+      color[p] = toVec(hatch ? kNoDataHatchColor : kNoDataColor);
+      out.zeroCoverage[p] = 0.0f;
+      continue;
+    }
     const double gradPx = G.col(p).norm() * px;  // change of f per pixel
     Vec<3> c = divergingColor(v, out.range);
     if (out.isoSpacing > 0) {
@@ -85,7 +95,6 @@ Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d&
     const double cov0 = coverage(d0, style.zeroWidthPx);
     c = (1 - cov0) * c + cov0 * zeroColor;
     color[p] = c;
-    out.value[p] = float(v);
     out.zeroCoverage[p] = float(cov0);
   }
 

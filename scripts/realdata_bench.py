@@ -1,0 +1,162 @@
+#!/usr/bin/env python3
+"""Real-data yardstick (issue 17, docs/performance.md "Real data"): sample closed public meshes,
+reconstruct with `hermite-lab mesh` (partition-of-unity HRBF) and, when open3d is installed,
+with open3d's screened Poisson at depth 8 on the same oriented points, and report per method:
+
+  time_s      wall clock of the reconstruction (hermite-lab: the whole `mesh` command, fit
+              included; Poisson: create_from_point_cloud_poisson)
+  comps       edge-connected components of the output
+  closed      every edge used by exactly two triangles
+  mean, p99   distances of 200 000 points sampled on the true surface to the reconstruction
+  max_vert    largest distance of a reconstruction vertex to the true surface
+  (distances relative to the true mesh's bounding-box diagonal, in %)
+
+Usage:
+  scripts/realdata_bench.py [--lab build/release/hermite-lab] [--points 200000] [--resolution 256]
+                            [--meshes armadillo,bunny00] [--threads N] [--no-poisson] [--json OUT]
+Meshes are looked up in /work/cgaldata/data/meshes (CGAL's data set; Debian's libcgal-demo ships
+it as data.tar.gz) unless a path is given. Needs python3 with numpy and open3d (Debian:
+python3-open3d); never a dependency of the product or its tests.
+"""
+import argparse
+import json
+import os
+import re
+import subprocess
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+try:
+    import open3d as o3d
+except ImportError:  # the whole yardstick measures distances with open3d
+    sys.exit("realdata_bench.py needs open3d (Debian: python3-open3d)")
+
+MESH_DIR = "/work/cgaldata/data/meshes"
+
+
+def load_truth(name):
+    path = name if os.path.exists(name) else os.path.join(MESH_DIR, name + ".off")
+    mesh = o3d.io.read_triangle_mesh(path)
+    mesh.remove_duplicated_vertices()
+    mesh.compute_triangle_normals()
+    if len(mesh.triangles) == 0:
+        sys.exit(f"{path}: no triangles")
+    return path, mesh
+
+
+def sample_oriented(mesh, n, seed):
+    """n points uniformly by area with the triangles' normals (outward for a closed oriented mesh)."""
+    o3d.utility.random.seed(seed)
+    pcd = mesh.sample_points_uniformly(number_of_points=n, use_triangle_normal=True)
+    return pcd
+
+
+def topology(mesh):
+    _, counts, _ = mesh.cluster_connected_triangles()
+    closed = mesh.is_edge_manifold(allow_boundary_edges=False) and len(mesh.triangles) > 0
+    return len(counts), bool(closed)
+
+
+def distances(truth, recon, diagonal, seed):
+    """mean and 99th percentile of truth samples → recon, max of recon vertices → truth (% of diagonal)."""
+    if len(recon.triangles) == 0:
+        return float("inf"), float("inf"), float("inf")
+    truth_scene = o3d.t.geometry.RaycastingScene()
+    truth_scene.add_triangles(o3d.t.geometry.TriangleMesh.from_legacy(truth))
+    recon_scene = o3d.t.geometry.RaycastingScene()
+    recon_scene.add_triangles(o3d.t.geometry.TriangleMesh.from_legacy(recon))
+    o3d.utility.random.seed(seed + 1)
+    probe = np.asarray(truth.sample_points_uniformly(number_of_points=200000).points, dtype=np.float32)
+    d_in = recon_scene.compute_distance(o3d.core.Tensor(probe)).numpy()
+    verts = np.asarray(recon.vertices, dtype=np.float32)
+    d_out = truth_scene.compute_distance(o3d.core.Tensor(verts)).numpy()
+    scale = 100.0 / diagonal
+    return float(d_in.mean() * scale), float(np.percentile(d_in, 99) * scale), float(d_out.max() * scale)
+
+
+def run_lab(lab, pcd, resolution, threads, workdir):
+    pts = np.hstack([np.asarray(pcd.points), np.asarray(pcd.normals)])
+    data = os.path.join(workdir, "points.xyzn")
+    np.savetxt(data, pts, fmt="%.9g")
+    scene = {
+        "version": 1,
+        "mode": "implicit3d",
+        "data": {"file": "points.xyzn"},
+        "fit": {"method": "hrbf", "kernel": "cubic", "polynomial": "linear",
+                "partition": {"enabled": True, "max_points_per_box": 20, "overlap": 1.5}},
+    }
+    scene_path = os.path.join(workdir, "scene.json")
+    with open(scene_path, "w") as f:
+        json.dump(scene, f)
+    out = os.path.join(workdir, "lab.ply")
+    cmd = [lab, "mesh", scene_path, "-o", out, "--resolution", str(resolution)]
+    if threads:
+        cmd += ["--threads", str(threads)]
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    elapsed = time.perf_counter() - t0
+    if proc.returncode != 0:
+        sys.exit(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
+    line = proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else ""
+    mesh_ms = re.search(r"; ([0-9.]+) ms \(field ([0-9.]+) ms\)", line)
+    recon = o3d.io.read_triangle_mesh(out)
+    recon.remove_duplicated_vertices()
+    extra = {"summary": line}
+    if mesh_ms:
+        extra["mesh_s"] = float(mesh_ms.group(1)) / 1000
+        extra["field_s"] = float(mesh_ms.group(2)) / 1000
+    return recon, elapsed, extra
+
+
+def run_poisson(pcd, depth):
+    t0 = time.perf_counter()
+    recon, _ = o3d.geometry.TriangleMesh.create_from_point_cloud_poisson(pcd, depth=depth)
+    elapsed = time.perf_counter() - t0
+    return recon, elapsed, {}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--lab", default="build/release/hermite-lab")
+    ap.add_argument("--points", type=int, default=200000)
+    ap.add_argument("--resolution", type=int, default=256)
+    ap.add_argument("--meshes", default="armadillo,bunny00")
+    ap.add_argument("--threads", type=int, default=0)
+    ap.add_argument("--seed", type=int, default=17)
+    ap.add_argument("--no-poisson", action="store_true")
+    ap.add_argument("--json", help="also write the rows as JSON here")
+    args = ap.parse_args()
+
+    rows = []
+    print("| mesh | N | method | time s | comps | closed | mean % | p99 % | max vert % |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for name in args.meshes.split(","):
+        path, truth = load_truth(name)
+        lo, hi = truth.get_min_bound(), truth.get_max_bound()
+        diagonal = float(np.linalg.norm(hi - lo))
+        pcd = sample_oriented(truth, args.points, args.seed)
+        with tempfile.TemporaryDirectory() as work:
+            methods = [("hermite-lab PU", lambda: run_lab(args.lab, pcd, args.resolution, args.threads, work))]
+            if not args.no_poisson:
+                methods.append(("poisson depth 8", lambda: run_poisson(pcd, 8)))
+            for label, run in methods:
+                recon, elapsed, extra = run()
+                comps, closed = topology(recon)
+                mean, p99, worst = distances(truth, recon, diagonal, args.seed)
+                row = {"mesh": os.path.basename(path), "points": args.points, "method": label,
+                       "resolution": args.resolution if label.startswith("hermite") else None,
+                       "time_s": elapsed, "components": comps, "closed": closed,
+                       "mean_pct": mean, "p99_pct": p99, "max_vertex_pct": worst, **extra}
+                rows.append(row)
+                print(f"| {row['mesh']} | {args.points} | {label} | {elapsed:.1f} | {comps} | "
+                      f"{'yes' if closed else 'no'} | {mean:.3f} | {p99:.3f} | {worst:.3f} |", flush=True)
+    if args.json:
+        with open(args.json, "w") as f:
+            json.dump(rows, f, indent=1)
+
+
+if __name__ == "__main__":
+    main()
