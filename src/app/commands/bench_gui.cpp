@@ -162,7 +162,7 @@ Scene bunnyScene(int samples, bool partition) {
   s.mode = SceneMode::Implicit3d;
   s.data.preset = "bunny";
   s.data.count = samples;
-  s.fit.partition.enabled = partition;
+  s.fit.partition.enabled = partition ? PartitionSwitch::On : PartitionSwitch::Off;
   return s;
 }
 
