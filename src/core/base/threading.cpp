@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <algorithm>
+#include <chrono>
 #include <thread>
 
 extern "C" void openblas_set_num_threads(int num_threads);
@@ -31,24 +32,38 @@ int availableCores() {
   return n == 0 ? 1 : static_cast<int>(n);
 }
 
-int idleCores() {
-  const int cores = availableCores();
-  // "0.52 0.58 0.59 3/467 12345": the fourth field is runnable/total scheduling entities now.
+namespace {
+
+// Runnable scheduling entities of the whole machine now (/proc/loadavg: "0.52 0.58 0.59 3/467 …"),
+// or -1 when unreadable.
+int runnableNow() {
   std::FILE* f = std::fopen("/proc/loadavg", "r");
-  if (f == nullptr) return cores;
+  if (f == nullptr) return -1;
   double a, b, c;
   int runnable = 0, total = 0;
   const int read = std::fscanf(f, "%lf %lf %lf %d/%d", &a, &b, &c, &runnable, &total);
   std::fclose(f);
-  if (read != 5) return cores;
-  const int others = runnable - 1;  // the caller is running
+  return read == 5 ? runnable : -1;
+}
+
+}  // namespace
+
+int idleCores() {
+  const int cores = availableCores();
+  int others = runnableNow() - 1;  // the caller is running
+  if (others >= 1) {
+    // Busy for longer than a moment: a process starting up (the shell reading this program's
+    // output) is runnable for a few milliseconds and does not halve a fit; a competing one is.
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    others = std::min(others, runnableNow() - 1);
+  }
   return others <= 0 ? cores : (others >= cores ? 1 : cores - others);
 }
 
-BlasThreadsForLoad::BlasThreadsForLoad() : previous_(openblas_get_num_threads()) {
+BlasThreadsForLoad::BlasThreadsForLoad(bool large) : previous_(openblas_get_num_threads()) {
   // Inside a parallel region (partition-of-unity boxes) other threads may be in BLAS calls while
   // this one would change the count under them: left alone there.
-  threads_ = previous_ > 1 && !omp_in_parallel() ? std::min(previous_, idleCores()) : previous_;
+  threads_ = large && previous_ > 1 && !omp_in_parallel() ? std::min(previous_, idleCores()) : previous_;
   if (threads_ != previous_) openblas_set_num_threads(threads_);
 }
 

@@ -15,17 +15,19 @@ int threadCount();
 // std::thread::hardware_concurrency.
 int availableCores();
 
-// Cores not busy with other work right now: availableCores() minus the runnable tasks of the
-// whole machine other than the caller (/proc/loadavg's instantaneous count), at least 1.
+// Cores not busy with other work: availableCores() minus the machine's runnable tasks other than
+// the caller (/proc/loadavg's instantaneous count, the smaller of two readings 5 ms apart when the
+// first finds any), at least 1.
 int idleCores();
 
 // For one large BLAS call sequence: OpenBLAS gets no more threads than idleCores() (a thread
 // sharing a core with another busy process makes every synchronisation of a factorisation wait
 // for it: 4–10× slower fits, docs/performance.md); the previous count comes back at the end.
-// Inside an OpenMP parallel region it changes nothing.
+// Inside an OpenMP parallel region, and for work that is not `large` (where the check's 5 ms
+// would matter more than the threads), it changes nothing.
 class BlasThreadsForLoad {
  public:
-  BlasThreadsForLoad();
+  explicit BlasThreadsForLoad(bool large);
   ~BlasThreadsForLoad();
   BlasThreadsForLoad(const BlasThreadsForLoad&) = delete;
   BlasThreadsForLoad& operator=(const BlasThreadsForLoad&) = delete;

@@ -425,7 +425,9 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
   clock.lap("mirror");
   throwIfCancelled(sys.cancel);
-  const BlasThreadsForLoad blasThreads;  // fewer BLAS threads while other processes keep cores busy
+  // Fewer BLAS threads while other processes keep cores busy; above 2 000 unknowns the
+  // factorisation takes tens of milliseconds or more.
+  const BlasThreadsForLoad blasThreads(n + m >= 2000);
 
   Eigen::MatrixXd QR;
   Eigen::VectorXd tau;
