@@ -18,16 +18,11 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "core/base/openblas_core_type.h"
+
 static const char* intelCoreType(void) {
   __builtin_cpu_init();
-  if (!__builtin_cpu_is("intel")) return 0;
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512cd"))
-    return "SKYLAKEX";
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "HASWELL";
-  if (__builtin_cpu_supports("avx")) return "SANDYBRIDGE";
-  return 0;
+  return __builtin_cpu_is("intel") ? openblasCoreTypeFromFlags() : 0;
 }
 
 /* The program's path: this executable's directory + "/hermite-lab-main". */

@@ -1,5 +1,7 @@
 #include "core/base/blas_setup.h"
 
+#include "core/base/openblas_core_type.h"
+
 #include <unistd.h>
 
 #include <cstdlib>
@@ -10,18 +12,6 @@ extern "C" char* openblas_get_corename(void);
 namespace hermite {
 
 namespace {
-
-// The best OpenBLAS core type this CPU's feature flags allow, or nullptr.
-const char* coreTypeFromFlags() {
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
-      __builtin_cpu_supports("avx512vl") && __builtin_cpu_supports("avx512bw") &&
-      __builtin_cpu_supports("avx512cd"))
-    return "SKYLAKEX";
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return "HASWELL";
-  if (__builtin_cpu_supports("avx")) return "SANDYBRIDGE";
-  return nullptr;
-}
 
 bool isGenericCore(const char* name) {
   for (const char* generic : {"Prescott", "Core2", "Katmai", "Coppermine", "Northwood", "Banias", "Atom",
@@ -53,7 +43,7 @@ void reexecWithTunedBlas(char** argv) {
   }
   const char* current = openblas_get_corename();
   if (std::getenv("OPENBLAS_CORETYPE") == nullptr && current != nullptr && isGenericCore(current)) {
-    if (const char* better = coreTypeFromFlags()) {
+    if (const char* better = openblasCoreTypeFromFlags()) {
       setenv("OPENBLAS_CORETYPE", better, 1);
       reexec = true;
     }
