@@ -32,8 +32,9 @@ run_case() {  # name, then the fit arguments
     out=$("$HL" fit "$MIN" "$@" --json)
     t1=$(date +%s%N)
     walls+=("$(( (t1 - t0) / 1000 ))")
-    fits+=("$(python3 -c 'import json,sys; print(json.load(sys.stdin)["fit_ms"])' <<<"$out")")
-    solver=$(python3 -c 'import json,sys; print(json.load(sys.stdin).get("solver", ""))' <<<"$out")
+    local fit
+    read -r fit solver < <(python3 -c 'import json,sys; d = json.load(sys.stdin); print(d["fit_ms"], d["solver"])' <<<"$out")
+    fits+=("$fit")
   done
   local wall fit
   wall=$(printf '%s\n' "${walls[@]}" | median)

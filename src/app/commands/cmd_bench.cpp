@@ -95,6 +95,7 @@ Result benchFit(const FitCase& c, int N, int repeats) {
   const HermiteSamples<3> s = makePreset3d("sphere", N);
   std::vector<double> times, factorMs, gflops;
   std::string solver;
+  double flops = 0;  // of the factorisation: the same in every repeat
   for (int r = 0; r < repeats; ++r) {
     FitReport rep;
     fitHrbf<3>(s, c.options, &rep);
@@ -102,11 +103,12 @@ Result benchFit(const FitCase& c, int N, int repeats) {
     factorMs.push_back(rep.factorMs);
     gflops.push_back(rep.factorGflops);
     solver = rep.solver;
+    flops = rep.factorGflops * rep.factorMs * 1e6;
   }
   // The factorisation against a plain dpotrf / dgetrf of the block it factorised.
   const SolverChoice path = parseSolverChoice(solver);
   const double factorGflops = median(gflops);
-  const Eigen::Index k = factorisedSize(path, factorGflops * median(factorMs) * 1e6);
+  const Eigen::Index k = factorisedSize(path, flops);
   const double lapackGflops = plainLapackGflops(path, k, std::min(repeats, 3));
   return {"fit3d/" + c.label + "/N=" + std::to_string(N),
           {{"N", N}, {"kernel", std::string(kernelName(c.options.kernel.type))},
