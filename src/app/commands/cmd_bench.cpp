@@ -21,6 +21,7 @@
 //                            normals (s); params: peak memory, evaluation throughput, and the
 //                            zero set's distance |f|/‖∇f‖ at fresh exact surface points
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -29,9 +30,8 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <random>
-
-#include <sys/resource.h>
 #include <string>
 #include <vector>
 
@@ -94,6 +94,7 @@ std::vector<FitCase> fitCases() {
 Result benchFit(const FitCase& c, int N, int repeats) {
   const HermiteSamples<3> s = makePreset3d("sphere", N);
   std::vector<double> times, factorMs, gflops;
+  std::map<std::string, std::vector<double>> phases;  // solve phase → its time in each repeat, ms
   std::string solver;
   double flops = 0;  // of the factorisation: the same in every repeat
   for (int r = 0; r < repeats; ++r) {
@@ -102,6 +103,9 @@ Result benchFit(const FitCase& c, int N, int repeats) {
     times.push_back(rep.fitMs);
     factorMs.push_back(rep.factorMs);
     gflops.push_back(rep.factorGflops);
+    std::map<std::string, double> repeatPhases{{"assembly", rep.assemblyMs}};
+    for (const auto& [phase, ms] : rep.solvePhasesMs) repeatPhases[phase] += ms;
+    for (const auto& [phase, ms] : repeatPhases) phases[phase].push_back(ms);
     solver = rep.solver;
     flops = rep.factorGflops * rep.factorMs * 1e6;
   }
@@ -110,11 +114,14 @@ Result benchFit(const FitCase& c, int N, int repeats) {
   const double factorGflops = median(gflops);
   const Eigen::Index k = factorisedSize(path, flops);
   const double lapackGflops = plainLapackGflops(path, k, std::min(repeats, 3));
+  json phaseMedians = json::object();
+  for (auto& [phase, ms] : phases) phaseMedians[phase] = median(ms);
   return {"fit3d/" + c.label + "/N=" + std::to_string(N),
           {{"N", N}, {"kernel", std::string(kernelName(c.options.kernel.type))},
            {"radius", c.options.kernel.radius}, {"polynomial", std::string(polynomialName(c.options.polynomial))},
            {"solver", solver}, {"repeats", repeats}, {"factor_ms", median(factorMs)},
-           {"factor_gflops", factorGflops}, {"factorised_size", k}, {"lapack_gflops", lapackGflops}},
+           {"factor_gflops", factorGflops}, {"factorised_size", k}, {"lapack_gflops", lapackGflops},
+           {"phases_ms", phaseMedians}},
           median(times), "ms"};
 }
 

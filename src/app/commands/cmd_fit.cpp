@@ -128,6 +128,9 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["solve_ms"] = fit.report.solveMs;
   out["factor_ms"] = fit.report.factorMs;
   out["factor_gflops"] = fit.report.factorGflops;
+  json phases = json::object();  // a phase that ran twice (a fallback) counts once, summed
+  for (const auto& [phase, ms] : fit.report.solvePhasesMs) phases[phase] = phases.value(phase, 0.0) + ms;
+  out["solve_phases_ms"] = phases;
   out["warnings"] = fit.warnings;
   if (const PuModel<Dim>* pu = fit.pu()) {
     out["partition"] = {{"boxes", fit.puReport.boxes},

@@ -1,11 +1,11 @@
 #include "core/rbf/dense_solver.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <limits>
 #include <cstdio>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include <cblas.h>
@@ -17,6 +17,7 @@
 #include "core/base/huge_pages.h"
 #include "core/base/memory_check.h"
 #include "core/base/threading.h"
+#include "core/rbf/cholesky_solve.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/lapack_errors.h"
 
@@ -174,18 +175,16 @@ Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Ei
     return out;
   }
   if (estimateCondition) {
-    out.rcond = reciprocalCondition(anorm, k, [&](Eigen::VectorXd& v) {
-      LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, v.data(), k);
-    });
+    out.rcond = reciprocalCondition(anorm, k, [&](Eigen::VectorXd& v) { solveWithCholeskyFactor(M, k, ld, v); });
     clock.lap("condition");
   }
   if (sign < 0) rhs *= -1.0;
-  LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', k, 1, M, ld, rhs.data(), k);
+  solveWithCholeskyFactor(M, k, ld, rhs);
   return checked(out);
 }
 
-// Replaces the lower triangle of the symmetric A (n × n, both triangles valid) by that of
-// B = Qᵀ A Q, Q = I − V T Vᵀ from the QR of P, leaving the upper triangle (= A) untouched.
+// Replaces the lower triangle of the symmetric A (n × n, read from its lower triangle) by that of
+// B = Qᵀ A Q, Q = I − V T Vᵀ from the QR of P, leaving the strict upper triangle untouched.
 // With Y = A V T and W = Tᵀ Vᵀ Y (symmetric): B = A − Z Vᵀ − V Zᵀ, Z = Y − ½ V W — one symmetric
 // product and one rank-2m update of the lower triangle, as in LAPACK's dsytrd.
 void projectLower(Eigen::MatrixXd& A, const Eigen::MatrixXd& QR, const Eigen::VectorXd& tau) {
@@ -194,7 +193,7 @@ void projectLower(Eigen::MatrixXd& A, const Eigen::MatrixXd& QR, const Eigen::Ve
   Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
   LAPACKE_dlarft(LAPACK_COL_MAJOR, 'F', 'C', n, m, V.data(), n, tau.data(), T.data(), m);
   Eigen::MatrixXd AV(n, m);
-  cblas_dsymm(CblasColMajor, CblasLeft, CblasUpper, n, m, 1.0, A.data(), n, V.data(), n, 0.0, AV.data(), n);
+  cblas_dsymm(CblasColMajor, CblasLeft, CblasLower, n, m, 1.0, A.data(), n, V.data(), n, 0.0, AV.data(), n);
   const Eigen::MatrixXd Y = AV * T.triangularView<Eigen::Upper>();
   const Eigen::MatrixXd W = T.triangularView<Eigen::Upper>().transpose() * (V.transpose() * Y);
   const Eigen::MatrixXd Z = Y - 0.5 * V * W;
@@ -302,7 +301,31 @@ void mirrorLowerToUpper(Eigen::MatrixXd& M) {
   }
 }
 
-bool allFinite(const Eigen::MatrixXd& M) { return M.allFinite(); }
+// Whether the lower triangle and diagonal of the square M are finite (the upper is not read).
+bool lowerFinite(const Eigen::MatrixXd& M) {
+  const Index n = M.rows();
+  bool finite = true;
+#pragma omp parallel for schedule(dynamic, 64) reduction(&& : finite)
+  for (Index j = 0; j < n; ++j) finite = finite && M.col(j).tail(n - j).allFinite();
+  return finite;
+}
+
+bool isCholeskyPath(SolverChoice path) {
+  return path == SolverChoice::Cholesky || path == SolverChoice::NullspaceCholesky ||
+         path == SolverChoice::ProjectedCholesky;
+}
+
+// Undoes a failed Cholesky path's writes to A's lower triangle and diagonal: through the system's
+// assembleLower (then mirrored for the LU that follows), else from the untouched upper triangle
+// and the saved diagonal.
+void restoreAfterCholesky(SaddleSystem& sys, const Eigen::VectorXd& diagonal) {
+  if (sys.assembleLower) {
+    sys.assembleLower(sys.A);
+    mirrorLowerToUpper(sys.A);
+  } else {
+    restoreSymmetric(sys.A, diagonal);
+  }
+}
 
 // The factors of the projected-cholesky path (dense_solver.h) and its solve. With C = QR,
 // B = QᵀAQ = [[B₁₁, B₂₁ᵀ], [B₂₁, B₂₂]] (q and n − q rows), B₂₂ = sign·LLᵀ:
@@ -322,8 +345,11 @@ struct ProjectedFactors {
 
   // v ← B₂₂⁻¹ v for a block of n − q rows.
   void solveTrailing(Eigen::Ref<Eigen::MatrixXd> v) const {
-    LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', toLapack(v.rows()), toLapack(v.cols()), L, ld, v.data(),
-                        toLapack(v.outerStride()));
+    if (v.cols() == 1)
+      solveWithCholeskyFactor(L, v.rows(), ld, v.col(0));
+    else
+      LAPACKE_dpotrs_work(LAPACK_COL_MAJOR, 'L', toLapack(v.rows()), toLapack(v.cols()), L, ld, v.data(),
+                          toLapack(v.outerStride()));
     v *= sign;
   }
 
@@ -339,9 +365,9 @@ struct ProjectedFactors {
   }
 };
 
-// The projected-cholesky path on the system's A (m = 0; its upper triangle must hold A). On
+// The projected-cholesky path on the system's A (m = 0; read from its lower triangle). On
 // success x = A⁻¹ b and the factors are returned; on failure A's lower triangle and diagonal are
-// overwritten (restoreSymmetric undoes it) and `failure` says why.
+// overwritten (restoreAfterCholesky undoes it) and `failure` says why.
 Factorised projectedCholeskySolve(SaddleSystem& sys, Eigen::VectorXd& x, PhaseClock& clock) {
   Factorised out;
   const Index n = sys.A.rows();
@@ -355,7 +381,7 @@ Factorised projectedCholeskySolve(SaddleSystem& sys, Eigen::VectorXd& x, PhaseCl
   }
   const Index q = F.q();
   clock.lap("qr");
-  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'U', toLapack(n), sys.A.data(), toLapack(n));
+  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', toLapack(n), sys.A.data(), toLapack(n));
   projectLower(sys.A, F.QR, F.tau);
   clock.lap("project");
   throwIfCancelled(sys.cancel);
@@ -420,10 +446,14 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   SaddleSolution out;
   PhaseClock clock(out.phaseMs);
   takeLapackError();  // a stale record from an earlier call on this thread is not ours
-  mirrorLowerToUpper(sys.A);
-  if (!allFinite(sys.A) || !allFinite(sys.P) || !sys.b.allFinite())
+  const bool projectable = sys.definiteOn.cols() > 0 && sys.definiteOnSign != 0;
+  // The Cholesky paths read A's lower triangle only; the upper is written only as the copy a
+  // failed factorisation restores from, unnecessary when A can be rebuilt.
+  if (!(sys.assembleLower && isCholeskyPath(plannedSolverPath(choice, m, sys.definiteSign, projectable))))
+    mirrorLowerToUpper(sys.A);
+  if (!lowerFinite(sys.A) || !sys.P.allFinite() || !sys.b.allFinite())
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
-  clock.lap("mirror");
+  clock.lap("prepare");
   throwIfCancelled(sys.cancel);
   // Fewer BLAS threads while other processes keep cores busy; above 2 000 unknowns the
   // factorisation takes tens of milliseconds or more.
@@ -439,10 +469,10 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
 
   if (choice == SolverChoice::Cholesky && m > 0)
     out.warnings.push_back("cholesky needs a system without polynomial term; using nullspace-cholesky");
-  choice = plannedSolverPath(choice, m, sys.definiteSign, sys.definiteOn.cols() > 0 && sys.definiteOnSign != 0);
+  choice = plannedSolverPath(choice, m, sys.definiteSign, projectable);
   const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
 
-  const Eigen::VectorXd diagonal = sys.A.diagonal();  // for restoring A after a failed Cholesky
+  const Eigen::VectorXd diagonal = sys.A.diagonal();  // restoreAfterCholesky's copy
   Factorised fact;
   if (choice == SolverChoice::Cholesky) {
     out.x = sys.b;
@@ -452,7 +482,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n);
       out.c.resize(0);
     } else {
-      restoreSymmetric(sys.A, diagonal);
+      restoreAfterCholesky(sys, diagonal);
     }
   } else if (choice == SolverChoice::NullspaceCholesky) {
     // Lower triangle of A := that of B = Qᵀ A Q; its trailing (n − m) block is Zᵀ A Z with Z
@@ -474,7 +504,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       out.x.tail(n - m) = y;
       applyQ(QR, tau, 'L', 'N', out.x);
     } else {
-      restoreSymmetric(sys.A, diagonal);  // the upper triangle still holds A
+      restoreAfterCholesky(sys, diagonal);
     }
   } else if (choice == SolverChoice::ProjectedCholesky) {
     fact = projectedCholeskySolve(sys, out.x, clock);
@@ -483,7 +513,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n - sys.definiteOn.cols());
       out.c.resize(0);
     } else {
-      restoreSymmetric(sys.A, diagonal);  // the upper triangle still holds A
+      restoreAfterCholesky(sys, diagonal);
     }
   }
 
@@ -558,14 +588,14 @@ std::optional<std::string> illConditionedWarning(double conditionEstimate, std::
 Eigen::MatrixXd saddleMatrix(const SaddleSystem& system) {
   Eigen::MatrixXd A = system.A;
   mirrorLowerToUpper(A);
-  if (!allFinite(A) || !allFinite(system.P))
+  if (!A.allFinite() || !system.P.allFinite())
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
   return saddleMatrix(A, system.P);
 }
 
 DenseLu::DenseLu(Eigen::MatrixXd K) : lu_(std::move(K)) {
   if (lu_.rows() != lu_.cols()) throw NumericalError("LU: the matrix is not square");
-  if (!allFinite(lu_)) throw NumericalError("LU: the matrix has non-finite entries");
+  if (!lu_.allFinite()) throw NumericalError("LU: the matrix has non-finite entries");
   const lapack_int n = toLapack(lu_.rows());
   pivots_.resize(std::size_t(n));
   if (n == 0) return;

@@ -46,6 +46,11 @@ SolverChoice parseSolverChoice(std::string_view name);  // throws InputError
 
 struct SaddleSystem {
   Eigen::MatrixXd A;  // n × n, symmetric; the lower triangle is read (solveSaddle mirrors it)
+  // Rewrites A's lower triangle and diagonal as they were first assembled. Given, the Cholesky
+  // paths never read or write A's strict upper triangle (no mirror, and half the pages of a
+  // freshly allocated A stay untouched), and a failed Cholesky rebuilds A through it before it
+  // falls back to LU. Empty: solveSaddle mirrors the lower triangle and keeps the upper as the copy.
+  std::function<void(Eigen::MatrixXd&)> assembleLower;
   Eigen::MatrixXd P;  // n × m
   Eigen::VectorXd b;  // n
   // +1: A is positive definite on null(Pᵀ) (and on everything when m = 0); −1: negative
@@ -68,8 +73,8 @@ struct SaddleSolution {
   double conditionEstimate = 0;    // 1-norm estimate of the factorised matrix (LAPACK ?con)
   double factorFlops = 0;          // floating-point operations of the factorisation that produced x
   std::vector<std::string> warnings;
-  // Wall-clock milliseconds of each phase ("qr", "project", "factor", "condition", "solve",
-  // "fallback"), in order, for benchmarks and the diagnostics panel.
+  // Wall-clock milliseconds of each phase ("prepare", "qr", "project", "factor", "condition",
+  // "solve"), in order, for benchmarks and the diagnostics panel.
   std::vector<std::pair<std::string, double>> phaseMs;
 };
 

@@ -1,6 +1,7 @@
 #include "core/rbf/hrbf.h"
 
 #include <chrono>
+#include <functional>
 #include <string>
 
 #include "core/base/errors.h"
@@ -35,10 +36,6 @@ Polynomial definitenessPolynomial(const Kernel& kernel) {
   return order <= 2 ? Polynomial::Linear : order == 3 ? Polynomial::Quadratic : Polynomial::None;
 }
 
-namespace {
-
-}  // namespace
-
 SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Kernel& kernel, Polynomial polynomial,
                               int nSamples, std::chrono::steady_clock::time_point start, FitReport* report) {
   const Eigen::Index nUnknowns = system.A.rows() + system.P.cols();
@@ -57,9 +54,44 @@ SaddleSolution solveFitSystem(SaddleSystem system, SolverChoice solver, const Ke
     report->fitMs = msSince(start);
     report->factorMs = factorMs(sol);
     report->factorGflops = report->factorMs > 0 ? sol.factorFlops / (report->factorMs * 1e6) : 0.0;
+    report->solvePhasesMs = sol.phaseMs;
   }
   return sol;
 }
+
+namespace {
+
+// Writes the kernel block's lower triangle and diagonal into A (n × n, n = (Dim + 1)·N), block by
+// block (row block i = conditions at pᵢ, column block j = centre pⱼ: hrbfBlock), with the
+// smoothing `lambda` on the diagonal. The strict upper triangle is neither read nor written:
+// writing the transposed blocks here would stride across columns (slower), and the Cholesky
+// paths never need it (SaddleSystem::assembleLower). Polls `cancel` per column block (a few
+// microseconds of work each) and throws Cancelled after the loop when it was set.
+template <int Dim>
+void assembleKernelLower(const Kernel& kernel, const Points<Dim>& p, double lambda, Eigen::MatrixXd& A,
+                         const CancelToken* cancel) {
+  constexpr int B = Dim + 1;
+  const int N = int(p.cols());
+#pragma omp parallel for schedule(dynamic, 8)
+  for (int j = 0; j < N; ++j) {
+    if (cancel && cancel->cancelled()) continue;  // an exception cannot leave the parallel loop
+    for (int i = j; i < N; ++i)
+      A.template block<B, B>(Eigen::Index(i) * B, Eigen::Index(j) * B) = hrbfBlock<Dim>(kernel, p.col(i) - p.col(j));
+  }
+  throwIfCancelled(cancel);
+  if (lambda != 0) A.diagonal().array() += lambda;
+}
+
+// assembleKernelLower for these points and options, as SaddleSystem::assembleLower.
+template <int Dim>
+std::function<void(Eigen::MatrixXd&)> kernelBlockAssembler(const Points<Dim>& p, const HrbfOptions& options) {
+  const double lambda = options.kernel.smoothingSign() * options.smoothing;
+  return [kernel = options.kernel, points = p, lambda, cancel = options.cancel](Eigen::MatrixXd& A) {
+    assembleKernelLower<Dim>(kernel, points, lambda, A, cancel);
+  };
+}
+
+}  // namespace
 
 template <int Dim>
 SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions& options) {
@@ -82,15 +114,7 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   const double lambda = kernel.smoothingSign() * options.smoothing;
   const Points<Dim>& p = samples.points;
 
-  // Lower triangle, block by block (row block i = conditions at pᵢ, column block j = centre pⱼ:
-  // hrbfBlock); solveSaddle mirrors it (writing the transposed blocks here strides across
-  // columns: slower).
-#pragma omp parallel for schedule(dynamic, 8)
-  for (int j = 0; j < N; ++j) {
-    for (int i = j; i < N; ++i)
-      sys.A.template block<B, B>(Eigen::Index(i) * B, Eigen::Index(j) * B) = hrbfBlock<Dim>(kernel, p.col(i) - p.col(j));
-  }
-  if (lambda != 0) sys.A.diagonal().array() += lambda;
+  assembleKernelLower<Dim>(kernel, p, lambda, sys.A, options.cancel);
   for (int i = 0; i < N; ++i) {
     sys.b.template segment<Dim>(Eigen::Index(i) * B + 1) = samples.normals.col(i);
     if (m > 0) sys.P.middleRows(Eigen::Index(i) * B, B) = hrbfPolynomialRows<Dim>(options.polynomial, p.col(i));
@@ -149,14 +173,17 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
   // The polynomial part about `origin` (docs/maths.md, Centring): P is built from the centred
   // points, the kernel block is unchanged (it sees only exact differences pᵢ − pⱼ).
   throwIfCancelled(options.cancel);
-  SaddleSystem sys;
-  if (origin.isZero()) {
-    sys = assembleHrbf(samples, options);
-  } else {
-    HermiteSamples<Dim> centred = samples;
+  HermiteSamples<Dim> centred;
+  const HermiteSamples<Dim>* fitted = &samples;
+  if (!origin.isZero()) {
+    centred = samples;
     centred.points.colwise() -= origin;
-    sys = assembleHrbf(centred, options);
+    fitted = &centred;
   }
+  SaddleSystem sys = assembleHrbf(*fitted, options);
+  // The system goes to the solver unchanged, so the Cholesky paths may rebuild it instead of
+  // keeping a copy in A's upper triangle.
+  sys.assembleLower = kernelBlockAssembler<Dim>(fitted->points, options);
   sys.cancel = options.cancel;
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/points/hermite_samples.h"
@@ -25,7 +26,7 @@ struct HrbfOptions {
   Polynomial polynomial = Polynomial::Linear;  // linear: enough for every kernel but polyharmonic
   double smoothing = 0.0;                      // λ in [0, kMaxSmoothing]; 0 = interpolation
   SolverChoice solver = SolverChoice::Auto;    // auto: cheapest path the kernel allows
-  // Polled before assembly and by the factorisation (SaddleSystem::cancel): the fit throws
+  // Polled during assembly and by the factorisation (SaddleSystem::cancel): the fit throws
   // Cancelled once it is set. Null: never cancelled. Not owned.
   const CancelToken* cancel = nullptr;
 };
@@ -41,6 +42,9 @@ struct FitReport {
   double solveMs = 0;     // factorisation + solve (solveSaddle)
   double factorMs = 0;    // the factorisation alone (its last attempt when one fell back)
   double factorGflops = 0;  // its floating-point operations per second, 10⁹
+  // solveMs by phase in the order they ran (prepare, qr, project, factor, condition, solve), ms;
+  // a phase that ran twice (a fallback) appears twice.
+  std::vector<std::pair<std::string, double>> solvePhasesMs;
   std::vector<std::string> warnings;
 };
 

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include <chrono>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -126,4 +127,38 @@ TEST_CASE("a cancelled factorisation throws Cancelled soon after the token is se
   CHECK(cancelled);
   MESSAGE("LU of 2600 unknowns stopped ", ms, " ms after cancel()");
   CHECK(ms < 1000);  // a hang guard on a shared machine; docs/performance.md has the measured time
+}
+
+TEST_CASE("with assembleLower the Cholesky paths never read A's upper triangle, and a failure rebuilds A") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // Positive definite: solved without reading the upper triangle (NaN there) or rebuilding.
+  SaddleSystem sys = randomSymmetric(300, 0, 3);
+  const SaddleSystem reference = sys;
+  const Eigen::MatrixXd assembled = sys.A;
+  int rebuilds = 0;
+  const auto rebuild = [&](Eigen::MatrixXd& A) {
+    ++rebuilds;
+    A.triangularView<Eigen::Lower>() = assembled.triangularView<Eigen::Lower>();
+  };
+  sys.A.triangularView<Eigen::StrictlyUpper>().setConstant(nan);
+  sys.assembleLower = rebuild;
+  const SaddleSolution a = solveSaddle(sys, SolverChoice::Cholesky);
+  CHECK(a.solver == "cholesky");
+  CHECK(rebuilds == 0);
+  CHECK(relativeDifference(a.x, solveSaddle(reference, SolverChoice::Cholesky).x) <= 1e-13);
+
+  // Claimed definite but indefinite: the Cholesky fails, A is rebuilt and LU solves the original.
+  SaddleSystem bad = randomSymmetric(300, 3, 4);
+  bad.definiteSign = 1;
+  const SaddleSystem badReference = bad;
+  const Eigen::MatrixXd badAssembled = bad.A;
+  bad.A.triangularView<Eigen::StrictlyUpper>().setConstant(nan);
+  bad.assembleLower = [&](Eigen::MatrixXd& A) {
+    ++rebuilds;
+    A.triangularView<Eigen::Lower>() = badAssembled.triangularView<Eigen::Lower>();
+  };
+  const SaddleSolution b = solveSaddle(bad, SolverChoice::Cholesky);
+  CHECK(b.solver == "lu");
+  CHECK(rebuilds == 1);
+  CHECK(relativeDifference(b.x, solveSaddle(badReference, SolverChoice::Lu).x) <= 1e-13);
 }
