@@ -97,9 +97,10 @@ void ViewImage::drawCompareLabels(const GuiContext& ctx, float x0, float w) cons
     if (!f) return;
     const Scene& s = f->scene;
     char text[160];
-    std::snprintf(text, sizeof text, "%s  %s%s", std::string(fitMethodName(s.fit.method)).c_str(),
-                  std::string(kernelName(s.fit.kernel)).c_str(),
-                  Kernel{s.fit.kernel, s.fit.radius}.usesRadius() ? ("  r = " + std::to_string(s.fit.radius)).c_str() : "");
+    const int n = std::snprintf(text, sizeof text, "%s  %s", std::string(fitMethodName(s.fit.method)).c_str(),
+                                std::string(kernelName(s.fit.kernel)).c_str());
+    if (Kernel{s.fit.kernel, s.fit.radius}.usesRadius() && n > 0 && n < int(sizeof text))
+      std::snprintf(text + n, sizeof text - std::size_t(n), "  r = %.4g", s.fit.radius);
     const float font = ImGui::GetFontSize(), pad = 0.4f * font;  // sizes follow the UI scale
     bg->AddRectFilled(ImVec2(x + pad, y1 - 2 * pad - font - pad), ImVec2(x + 3 * pad + ImGui::CalcTextSize(text).x, y1 - pad),
                       IM_COL32(0, 0, 0, 170));
