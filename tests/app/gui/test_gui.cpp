@@ -608,6 +608,14 @@ TEST_CASE("UI: a point file dropped on the window opens as the default scene aro
   CHECK(h.app->status().message.find("loaded " + path + ": 300 samples (3D)") != std::string::npos);
   REQUIRE(h.app->currentFit());
   CHECK(h.app->currentFit()->scene.data == opened.data);
+  // The fit's warnings (normals estimated) are in the message log once each, frames later too.
+  h.frames(2);
+  CHECK(!h.app->currentFit()->warnings().empty());
+  for (const std::string& w : h.app->currentFit()->warnings()) {
+    int logged = 0;
+    for (const LogEntry& e : h.app->status().log) logged += e.severity == Severity::Warning && e.text == w ? 1 : 0;
+    CHECK(logged == 1);
+  }
   // Saving writes the scene with data.file relative to the scene's folder.
   std::filesystem::create_directories(dir / "saved");
   h.app->document().save((dir / "saved" / "cloud.json").string());
