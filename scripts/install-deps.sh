@@ -9,7 +9,7 @@ PACKAGES="
   libeigen3-dev libopenblas-dev liblapacke-dev
   nlohmann-json3-dev libcli11-dev doctest-dev libnanoflann-dev libstb-dev
   libglfw3-dev libimgui-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev python3-glad
-  libegl-mesa0 libgl1-mesa-dri
+  libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core
   libtinygltf-dev libtinyobjloader-dev
   xvfb xauth xdotool imagemagick
   clang libclang-rt-14-dev

@@ -892,6 +892,8 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   TraceTarget& target = gpu_->targetFor(frame.width, frame.height);
 
   TraceResult result;
+  result.sliceRange = settings.slice.enabled ? frame.sliceRange : 0.0;
+  result.sliceIsoSpacing = settings.slice.enabled ? niceIsoSpacing(frame.sliceRange) : 0.0;
   auto t0 = Clock::now();
   result.exactDouble = settings.mode == TracerMode::Exact &&
                        (settings.exactPrecision == ExactPrecision::Double ||

@@ -91,6 +91,8 @@ struct TraceResult {
   bool exactDouble = false;       // exact mode summed in double precision
   int cpuTracedPixels = 0;        // pixels the GPU march left undecided (steps or loop budget), traced on the CPU
   long long tracedPixels = 0;     // pixels the GPU trace pass ran on (baked mode skips empty tiles)
+  double sliceRange = 0;          // the slice's heat map covers ±sliceRange (0: no slice plane)
+  double sliceIsoSpacing = 0;     // f between the slice's iso-lines
   Vec<3> normalAt(int i, int j) const {
     const std::size_t p = std::size_t(j) * image.width + i;
     return Vec<3>(normal[3 * p], normal[3 * p + 1], normal[3 * p + 2]);

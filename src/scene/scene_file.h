@@ -129,6 +129,7 @@ struct ViewSpec {
   std::optional<bool> showNormals;             // true, false, or none = "auto" (kAutoNormalsMaxSamples)
   bool showBounds = false;
   bool showAxes = false;                       // the axes gizmo in the lower-left corner (3D, GUI)
+  bool presenter = false;                      // GUI: start in presenter mode (panels hidden, a large caption)
   TraceMode trace = TraceMode::Auto;
   SliceSpec slice;
   // Whether the normals of `samples` samples are drawn (show_normals, with "auto" decided here).

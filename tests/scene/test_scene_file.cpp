@@ -134,6 +134,8 @@ TEST_CASE("scene: minimal scene takes the documented defaults") {
   CHECK(parse(scene3d(R"("view": {"show_normals": "auto"})")).view.showNormals == std::nullopt);
   CHECK(parse(scene3d(R"("view": {"show_normals": true})")).view.normalsShown(100000));
   CHECK(!parse(scene3d(R"("view": {"show_normals": false})")).view.normalsShown(1));
+  CHECK(!s.view.presenter);
+  CHECK(parse(scene3d(R"("view": {"presenter": true})")).view.presenter);
   CHECK(s.sourceName == "x.json");
 
   const Scene s2 = parse(scene2d());
@@ -416,6 +418,8 @@ TEST_CASE("scene: view validation") {
         "x.json: view.show_normals: must be true, false or \"auto\" (got string \"yes\")");
   CHECK(errorOf(scene3d(R"("view": {"show_bounds": null})")) ==
         "x.json: view.show_bounds: must be true or false (got null)");
+  CHECK(errorOf(scene3d(R"("view": {"presenter": "on"})")) ==
+        "x.json: view.presenter: must be true or false (got string \"on\")");
   CHECK(errorOf(scene3d(R"("view": {"trace": "fast"})")) ==
         "x.json: view.trace: must be one of: auto, baked, exact (got string \"fast\")");
   CHECK(errorOf(scene3d(R"("view": {"slice": {"normal": [0, 0, 0]}})")) ==
@@ -452,7 +456,7 @@ TEST_CASE("scene: sceneToJson writes every key and parseScene reproduces the sce
     for (const char* key : {"translate", "rotate_axis_angle_deg", "scale"}) CHECK(doc["transform"].contains(key));
     CHECK(!doc["transform"].contains("rotate_deg"));
     for (const char* key : {"size", "background", "bounds", "projection", "camera", "view2d", "show_points",
-                            "show_normals", "show_bounds", "show_axes", "trace", "slice"})
+                            "show_normals", "show_bounds", "show_axes", "presenter", "trace", "slice"})
       CHECK(doc["view"].contains(key));
     CHECK(doc["view"]["view2d"].contains("center"));
     CHECK(doc["view"]["view2d"].contains("half_height"));

@@ -47,7 +47,7 @@ json.dump({"version": 1, "mode": "implicit2d", "data": {"points": pts, "normals"
            "view": {"view2d": {"center": [0, 0], "half_height": 1.5}}}, open(sys.argv[1], "w"))
 PY
 
-"$EXE" "$WORK/scene.json" > "$WORK/app.log" 2>&1 &
+"$EXE" "$WORK/scene.json" --ui-scale 1 > "$WORK/app.log" 2>&1 &
 APID=$!
 WID=$(timeout 60 xdotool search --sync --name "Hermite Lab" 2> /dev/null | head -1)
 [ -n "$WID" ] || fail "no window appeared"
@@ -55,10 +55,10 @@ sleep 2  # first fit and frames
 eval "$(xdotool getwindowgeometry --shell "$WID")"  # X Y WIDTH HEIGHT
 import -window root "$WORK/before.png" || fail "import failed"
 
-# The fixed layout: the view is right of the 330 px panel, above the 24 px status bar.
+# The fixed layout at UI scale 1: the view is right of the 330 px panel, above the 40 px status bar.
 read -r PX PY TX TY S <<< "$(python3 -c "
 x, y, w, h = $X, $Y, $WIDTH, $HEIGHT
-vx, vw, vh = 330, w - 330, h - 24
+vx, vw, vh = 330, w - 330, h - 40
 s = 3.0 / vh                       # world units per pixel
 def px(wx, wy): return x + vx + vw / 2 + wx / s, y + vh / 2 - wy / s
 a = px(1.0, 0.0); b = px(1.3, 0.25)
@@ -86,7 +86,7 @@ python3 - "$WORK/scene.json" "$TX" "$TY" "$X" "$Y" "$WIDTH" "$HEIGHT" <<'PY' || 
 import json, sys
 scene = json.load(open(sys.argv[1]))
 tx, ty, x, y, w, h = map(float, sys.argv[2:])
-vx, vw, vh = 330, w - 330, h - 24
+vx, vw, vh = 330, w - 330, h - 40
 s = 3.0 / vh
 want = ((tx - x - vx - vw / 2) * s, (y + vh / 2 - ty) * s)
 got = scene["data"]["points"][0]

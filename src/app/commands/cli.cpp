@@ -32,11 +32,11 @@ constexpr const char* kUsage =
     "hermite-lab: Hermite data (points + normals) fitted by Hermite RBF implicits.\n"
     "\n"
     "usage:\n"
-    "  hermite-lab [SCENE] [--set KEY=VALUE ...]       the GUI on SCENE (default: the demo scene);\n"
-    "                                                  without a display: its fit report\n"
+    "  hermite-lab [SCENE] [--ui-scale S] [--set KEY=VALUE ...]  the GUI on SCENE (default: the demo scene);\n"
+    "                                                            without a display: its fit report\n"
     "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
-    "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
+    "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--ui-scale S] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
     "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--overwrite] [--size WxH] [--set KEY=VALUE ...]\n"
     "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
     "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
@@ -69,6 +69,12 @@ void addThreads(CLI::App& cmd, int& threads) {
                      value.c_str(), cores, cores);
         return std::to_string(cores);
       });
+}
+
+// --ui-scale S in [0.5, 4]: the type, widgets and layout of the GUI (and of render --ui).
+void addUiScale(CLI::App& cmd, double& scale) {
+  cmd.add_option("--ui-scale", scale, "UI scale, 0.5 to 4 (GUI default: the monitor's content scale; render --ui: 1)")
+      ->check(CLI::Range(0.5, 4.0));
 }
 
 // --max-input-size BYTES, an option of every command: the largest input file read.
@@ -159,6 +165,7 @@ int dispatch(int argc, char** argv) {
     cmd.add_option("-o,--output", a.output, "output PNG (written atomically)");
     cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
     cmd.add_flag("--ui", a.ui, "draw the application's panels on top");
+    addUiScale(cmd, a.uiScale);
     cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     addThreads(cmd, threads);
@@ -235,12 +242,14 @@ int dispatch(int argc, char** argv) {
   }
   // No subcommand: the program's main job on SCENE (or the demo scene).
   SceneArgs a;
+  double uiScale = 0;
   CLI::App cmd("Hermite Lab", "hermite-lab");
   addSceneOptions(cmd, a, false);
+  addUiScale(cmd, uiScale);
   addThreads(cmd, threads);
   if (int rc = parse(cmd, argc, argv); rc >= 0) return rc;
   if (threads > 0) setThreadCount(threads);
-  return runDefault(a);
+  return runDefault(a, uiScale);
 }
 
 }  // namespace

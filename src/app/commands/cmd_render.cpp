@@ -28,6 +28,7 @@
 #include "render/gl/offscreen.h"
 #include "render/gl/shader_library.h"
 #include "render/imgui_renderer.h"
+#include "render/ui_font.h"
 #include "render/implicit_tracer.h"
 #include "render/legend.h"
 #include "render/render_memory.h"
@@ -69,7 +70,8 @@ class HeadlessImGui {
     io.DisplayFramebufferScale = ImVec2(1, 1);
     io.DeltaTime = 1.0f / 60.0f;
     ImGui::StyleColorsDark();
-    renderer_ = std::make_unique<render::ImGuiRenderer>();  // builds the font atlas
+    render::loadUiFonts(1.0f);
+    renderer_ = std::make_unique<render::ImGuiRenderer>();  // uploads the font atlas
   }
   ~HeadlessImGui() {
     renderer_.reset();
@@ -148,6 +150,7 @@ ImageRgba8 renderWithPanels(const Scene& scene, const RenderArgs& args) {
   GuiOptions options;
   options.synchronousFits = true;
   options.showTimings = false;
+  options.uiScale = float(args.uiScale);
   // The file name only: the same picture whatever directory the scene lives in.
   GuiApp app(Document(scene, std::filesystem::path(args.scene.scenePath).filename().string()), options);
   render::OffscreenTarget target(w, h, false);

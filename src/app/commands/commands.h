@@ -48,6 +48,7 @@ struct RenderArgs {
   std::string size;                // --size WxH; empty: the scene's view.size
   bool ui = false;                 // --ui: the application's panels on top
   std::string backend = "osmesa";  // --backend osmesa | egl
+  double uiScale = 1.0;            // --ui-scale S: the panels' scale with --ui
 };
 int runRender(const RenderArgs& args);
 
@@ -87,6 +88,7 @@ int runHoleFill(const HoleFillArgs& args);
 
 // The program's main job without a subcommand (gui/gui_window.cpp): the GUI window on the scene
 // (or the demo scene); without a display, the fit report of the scene and a note saying why.
-int runDefault(const SceneArgs& args);
+// uiScale > 0: --ui-scale; 0: the monitor's content scale.
+int runDefault(const SceneArgs& args, double uiScale = 0);
 
 }  // namespace hermite::app

@@ -60,6 +60,11 @@ void FitPresenter::adoptFinished(GuiStatus& status) {
     submittedShown_ = r->version == fittedVersion_;
     shownVersion_ = submittedShown_ ? submittedVersion_ : r->version;
     lastError_.clear();
+    // The log gets a fit's warnings once, not again for every refit that repeats them (a drag).
+    if (r->main->warnings() != loggedWarnings_) {
+      loggedWarnings_ = r->main->warnings();
+      for (const std::string& w : loggedWarnings_) status.append(Severity::Warning, w);
+    }
   } else {
     // Keep the last good model on screen and say why the new one is not there.
     lastError_ = r->main->error;

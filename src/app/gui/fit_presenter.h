@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/gui/fit_worker.h"
 #include "app/gui/gui_status.h"
@@ -70,6 +71,7 @@ class FitPresenter {
   std::uint64_t shownVersion_ = 0;
   std::string lastError_;
   double lastWallMs_ = 1e9;  // wall time of the last finished job (main + compare fits)
+  std::vector<std::string> loggedWarnings_;  // the warnings last written to the message log
 };
 
 }  // namespace hermite::app

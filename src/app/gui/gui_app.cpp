@@ -12,11 +12,15 @@
 #include "app/gui/document_actions.h"
 #include "app/gui/gui_widgets.h"
 #include "app/gui/partition_box_overlay.h"
+#include "app/gui/ui_scale.h"
 #include "app/panels/help_overlay.h"
+#include "app/panels/message_log.h"
+#include "app/panels/presenter_caption.h"
 #include "app/panels/status_bar.h"
 #include "core/trace/image.h"
 #include "io/png_file.h"
 #include "render/gl/offscreen.h"
+#include "render/glyph_misses.h"
 
 namespace hermite::app {
 
@@ -26,13 +30,17 @@ namespace {
 constexpr double kClickSlopPx = 3.0;
 
 // The view's rectangle: right of the left panel, above the explorer strip and the status bar;
-// the whole window when the panels are hidden (Tab).
-void layoutView(ViewRect& view, int width, int height, const PanelVisibility& panels) {
-  const bool side = !panels.hideUi && width > int(kLeftPanelWidth) + 64;
-  view.x = side ? int(kLeftPanelWidth) : 0;
+// the whole window when the panels are hidden (Tab, presenter mode).
+void layoutView(GuiContext& ctx, int width, int height) {
+  const PanelVisibility& panels = ctx.panels;
+  const bool hidden = panels.hideUi || panels.presenter;
+  const int panelWidth = int(ctx.px(kLeftPanelWidth));
+  const bool side = !hidden && width > panelWidth + 64;
+  ViewRect& view = ctx.view;
+  view.x = side ? panelWidth : 0;
   view.y = 0;
   view.w = std::max(1, width - view.x);
-  const int below = panels.hideUi ? 0 : int(kStatusBarHeight) + (panels.explore ? int(kExplorerHeight) : 0);
+  const int below = hidden ? 0 : int(ctx.px(kStatusBarHeight)) + (panels.explore ? int(kExplorerHeight) : 0);
   view.h = std::max(1, height - below);
 }
 
@@ -40,13 +48,23 @@ void layoutView(ViewRect& view, int width, int height, const PanelVisibility& pa
 
 GuiApp::GuiApp(Document document, GuiOptions options) : ctx_(std::move(document), std::move(options)) {
   imgui_ = ImGui::CreateContext();
+  // CreateContext makes the new context current only when none is: with another app alive (two
+  // windows, tests) the fonts below would go to that app's atlas.
+  ImGui::SetCurrentContext(imgui_);
   ImGuiIO& io = ImGui::GetIO();
   if (!ctx_.options.iniFile) io.IniFilename = nullptr;
   io.LogFilename = nullptr;
   mapImGuiKeys();
-  ImGui::StyleColorsDark();
-  ImGui::GetStyle().WindowRounding = 3.0f;
+  fonts_ = render::loadUiFonts(ctx_.uiScale);
+  applyUiStyle(ctx_.uiScale);
   imguiRenderer_ = std::make_unique<render::ImGuiRenderer>();
+}
+
+void GuiApp::applyUiScale() {
+  if (fonts_.scale == ctx_.uiScale) return;
+  fonts_ = render::loadUiFonts(ctx_.uiScale);
+  applyUiStyle(ctx_.uiScale);
+  imguiRenderer_->rebuildFontTexture();
 }
 
 GuiApp::~GuiApp() {
@@ -56,6 +74,8 @@ GuiApp::~GuiApp() {
   ImGui::DestroyContext(imgui_);
 }
 
+std::string GuiApp::presenterCaption() const { return app::presenterCaption(ctx_); }
+
 std::optional<std::array<float, 4>> GuiApp::widgetRect(const std::string& name) const {
   const auto it = ctx_.widgets.find(name);
   if (it == ctx_.widgets.end()) return std::nullopt;
@@ -63,15 +83,16 @@ std::optional<std::array<float, 4>> GuiApp::widgetRect(const std::string& name) 
 }
 
 void GuiApp::frame(const FrameInput& in) {
-  layoutView(ctx_.view, in.width, in.height, ctx_.panels);
   ImGui::SetCurrentContext(imgui_);
+  applyUiScale();
+  layoutView(ctx_, in.width, in.height);
   feedImGui(in);
   ImGui::NewFrame();
   ctx_.fits.adoptFinished(ctx_.status);
   if (!in.droppedFiles.empty()) openFile(ctx_, in.droppedFiles.front());
   handleShortcuts(in);
   handleViewInput(in);
-  if (!ctx_.panels.hideUi) drawPanels();
+  if (!ctx_.panels.hideUi && !ctx_.panels.presenter) drawPanels();
   ctx_.fits.submitIfStale(ctx_.scene(), ctx_.document.version(), ctx_.document.versions().fitInputs(), ctx_.compare,
                           ctx_.options.synchronousFits);
   ctx_.fits.adoptFinished(ctx_.status);  // synchronous fits (and fast ones) show in this very frame
@@ -79,6 +100,7 @@ void GuiApp::frame(const FrameInput& in) {
   ctx_.image.draw(ctx_);
   drawOverlays();
   ImGui::Render();
+  glyphMisses_ += render::countFallbackGlyphs(*ImGui::GetDrawData());
 
   GLint framebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
@@ -103,21 +125,24 @@ void GuiApp::drawOverlays() {
   drawAxesGizmo(ctx_);
   const SceneMode mode = ctx_.scene().mode;
   if (ctx_.showGizmo && (mode == SceneMode::Implicit2d || mode == SceneMode::Implicit3d)) gizmo_.draw();
+  if (ctx_.panels.presenter) drawPresenterCaption(ctx_, fonts_.large);
   if (ctx_.panels.help) drawHelpOverlay(ctx_);
-  if (!ctx_.panels.hideUi) drawStatusBar(ctx_);
+  if (ctx_.panels.messages) drawMessageLog(ctx_);
+  if (!ctx_.panels.hideUi && !ctx_.panels.presenter) drawStatusBar(ctx_);
 }
 
 void GuiApp::drawPanels() {
   ctx_.widgets.clear();
   const ImGuiIO& io = ImGui::GetIO();
-  const float bottom = io.DisplaySize.y - kStatusBarHeight;
+  const float bottom = io.DisplaySize.y - ctx_.px(kStatusBarHeight);
   ImGui::SetNextWindowPos(ImVec2(0, 0), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(std::min(kLeftPanelWidth, io.DisplaySize.x), std::max(50.0f, bottom)), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(std::min(ctx_.px(kLeftPanelWidth), io.DisplaySize.x), std::max(50.0f, bottom)),
+                           ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.90f);
   if (ImGui::Begin("Hermite Lab", nullptr,
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing)) {
-    ImGui::PushItemWidth(-110.0f);
+    ImGui::PushItemWidth(-ctx_.px(110.0f));
     if (ctx_.scene().mode == SceneMode::Patch || ctx_.scene().mode == SceneMode::HoleFill) {
       ImGui::SetNextItemOpen(true, ImGuiCond_Once);
       if (ctx_.scene().mode == SceneMode::Patch) {
@@ -145,6 +170,9 @@ void GuiApp::drawPanels() {
       ImGui::SameLine();
     }
     ImGui::Checkbox("Help (F1)", &ctx_.panels.help);
+    ImGui::SameLine();
+    ImGui::Checkbox("Messages (F2)", &ctx_.panels.messages);
+    ctx_.recordWidget("panel.messages");
     ImGui::PopItemWidth();
   }
   ImGui::End();
@@ -153,8 +181,21 @@ void GuiApp::drawPanels() {
     explore_.draw();
 }
 
+// Ctrl + (= or keypad +), Ctrl − and Ctrl 0: the UI scale up, down and back to its start value.
+void GuiApp::handleScaleKeys(const FrameInput& in) {
+  const auto& prev = prevKeys_;
+  if (!in.ctrl) return;
+  if (keyPressed(in, prev, GLFW_KEY_EQUAL) || keyPressed(in, prev, GLFW_KEY_KP_ADD))
+    ctx_.uiScale = stepUiScale(ctx_.uiScale, 1);
+  else if (keyPressed(in, prev, GLFW_KEY_MINUS) || keyPressed(in, prev, GLFW_KEY_KP_SUBTRACT))
+    ctx_.uiScale = stepUiScale(ctx_.uiScale, -1);
+  else if (keyPressed(in, prev, GLFW_KEY_0) || keyPressed(in, prev, GLFW_KEY_KP_0))
+    ctx_.uiScale = clampUiScale(ctx_.options.uiScale);
+}
+
 void GuiApp::handleShortcuts(const FrameInput& in) {
   const ImGuiIO& io = ImGui::GetIO();
+  handleScaleKeys(in);
   if (io.WantTextInput) return;
   const auto& prev = prevKeys_;
   if (in.ctrl && keyPressed(in, prev, GLFW_KEY_Z)) {
@@ -178,6 +219,8 @@ void GuiApp::handleShortcuts(const FrameInput& in) {
   }
   if (in.ctrl && keyPressed(in, prev, GLFW_KEY_Q)) quit_ = true;
   if (keyPressed(in, prev, GLFW_KEY_F1) || (keyPressed(in, prev, GLFW_KEY_SLASH) && in.shift)) ctx_.panels.help = !ctx_.panels.help;
+  if (keyPressed(in, prev, GLFW_KEY_F2)) ctx_.panels.messages = !ctx_.panels.messages;
+  if (keyPressed(in, prev, GLFW_KEY_F5)) ctx_.panels.presenter = !ctx_.panels.presenter;
   if (io.WantCaptureKeyboard) return;
   if (keyPressed(in, prev, GLFW_KEY_F)) camera_.fitToView();
   if (keyPressed(in, prev, GLFW_KEY_HOME)) camera_.resetView();

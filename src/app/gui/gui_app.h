@@ -33,6 +33,7 @@
 #include "app/tools/slice_plane_tool.h"
 #include "app/tools/transform_gizmo.h"
 #include "render/imgui_renderer.h"
+#include "render/ui_font.h"
 
 struct ImGuiContext;
 
@@ -87,6 +88,15 @@ class GuiApp {
   void setGizmoVisible(bool on) { ctx_.showGizmo = on; }
   // Saves a screenshot of the next frame to `path` (with or without the panels).
   void requestScreenshot(const std::string& path, bool withUi);
+  // The UI scale now (Ctrl + / Ctrl − / Ctrl 0 change it; the fonts follow at the next frame).
+  float uiScale() const { return ctx_.uiScale; }
+  // The pixel height of the UI type the last frame was drawn with.
+  float fontPixels() const { return fonts_.regular ? fonts_.regular->FontSize : 0.0f; }
+  // Glyphs drawn with the fallback glyph (a code point the font lacks) over all frames so far
+  // (render/glyph_misses.h): zero when every message shows in full.
+  int glyphMisses() const { return glyphMisses_; }
+  // The presenter mode's caption for what is on screen now (presenter_caption.h).
+  std::string presenterCaption() const;
 
  private:
   void handleShortcuts(const FrameInput& in);
@@ -96,10 +106,15 @@ class GuiApp {
   void drawOverlays();
   void renderFrame();
   void takeScreenshot(const FrameInput& in);
+  void handleScaleKeys(const FrameInput& in);
+  // Re-rasterises the fonts and rescales the style when ctx_.uiScale changed (before NewFrame).
+  void applyUiScale();
 
   GuiContext ctx_;
   ImGuiContext* imgui_ = nullptr;
   std::unique_ptr<render::ImGuiRenderer> imguiRenderer_;
+  render::UiFonts fonts_;
+  int glyphMisses_ = 0;
   // Tools in the view.
   CameraTool camera_{ctx_};
   SampleTool samples_{ctx_};

@@ -5,10 +5,14 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "app/gui/ui_scale.h"
+
 namespace hermite::app {
 
-GuiContext::GuiContext(Document doc, GuiOptions opts) : document(std::move(doc)), options(std::move(opts)) {
+GuiContext::GuiContext(Document doc, GuiOptions opts)
+    : document(std::move(doc)), options(std::move(opts)), uiScale(clampUiScale(options.uiScale)) {
   setHomeFromScene();
+  panels.presenter = document.scene().view.presenter;
   // A data file opened as a scene (no scene path) saves beside it as FILE.json.
   const std::string& data = document.scene().data.file;
   savePath = !document.path().empty() ? document.path()

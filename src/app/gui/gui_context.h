@@ -23,13 +23,17 @@ struct GuiOptions {
   std::string screenshotDirectory = ".";
   // Wall-clock figures differ run to run: `render --ui` hides them (same input → same bytes).
   bool showTimings = true;
+  // The UI scale at start (type, widgets, layout): --ui-scale, else the monitor's content scale
+  // in the window and 1 offscreen. Ctrl + / Ctrl − change it, Ctrl 0 returns to this value.
+  float uiScale = 1.0f;
 };
 
 // Panels' visibility (`render --ui` shows them all; tests toggle them).
 struct PanelVisibility {
   bool data = true, fit = true, compare = false, transform = false, diagnostics = true, view = true, explore = false,
-       help = false;
-  bool hideUi = false;  // Tab: only the view
+       help = false, messages = false;  // messages: the message log window (F2)
+  bool hideUi = false;     // Tab: only the view
+  bool presenter = false;  // F5 or view.presenter: panels hidden, a large caption (presenter_caption.h)
 };
 
 // The view's rectangle in the window (pixels): right of the left panel, above the explorer strip
@@ -87,6 +91,10 @@ struct GuiContext {
   std::optional<ScreenshotRequest> screenshot;
   bool screenshotWithUi = false;  // what F12 and the View panel's button take
   int screenshotCounter = 0;      // their files are numbered
+  float uiScale = 1.0f;           // the UI scale now (gui/ui_scale.h); GuiApp rebuilds the fonts when it changes
+
+  // A length of the layout at UI scale 1 in pixels now.
+  float px(float pixelsAtScale1) const { return pixelsAtScale1 * uiScale; }
 
   const Scene& scene() const { return document.scene(); }
   int dimension() const { return scene().dimension(); }
@@ -101,9 +109,10 @@ struct GuiContext {
   void requestNumberedScreenshot();
 };
 
-// Fixed layout (pixels).
+// Fixed layout (pixels at UI scale 1; GuiContext::px scales them). The status bar holds two
+// lines of text.
 inline constexpr float kLeftPanelWidth = 330.0f;
-inline constexpr float kStatusBarHeight = 24.0f;
+inline constexpr float kStatusBarHeight = 40.0f;
 inline constexpr float kExplorerHeight = 200.0f;
 
 }  // namespace hermite::app

@@ -103,7 +103,7 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
 
 }  // namespace
 
-int runDefault(const SceneArgs& args) {
+int runDefault(const SceneArgs& args, double uiScale) {
   const Scene scene = framedOnLoad(loadCommandScene(args));
   // A data file is not the document's file: Save writes a scene beside it (gui_context.cpp).
   const std::string documentPath = args.scenePath.empty() || !isSceneFilePath(args.scenePath) ? "" : args.scenePath;
@@ -126,6 +126,10 @@ int runDefault(const SceneArgs& args) {
 
   GuiOptions options;
   options.iniFile = false;  // the layout is fixed; nothing worth remembering
+  // The monitor's content scale (2 on a HiDPI screen) unless --ui-scale says otherwise.
+  float contentScaleX = 1, contentScaleY = 1;
+  glfwGetWindowContentScale(window, &contentScaleX, &contentScaleY);
+  options.uiScale = uiScale > 0 ? float(uiScale) : contentScaleX;
   GuiApp app(Document(scene, documentPath), options);
   double last = glfwGetTime();
   std::string title = documentTitle(app.document());

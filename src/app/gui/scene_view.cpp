@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "app/gui/view_colours.h"
 #include "core/base/errors.h"
 #include "core/trace/shading.h"
 #include "render/gl/offscreen.h"
@@ -132,6 +133,8 @@ void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& f
   out.depth = std::move(r.depth);
   out.refinedPixels = r.refinedPixels;
   out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
+  out.colourRange = r.sliceRange;  // the slice plane's heat map (0 without one)
+  out.isoSpacing = r.sliceIsoSpacing;
 }
 
 void patchLines(const PatchDisplay& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors) {
@@ -205,7 +208,8 @@ ImageRgba8 SceneViewRenderer::renderPatch(const PatchDisplay& patch, const Scene
   if (spec.showError && !patch.vertexError.empty() && patch.maxError > 0) {
     // The front colour towards red as the error grows (relative to the largest error).
     d.colors.resize(3, d.positions.cols());
-    const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]), hot(0.9, 0.12, 0.08);
+    const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]),
+        hot(kPatchErrorColour[0], kPatchErrorColour[1], kPatchErrorColour[2]);
     for (Eigen::Index k = 0; k < d.positions.cols(); ++k) {
       const double t = patch.vertexError[std::size_t(k)] / patch.maxError;
       d.colors.col(k) = (1 - t) * front + t * hot;
@@ -221,7 +225,8 @@ ImageRgba8 SceneViewRenderer::renderHoleFill(const HoleFillStages& st, const Sce
   // The input in the front colour, each patch (own vertices, so it takes its own colour) in teal;
   // hole boundaries red, ring samples of the implicit as short green normals.
   const TriMesh& in = st.input;
-  const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]), patchColour(0.25, 0.7, 0.7);
+  const Vec<3> front(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]),
+      patchColour(kHolePatchColour[0], kHolePatchColour[1], kHolePatchColour[2]);
   int patchVertices = 0, patchTriangles = 0;
   for (const auto& h : st.holes) {
     patchVertices += 3 * int(h.patch.triangles.cols());
@@ -259,12 +264,12 @@ ImageRgba8 SceneViewRenderer::renderHoleFill(const HoleFillStages& st, const Sce
     for (std::size_t k = 0; k < h.loop.size(); ++k) {
       d.lineEnds.push_back(in.vertices.col(h.loop[k]));
       d.lineEnds.push_back(in.vertices.col(h.loop[(k + 1) % h.loop.size()]));
-      d.lineColors.emplace_back(0.9, 0.1, 0.1);
+      d.lineColors.emplace_back(kHoleRimColour[0], kHoleRimColour[1], kHoleRimColour[2]);
     }
     for (Eigen::Index k = 0; k < h.ringPoints.cols(); ++k) {
       d.lineEnds.push_back(h.ringPoints.col(k));
       d.lineEnds.push_back(h.ringPoints.col(k) + 0.02 * diag * h.ringNormals.col(k));
-      d.lineColors.emplace_back(0.1, 0.55, 0.15);
+      d.lineColors.emplace_back(kRingNormalColour[0], kRingNormalColour[1], kRingNormalColour[2]);
     }
   }
   d.background = viewScene.view.background;

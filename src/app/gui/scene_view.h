@@ -31,8 +31,8 @@ struct SceneViewResult {
   // 3D only: per-pixel surface hits (depth = ray parameter, +inf where none), for picking.
   std::vector<float> depth;
   double ms = 0;            // whole render (bake when the field changed, trace, refinement)
-  double colourRange = 0;   // 2D: the heat map covers ±range
-  double isoSpacing = 0;    // 2D
+  double colourRange = 0;   // 2D heat map / 3D slice plane: the colours cover ±range (0: none)
+  double isoSpacing = 0;    // 2D heat map / 3D slice plane: f between iso-lines
   int refinedPixels = 0;    // 3D
   std::string traceMode;    // 3D: "baked", "baked + refined" or "exact"; patch / hole filling: "rasterised"
   // Set instead of `image` when the render was asked to stay on the GPU (2D): the colour texture

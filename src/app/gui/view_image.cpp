@@ -8,7 +8,7 @@
 #include <string>
 
 #include "app/gui/gui_context.h"
-#include "render/legend.h"
+#include "app/gui/view_legends.h"
 
 namespace hermite::app {
 
@@ -85,7 +85,7 @@ void ViewImage::draw(const GuiContext& ctx) const {
   if (compareShown) addView(compareView_, compareTexture_, x0 + w);
   bg->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
   if (compareShown) drawCompareLabels(ctx, x0, w);
-  if (ctx.dimension() == 2 && view_.colourRange > 0) drawLegend(ctx);
+  drawViewLegends(ctx, view_);
 }
 
 // A line between the halves and, at the bottom of each, what it fitted.
@@ -97,26 +97,19 @@ void ViewImage::drawCompareLabels(const GuiContext& ctx, float x0, float w) cons
     if (!f) return;
     const Scene& s = f->scene;
     char text[160];
-    std::snprintf(text, sizeof text, "%s  %s%s", std::string(fitMethodName(s.fit.method)).c_str(),
-                  std::string(kernelName(s.fit.kernel)).c_str(),
-                  Kernel{s.fit.kernel, s.fit.radius}.usesRadius() ? ("  r = " + std::to_string(s.fit.radius)).c_str() : "");
-    bg->AddRectFilled(ImVec2(x + 4, y1 - 26), ImVec2(x + 8 + ImGui::CalcTextSize(text).x + 6, y1 - 6),
+    const int n = std::snprintf(text, sizeof text, "%s  %s", std::string(fitMethodName(s.fit.method)).c_str(),
+                                std::string(kernelName(s.fit.kernel)).c_str());
+    if (Kernel{s.fit.kernel, s.fit.radius}.usesRadius() && n > 0 && n < int(sizeof text))
+      std::snprintf(text + n, sizeof text - std::size_t(n), "  r = %.4g", s.fit.radius);
+    const float font = ImGui::GetFontSize(), pad = 0.4f * font;  // sizes follow the UI scale
+    bg->AddRectFilled(ImVec2(x + pad, y1 - 2 * pad - font - pad), ImVec2(x + 3 * pad + ImGui::CalcTextSize(text).x, y1 - pad),
                       IM_COL32(0, 0, 0, 170));
-    bg->AddText(ImVec2(x + 9, y1 - 24), IM_COL32(255, 255, 255, 255), text);
+    bg->AddText(ImVec2(x + 2 * pad, y1 - 2 * pad - font), IM_COL32(255, 255, 255, 255), text);
   };
   label(x0, ctx.fits.shown().get());
   label(x0 + w, ctx.fits.shownCompare().get());
 }
 
-// The 2D heat map's colour legend in the primary view's lower-right corner.
-void ViewImage::drawLegend(const GuiContext& ctx) const {
-  render::LegendOptions legend;
-  legend.range = view_.colourRange;
-  legend.isoSpacing = view_.isoSpacing;
-  legend.cornerX = float(ctx.view.x + ctx.view.primaryWidth());
-  legend.cornerY = float(ctx.view.y + ctx.view.h);
-  render::drawColorLegend(ImGui::GetBackgroundDrawList(), legend);
-}
 
 ImageRgba8 ViewImage::pixels() const { return view_.gpuImage ? renderer_.readGpuImage() : view_.image; }
 

@@ -2,7 +2,7 @@
 // The view's image: the shown fit drawn by a SceneViewRenderer (and the compare fit in the right
 // half), redrawn only when the fit, the view, the size or the quality changed — interactive
 // (half-resolution 3D, coarse 2D grid) during a gesture, settled a few frames after — and put on
-// screen as ImGui background images with the compare labels and the 2D colour legend.
+// screen as ImGui background images with the compare labels and the legends (view_legends.h).
 
 #include <optional>
 
@@ -39,7 +39,6 @@ class ViewImage {
     bool operator==(const Drawn&) const = default;
   };
   void drawCompareLabels(const GuiContext& ctx, float x0, float w) const;
-  void drawLegend(const GuiContext& ctx) const;
 
   SceneViewRenderer renderer_, compareRenderer_;  // left / whole, right half
   SceneViewResult view_, compareView_;

@@ -181,8 +181,18 @@ void DataPanel::drawSummary() {
   if (ctx_.selected >= 0) ImGui::Text("selected: sample %d (N flips, Del deletes)", ctx_.selected);
   else ImGui::TextDisabled("no sample selected");
   const std::size_t warnings = f ? f->warnings().size() : fresh ? loaded->warnings.size() : 0;
-  if (warnings > 0) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %zu data / fit warnings (Diagnostics)", warnings);
-  else ImGui::TextDisabled("no warnings");
+  if (warnings > 0) {
+    ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %zu data / fit warnings (Diagnostics)", warnings);
+    if (ImGui::IsItemHovered()) {  // the warnings in full
+      ImGui::BeginTooltip();
+      ImGui::PushTextWrapPos(ImGui::GetFontSize() * 40.0f);
+      for (const std::string& w : f ? f->warnings() : loaded->warnings) ImGui::TextUnformatted(("! " + w).c_str());
+      ImGui::PopTextWrapPos();
+      ImGui::EndTooltip();
+    }
+  } else {
+    ImGui::TextDisabled("no warnings");
+  }
 }
 
 

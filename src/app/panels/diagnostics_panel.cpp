@@ -4,6 +4,7 @@
 
 #include <cstdio>
 
+#include "app/gui/clipped_text.h"
 #include "scene/scene_fit.h"
 
 namespace hermite::app {
@@ -51,14 +52,15 @@ void drawDiagnosticsPanel(GuiContext& ctx) {
         ImGui::Text("view        %s", ctx.image.result().traceMode.c_str());
       }
       if (ctx.fits.shownVersion() != ctx.document.version()) ImGui::TextDisabled("(showing an earlier version)");
-      ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + 300.0f);
-      for (const std::string& w : f->warnings()) ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.2f, 1.0f), "! %s", w.c_str());
-      ImGui::PopTextWrapPos();
+      // Each warning in at most two lines; a longer one shows in full while hovered (and in
+      // the message log), so the panel keeps its size.
+      for (const std::string& w : f->warnings())
+        clippedText("! " + w, ctx.px(300.0f), 2, ImVec4(1.0f, 0.75f, 0.2f, 1.0f));
     }
     if (ctx.fits.worker().busy()) {
       char text[64];
       std::snprintf(text, sizeof text, "fitting %.1f s", ctx.fits.worker().runningMs() / 1000.0);
-      ImGui::ProgressBar(float(ctx.fits.worker().progress()), ImVec2(200, 0), text);
+      ImGui::ProgressBar(float(ctx.fits.worker().progress()), ImVec2(ctx.px(200.0f), 0), text);
       ImGui::SameLine();
       const bool cancelled = ImGui::Button("Cancel");
       ctx.recordWidget("diagnostics.cancel");

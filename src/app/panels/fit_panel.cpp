@@ -15,6 +15,9 @@ namespace {
 
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
 
+// r's factor per pixel of a Shift+drag on the r slider.
+constexpr double kFineStepPerPixel = 1.002;
+
 // The arrow keys over the r slider nudge r by 5 % (with Shift by 0.5 %), one undo step each.
 void nudgeRadius(GuiContext& ctx, const FitSpec& fit) {
   if (!ImGui::IsItemHovered() || ctx.document.inGesture()) return;
@@ -27,8 +30,9 @@ void nudgeRadius(GuiContext& ctx, const FitSpec& fit) {
   editFit(ctx, f, "radius");
 }
 
-// r: a logarithmic slider (one undo step per drag) over 0.1 to 200 mean sample spacings (widened
-// to hold the current r; 1e-4 to 100 before the first fit), exact entry, and r in spacings;
+// r: a logarithmic slider (one undo step per drag; Shift+drag for fine steps) over 0.1 to 200
+// mean sample spacings (widened to hold the current r; 1e-4 to 100 before the first fit), exact
+// entry, and r in spacings;
 // disabled for scale-free kernels. A 50-pixel drag changes r by a factor of about 7, not 40.
 void drawRadius(GuiContext& ctx, const FitSpec& fit) {
   const Kernel kernel{fit.kernel, fit.radius};
@@ -41,7 +45,14 @@ void drawRadius(GuiContext& ctx, const FitSpec& fit) {
   double r = fit.radius;
   const double rMin = spacing > 0 ? std::min(0.1 * spacing, r) : 1e-4;
   const double rMax = spacing > 0 ? std::max(200.0 * spacing, r) : 100.0;
-  if (ImGui::SliderScalar("r", ImGuiDataType_Double, &r, &rMin, &rMax, "%.4g", ImGuiSliderFlags_Logarithmic)) {
+  bool changed = ImGui::SliderScalar("r", ImGuiDataType_Double, &r, &rMin, &rMax, "%.4g", ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemActive() && ImGui::GetIO().KeyShift) {
+    // Shift while dragging: fine steps of 0.2 % per pixel from the current r, whatever the
+    // slider's own mapping of the mouse position says.
+    r = fit.radius * std::pow(kFineStepPerPixel, double(ImGui::GetIO().MouseDelta.x));
+    changed = r != fit.radius;
+  }
+  if (changed) {
     if (!ctx.document.inGesture()) ctx.document.begin("radius");
     Scene s = ctx.scene();
     s.fit.radius = std::clamp(r, rMin, rMax);
@@ -57,7 +68,7 @@ void drawRadius(GuiContext& ctx, const FitSpec& fit) {
     f.radius = typed;
     editFit(ctx, f, "radius");
   }
-  if (spacing > 0 && kernel.usesRadius()) ImGui::Text("r = %.3g x mean spacing (%.3g)", fit.radius / spacing, spacing);
+  if (spacing > 0 && kernel.usesRadius()) ImGui::Text("r = %.3g \xC3\x97 mean spacing (%.3g)", fit.radius / spacing, spacing);
   ImGui::EndDisabled();
   if (!kernel.usesRadius()) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));

@@ -13,7 +13,7 @@ void drawHelpOverlay(GuiContext& ctx) {
         {"left drag (3D)", "orbit (2D: pan), unless it starts on the selection"},
         {"right / middle drag, Shift+left", "pan"},
         {"wheel", "zoom towards the cursor"},
-        {"arrows over the r slider", "r x or / 1.05 (Shift: 1.005)"},
+        {"arrows over the r slider", "r \xC3\x97 or \xC3\xB7 1.05 (Shift: 1.005)"},
         {"F / Home", "fit to view / reset the camera"},
         {"click a sample", "select it (highlighted)"},
         {"drag the selected sample", "move it (3D: on the plane facing the camera)"},
@@ -26,11 +26,14 @@ void drawHelpOverlay(GuiContext& ctx) {
         {"Ctrl+S", "save the scene"},
         {"Tab", "hide / show the panels"},
         {"F12", "screenshot (numbered PNG)"},
+        {"Ctrl + / Ctrl \xE2\x88\x92 / Ctrl 0", "larger / smaller type and panels / back to the start scale"},
+        {"F5", "presenter mode: panels hidden, a large caption"},
+        {"F2", "the message log: every message in full"},
         {"F1 or ?", "this help"},
     };
     for (const auto& r : rows) {
       ImGui::TextUnformatted(r[0]);
-      ImGui::SameLine(250);
+      ImGui::SameLine(ctx.px(250));
       ImGui::TextDisabled("%s", r[1]);
     }
   }

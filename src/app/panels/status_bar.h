@@ -1,11 +1,12 @@
 #pragma once
-// The status bar along the bottom: the document's file (with * when modified) and the last
-// message, red for errors.
+// The status bar along the bottom, two lines tall: on the left the document's file (with * when
+// modified), on the right the last message (red for errors) wrapped over both lines; a longer
+// message ends in "…" and shows in full while hovered and in the message log ("log" button, F2).
 
 #include "app/gui/gui_context.h"
 
 namespace hermite::app {
 
-void drawStatusBar(const GuiContext& ctx);
+void drawStatusBar(GuiContext& ctx);
 
 }  // namespace hermite::app

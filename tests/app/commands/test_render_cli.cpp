@@ -123,10 +123,10 @@ TEST_CASE("render: a 3D scene gives a PNG of the requested size, the same bytes 
 }
 
 TEST_CASE("render --ui draws the application: panels on the left, the same view beside them") {
-  // 800 × 500 window: the left panel is 330 px wide, the status bar 24 px high, so the view is
-  // 470 × 476 — exactly what `render --size 470x476` draws.
+  // 800 × 500 window: the left panel is 330 px wide, the status bar 40 px high (two lines), so
+  // the view is 470 × 460 — exactly what `render --size 470x460` draws.
   const ImageRgba8 ui = render(kScene2d + " --size 800x500 --ui", "ui.png");
-  const ImageRgba8 plain = render(kScene2d + " --size 470x476", "plain.png");
+  const ImageRgba8 plain = render(kScene2d + " --size 470x460", "plain.png");
   // No wall-clock figures in headless panels: the same bytes twice.
   const ImageRgba8 again = render(kScene2d + " --size 800x500 --ui", "ui_again.png");
   CHECK(again == ui);
@@ -145,12 +145,31 @@ TEST_CASE("render --ui draws the application: panels on the left, the same view 
   // The view's lower-left region (clear of the diagnostics panel and the legend) is the plain
   // render, pixel for pixel.
   int same = 0, total = 0;
-  for (int j = 300; j < 476; ++j)
+  for (int j = 300; j < 460; ++j)
     for (int i = 0; i < 200; ++i) {
       ++total;
       same += std::memcmp(ui.at(330 + i, j), plain.at(i, j), 4) == 0 ? 1 : 0;
     }
   CHECK(same >= total * 99 / 100);
+}
+
+TEST_CASE("render --ui --ui-scale 2: the panel column twice as wide, the view beside it") {
+  const ImageRgba8 ui = render(kScene2d + " --size 1600x800 --ui --ui-scale 2", "ui_scale2.png");
+  REQUIRE(ui.width == 1600);
+  const auto panelDark = [&](int i, int j) {
+    const std::uint8_t* p = ui.at(i, j);
+    return p[0] < 70 && p[1] < 70 && p[2] < 90;
+  };
+  // The panel column is 660 px wide (330 at scale 1): mostly its dark background between x = 340
+  // and 650, the view (light heat map) between 680 and 990.
+  const auto darkFraction = [&](int x0, int x1) {
+    int dark = 0;
+    for (int j = 200; j < 600; ++j)
+      for (int i = x0; i < x1; ++i) dark += panelDark(i, j) ? 1 : 0;
+    return double(dark) / (400.0 * (x1 - x0));
+  };
+  CHECK(darkFraction(340, 650) > 0.3);
+  CHECK(darkFraction(680, 990) < 0.05);
 }
 
 TEST_CASE("render --backend egl agrees with osmesa") {
@@ -222,6 +241,11 @@ TEST_CASE("render: exit codes") {
   SUBCASE("malformed --size → 2") {
     CHECK(runCli("render " + kScene2d + " --size 12by4 -o " + outputPath("x.png")).rc == 2);
     CHECK(runCli("render " + kScene2d + " --size 0x10 -o " + outputPath("x.png")).rc == 2);
+  }
+  SUBCASE("--ui-scale outside 0.5 to 4 → 2") {
+    const auto r = runCli("render " + kScene2d + " --ui --ui-scale 9 -o " + outputPath("x.png"));
+    CHECK(r.rc == 2);
+    CHECK(r.err.find("--ui-scale") != std::string::npos);
   }
   SUBCASE("unknown backend → 2") {
     CHECK(runCli("render " + kScene2d + " --backend vulkan -o " + outputPath("x.png")).rc == 2);

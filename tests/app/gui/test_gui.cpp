@@ -24,75 +24,14 @@
 #include "scene/scene_file.h"
 #include "scene/hole_fill_stages.h"
 #include "scene/scene_fit.h"
+#include "support/gui_harness.h"
 #include "support/mesh_test_shapes.h"
 
 using namespace hermite;
 using namespace hermite::app;
+using hermite::app::testing::Harness;
 
 namespace {
-
-struct Harness {
-  std::unique_ptr<render::RenderContext> context;
-  std::unique_ptr<render::OffscreenTarget> target;
-  std::unique_ptr<GuiApp> app;
-  FrameInput input;
-
-  Harness(const Scene& scene, bool synchronous = true, int w = 1000, int h = 700) {
-    render::ContextOptions co;
-    co.width = w;
-    co.height = h;
-    co.visible = false;
-    context = render::createContext("osmesa", co);
-    target = std::make_unique<render::OffscreenTarget>(w, h, false);
-    GuiOptions o;
-    o.synchronousFits = synchronous;
-    o.screenshotDirectory = std::filesystem::temp_directory_path().string();
-    app = std::make_unique<GuiApp>(Document(scene), o);
-    input.width = w;
-    input.height = h;
-  }
-  void frame() {
-    target->bind();
-    app->frame(input);
-    input.wheel = 0;
-    input.characters.clear();
-    input.droppedFiles.clear();
-  }
-  void frames(int n) {
-    for (int k = 0; k < n; ++k) frame();
-  }
-  void moveTo(double x, double y) {
-    input.mouseX = x;
-    input.mouseY = y;
-    frame();
-  }
-  // Press at (x0, y0), move in `steps` to (x1, y1), release: a drag as ImGui and the tools see it.
-  void drag(double x0, double y0, double x1, double y1, int steps = 6) {
-    moveTo(x0, y0);
-    input.mouseDown[0] = true;
-    frame();
-    for (int k = 1; k <= steps; ++k) moveTo(x0 + (x1 - x0) * k / steps, y0 + (y1 - y0) * k / steps);
-    input.mouseDown[0] = false;
-    frame();
-  }
-  void click(double x, double y) { drag(x, y, x, y, 0); }
-  // Frames until the events recorded in `queue` are all taken (as the window's loop does).
-  void replay(InputQueue& queue) {
-    while (queue.pending() > 0) {
-      input = queue.takeFrame(input.width, input.height);
-      frame();
-    }
-  }
-  void key(int code, bool ctrl = false, bool shift = false) {
-    input.ctrl = ctrl;
-    input.shift = shift;
-    input.keysDown[code] = true;
-    frame();
-    input.keysDown[code] = false;
-    input.ctrl = input.shift = false;
-    frame();
-  }
-};
 
 Scene scene2d(int count = 24) {
   Scene s;
@@ -435,6 +374,7 @@ TEST_CASE("UI: every panel renders, with the explorer, the compare view and the 
   h.frames(2);
   CHECK(h.app->explorer().entries().size() == 3);
   CHECK(h.app->viewResult().width == (1100 - int(kLeftPanelWidth)) / 2);
+  CHECK(h.app->glyphMisses() == 0);  // every character of every panel is in the UI font
 }
 
 TEST_CASE("UI: during a fit of about a second frames keep coming, and Cancel keeps the previous result") {
@@ -668,6 +608,14 @@ TEST_CASE("UI: a point file dropped on the window opens as the default scene aro
   CHECK(h.app->status().message.find("loaded " + path + ": 300 samples (3D)") != std::string::npos);
   REQUIRE(h.app->currentFit());
   CHECK(h.app->currentFit()->scene.data == opened.data);
+  // The fit's warnings (normals estimated) are in the message log once each, frames later too.
+  h.frames(2);
+  CHECK(!h.app->currentFit()->warnings().empty());
+  for (const std::string& w : h.app->currentFit()->warnings()) {
+    int logged = 0;
+    for (const LogEntry& e : h.app->status().log) logged += e.severity == Severity::Warning && e.text == w ? 1 : 0;
+    CHECK(logged == 1);
+  }
   // Saving writes the scene with data.file relative to the scene's folder.
   std::filesystem::create_directories(dir / "saved");
   h.app->document().save((dir / "saved" / "cloud.json").string());
