@@ -911,6 +911,8 @@ ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const Herm
   content.showPoints = settings.showPoints;
   content.showNormals = settings.showNormals;
   content.showBounds = settings.showBounds;
+  content.showGround = settings.showGround;
+  content.groundUp = Vec<3>(settings.groundUp[0], settings.groundUp[1], settings.groundUp[2]);
   content.bounds = frame.bounds;
   scaleMarksToSpacing(frame, content);
   overlay->draw(frame.camera, frame.viewProj, content);

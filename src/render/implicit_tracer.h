@@ -68,6 +68,8 @@ struct TraceSettings {
   bool showPoints = false;    // samples as 4 px points
   bool showNormals = false;   // normals as lines of 5 % of the bounds diagonal
   bool showBounds = false;    // the bounds box as lines
+  bool showGround = false;    // the ground grid under the samples (ground_grid.h)
+  std::array<double, 3> groundUp{0, 1, 0};  // the grid's plane is across this direction
   SliceSettings slice;
   std::array<double, 3> background{1, 1, 1};  // each in [0, 1]; misses get round(255·c) exactly
   // Baked mode without a slice plane: run the trace pass only on the tiles the tile pass did not

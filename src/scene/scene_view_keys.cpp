@@ -115,6 +115,7 @@ constexpr SceneKey<ViewSpec> kViewKeys[] = {
      [](const ViewSpec& v, int) -> Written { return v.showNormals ? json(*v.showNormals) : json("auto"); }},
     valueKey<ViewSpec, &ViewSpec::showBounds, &Reader::boolean>("show_bounds"),
     valueKey<ViewSpec, &ViewSpec::showAxes, &Reader::boolean>("show_axes"),
+    enumKey<ViewSpec, &ViewSpec::ground, kGroundNames>("ground"),
     enumKey<ViewSpec, &ViewSpec::trace, kTraceModeNames>("trace"),
     {"slice",
      [](const Reader& r, const json& x, const std::string& p, ViewSpec& v, int dim) { v.slice = readObject<SliceSpec>(r, x, p, kSliceKeys, dim); },

@@ -107,6 +107,8 @@ render::TraceSettings traceSettings(const ViewSpec& v, const SceneFit<3>& f, Vie
   s.showPoints = v.showPoints;
   s.showNormals = v.normalsShown(f.data.size());
   s.showBounds = v.showBounds;
+  s.showGround = v.ground == Ground::Grid;
+  s.groundUp = v.camera.up;
   s.slice.enabled = v.slice.enabled;
   s.slice.normal = v.slice.normal;
   s.slice.offset = v.slice.offset;
