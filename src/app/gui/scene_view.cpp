@@ -184,7 +184,6 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     jobs_.cancel();
     refining_.reset();
   }
-  const render::TraceSettings settled = traceSettings(v, f, ViewQuality::Settled, tracer_->hasExactModel());
   render::TraceSettings s = traceSettings(v, f, quality, tracer_->hasExactModel());
   const bool refineNow = baked && quality == ViewQuality::Settled && bakeResolution_ >= 128;
   s.refineExact = refineNow;
@@ -193,7 +192,7 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   takeTrace(r, out);
   out.traceMode = s.mode == render::TracerMode::Exact ? "exact" : "baked";
   // Other frames leave pixels the GPU left undecided as it drew them: a later frame replaces them.
-  if (refineNow && job->camera && settled.mode == render::TracerMode::Baked) {
+  if (refineNow && job->camera && s.mode == render::TracerMode::Baked) {
     refining_ = view;
     requestRefinement(std::move(job), fit);
   }
