@@ -36,6 +36,7 @@ struct Refiner {
   const HitRefinementOptions& options;
   double tol;  // bisection and Newton stop at this many world units along the ray
   HitRefinement& out;
+  int p0 = 0, p1 = 0;  // the band: pixels p0 … p1 − 1 (whole rows)
 
   Ray pixelRay(int p) const { return camera.pixelRay(p % camera.width(), p / camera.width()); }
   std::vector<PixelRay> seedHits();
@@ -51,7 +52,7 @@ struct Refiner {
 std::vector<PixelRay> Refiner::seedHits() {
   std::vector<PixelRay> work;
   work.reserve(gpu.t.size() / 4);
-  for (std::size_t p = 0; p < gpu.t.size(); ++p) {
+  for (std::size_t p = std::size_t(p0); p < std::size_t(p1); ++p) {
     if (gpu.t[p] < 0) continue;
     out.gpuHit[p] = 1;
     if (!options.refine) {
@@ -143,13 +144,16 @@ int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
 // Traces the pixels the GPU march left undecided with the CPU reference tracer, whose ε matches
 // the exact march's.
 void Refiner::traceUndecided() {
-  if (gpu.undecided.empty()) return;
+  std::vector<int> band;
+  for (int p : gpu.undecided)
+    if (p >= p0 && p < p1) band.push_back(p);
+  if (band.empty()) return;
   CpuTraceOptions cpuOptions;
   cpuOptions.minStep = options.cpuMinStep;
   const CpuTracer cpu(field, bounds, cpuOptions);
 #pragma omp parallel for schedule(dynamic, 16)
-  for (std::size_t q = 0; q < gpu.undecided.size(); ++q) {
-    const int p = gpu.undecided[q];
+  for (std::size_t q = 0; q < band.size(); ++q) {
+    const int p = band[q];
     const RayHit hit = cpu.trace(pixelRay(p));
     if (hit.hit) {
       out.t[p] = hit.t;
@@ -163,7 +167,7 @@ void Refiner::traceUndecided() {
 std::vector<SearchWindow> Refiner::silhouetteRing() const {
   const int W = camera.width(), H = camera.height();
   std::vector<SearchWindow> ring;
-  for (int j = 0; j < H; ++j)
+  for (int j = p0 / W; j < p1 / W; ++j)
     for (int i = 0; i < W; ++i) {
       const std::size_t p = std::size_t(j) * W + i;
       if (out.gpuHit[p]) continue;
@@ -197,11 +201,17 @@ HitRefinement refineHits(const ImplicitField<3>& field, const Box<3>& bounds, co
   out.gradient.assign(pixels, Vec<3>::Zero());
   out.gpuHit.assign(pixels, 0);
   Refiner refiner{field, bounds, camera, gpu, options, 1e-7 * bounds.extent().norm(), out};
-  const std::vector<PixelRay> unsettled = refiner.newton(refiner.seedHits());
-  out.droppedHits = refiner.searchUnsettled(unsettled);
-  // The CPU-traced undecided pixels come before the ring, which may overwrite those next to a hit.
-  refiner.traceUndecided();
-  if (options.refine) out.ringHits = refiner.searchWindows(refiner.silhouetteRing());
+  const int W = camera.width(), H = camera.height(), band = std::max(1, options.bandRows);
+  for (int j0 = 0; j0 < H; j0 += band) {
+    throwIfCancelled(options.cancel);
+    refiner.p0 = j0 * W;
+    refiner.p1 = std::min(H, j0 + band) * W;
+    const std::vector<PixelRay> unsettled = refiner.newton(refiner.seedHits());
+    out.droppedHits += refiner.searchUnsettled(unsettled);
+    // The CPU-traced undecided pixels come before the ring, which may overwrite those next to a hit.
+    refiner.traceUndecided();
+    if (options.refine) out.ringHits += refiner.searchWindows(refiner.silhouetteRing());
+  }
   return out;
 }
 

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/cancel_token.h"
 #include "core/base/implicit_field.h"
 #include "core/trace/camera.h"
 
@@ -25,6 +26,9 @@ struct HitRefinementOptions {
   bool refine = true;     // false: GPU hits stand as they are; only the undecided pixels are traced
   double cell = 0;        // the bake's cell diagonal: how far from the GPU's t a hit is looked for
   double cpuMinStep = 1e-4;  // ε of the CPU tracer for undecided pixels, relative to the bounds diagonal
+  // Polled between bands of rows (each a few tens of ms of work); throws Cancelled when set.
+  const CancelToken* cancel = nullptr;
+  int bandRows = 16;  // rows refined per band
 };
 
 // The surface per pixel after refinement, row 0 = top.
@@ -36,7 +40,7 @@ struct HitRefinement {
   int droppedHits = 0;              // GPU hits the true field does not confirm (now misses)
 };
 
-// Refines the GPU's hits in four steps: safeguarded Newton on f along the ray from the GPU's t
+// Refines the GPU's hits band of rows by band of rows, each in four steps: safeguarded Newton on f along the ray from the GPU's t
 // (batched over pixels); a bracket search with bisection within 2 cells of it where Newton does
 // not settle (hits it finds nothing for are dropped); the CPU reference tracer for undecided
 // pixels; and, with `refine`, a bracket search on the misses next to a hit (the silhouette ring)

@@ -537,15 +537,12 @@ float shadeRefinedHit(const TraceFrame& frame, const Ray& ray, double t, const V
 }
 
 // Composites the refined surface with the slice plane and the background on the CPU (the nearer
-// of surface and plane wins) wherever the GPU or the refinement found a surface, and writes
-// colour and depth back to the target, so that the overlays are depth-tested against the refined
-// surface. Returns the pixels that show a refined hit.
-int compositeRefined(const TraceTarget& target, const TraceFrame& frame, const HitRefinement& hits,
-                     TraceResult& result) {
+// of surface and plane wins) wherever the GPU or the refinement found a surface, into the trace
+// pass's colour and depth (GL rows bottom-up), so that the overlays are depth-tested against the
+// refined surface. Returns the pixels that show a refined hit.
+int compositeRefinedPixels(const TraceFrame& frame, const HitRefinement& hits, const std::vector<std::uint8_t>& planeColor,
+                           std::vector<std::uint8_t>& color, std::vector<float>& depth, TraceResult& result) {
   const int W = frame.width, H = frame.height;
-  std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
-  const std::vector<std::uint8_t> planeColor = readTexture<std::uint8_t>(target.plane, GL_RGBA, GL_UNSIGNED_BYTE, 4);
-  std::vector<float> depth = readTexture<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT, 1);
   int refined = 0;
 #pragma omp parallel for schedule(static) reduction(+ : refined)
   for (int j = 0; j < H; ++j)
@@ -572,11 +569,37 @@ int compositeRefined(const TraceTarget& target, const TraceFrame& frame, const H
         depth[glIndex] = 1.0f;
       }
     }
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTextureSubImage2D(target.color.id(), 0, 0, 0, W, H, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
-  glTextureSubImage2D(target.depth.id(), 0, 0, 0, W, H, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
-  checkGl("implicit tracer refinement upload");
   return refined;
+}
+
+// The trace pass's colour, plane colour and depth, GL rows bottom-up.
+struct TracePassPixels {
+  std::vector<std::uint8_t> color, planeColor;
+  std::vector<float> depth;
+};
+
+TracePassPixels readTracePass(const TraceTarget& target) {
+  return {readTexture<std::uint8_t>(target.color, GL_RGBA, GL_UNSIGNED_BYTE, 4),
+          readTexture<std::uint8_t>(target.plane, GL_RGBA, GL_UNSIGNED_BYTE, 4),
+          readTexture<float>(target.depth, GL_DEPTH_COMPONENT, GL_FLOAT, 1)};
+}
+
+// Writes composited colour and depth (GL rows bottom-up) back to the target.
+void writeTracePass(const TraceTarget& target, const std::vector<std::uint8_t>& color, const std::vector<float>& depth) {
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(target.color.id(), 0, 0, 0, target.width, target.height, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+  glTextureSubImage2D(target.depth.id(), 0, 0, 0, target.width, target.height, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  checkGl("implicit tracer refinement upload");
+}
+
+// The refinement options of a frame's settings over a bake.
+HitRefinementOptions refinementOptions(const TraceSettings& settings, const VolumeBake& bake, const CancelToken* cancel) {
+  HitRefinementOptions options;
+  options.refine = settings.refineExact;
+  options.cell = bake.spacing().norm();
+  options.cpuMinStep = settings.minStepCells * 1e-3;  // the exact march's ε, relative to the diagonal
+  options.cancel = cancel;
+  return options;
 }
 
 }  // namespace
@@ -653,47 +676,67 @@ Eigen::Vector2d ImplicitTracer::depthRange(const Camera& camera) const {
   return camera.depthRange(grown);
 }
 
-void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds, const HermiteSamples<3>* samples,
-                            const TracerUploadOptions& options) {
+TracerVolume prepareTracerVolume(const ImplicitField<3>& field, const Box<3>& bounds,
+                                 const TracerUploadOptions& options, const CancelToken* cancel) {
   const auto t0 = Clock::now();
   VolumeBakeOptions bakeOptions;
   bakeOptions.resolution = options.bakeResolution;
   bakeOptions.brickCells = options.brickCells;
-  auto bake = std::make_unique<VolumeBake>(bakeVolume(field, bounds, bakeOptions));
-  const std::vector<float> texels = brickTexels(*bake);
-  const BakedBricks baked = bakedBrickTexels(*bake, kBakedBrickCells);
-  const std::vector<std::uint8_t> normals = bakedNormalTexels(*bake);
-  bakeMs_ = msSince(t0);
+  bakeOptions.cancel = cancel;
+  TracerVolume v;
+  auto bake = std::make_shared<VolumeBake>(bakeVolume(field, bounds, bakeOptions));
+  v.brickTexels = brickTexels(*bake);
+  throwIfCancelled(cancel);
+  BakedBricks baked = bakedBrickTexels(*bake, kBakedBrickCells);
+  v.bakedBrickTexels = std::move(baked.texels);
+  v.bakedBrickCount = baked.count;
+  v.bakedBrickSize = baked.size;
+  throwIfCancelled(cancel);
+  v.normalTexels = bakedNormalTexels(*bake);
+  v.bake = std::move(bake);
+  v.bakeMs = msSince(t0);
+  return v;
+}
 
+void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds, const HermiteSamples<3>* samples,
+                            const TracerUploadOptions& options) {
+  upload(prepareTracerVolume(field, bounds, options), field, samples);
+}
+
+void ImplicitTracer::upload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples) {
+  if (!volume.bake) throw InputError("implicit tracer: upload of an empty volume");
+  bakeMs_ = volume.bakeMs;
   const auto t1 = Clock::now();
-  const int R = bake->resolution;
+  const VolumeBake& bake = *volume.bake;
+  const int R = bake.resolution;
   gpu_->volume = Texture::create3D(GL_R32F, R, R, R);
-  gpu_->volume.upload3D(GL_RED, GL_FLOAT, bake->values.data());
+  gpu_->volume.upload3D(GL_RED, GL_FLOAT, bake.values.data());
   gpu_->volume.setFilter(GL_LINEAR, GL_LINEAR);
   gpu_->volume.setWrap(GL_CLAMP_TO_EDGE);
   gpu_->normals = Texture::create3D(GL_RGBA8, R, R, R);
-  gpu_->normals.upload3D(GL_RGBA, GL_UNSIGNED_BYTE, normals.data());
+  gpu_->normals.upload3D(GL_RGBA, GL_UNSIGNED_BYTE, volume.normalTexels.data());
   gpu_->normals.setFilter(GL_LINEAR, GL_LINEAR);
   gpu_->normals.setWrap(GL_CLAMP_TO_EDGE);
-  const Eigen::Array3i count = bake->bricks.count;
+  const Eigen::Array3i count = bake.bricks.count;
   gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
-  gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, texels.data());
+  gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, volume.brickTexels.data());
   gpu_->bricks.setFilter(GL_NEAREST, GL_NEAREST);
-  gpu_->bakedBricks = Texture::create3D(GL_RGBA32F, baked.count.x(), baked.count.y(), baked.count.z());
-  gpu_->bakedBricks.upload3D(GL_RGBA, GL_FLOAT, baked.texels.data());
+  const Eigen::Array3i& bc = volume.bakedBrickCount;
+  gpu_->bakedBricks = Texture::create3D(GL_RGBA32F, bc.x(), bc.y(), bc.z());
+  gpu_->bakedBricks.upload3D(GL_RGBA, GL_FLOAT, volume.bakedBrickTexels.data());
   gpu_->bakedBricks.setFilter(GL_NEAREST, GL_NEAREST);
-  gpu_->bakedBrickCount = baked.count;
-  gpu_->bakedBrickSize = baked.size;
+  gpu_->bakedBrickCount = bc;
+  gpu_->bakedBrickSize = volume.bakedBrickSize;
 
   field_ = &field;
   radialSum_ = field.asRadialSum();
-  bounds_ = bounds;
+  bounds_ = bake.bounds;
   exactNeedsDouble_.reset();
-  if (radialSum_) gpu_->uploadModel(*radialSum_, bounds.center());
+  if (radialSum_) gpu_->uploadModel(*radialSum_, bounds_.center());
   hasSamples_ = samples != nullptr && samples->size() > 0;
   if (hasSamples_) samples_ = *samples;
   gpu_->sampleSpacing = hasSamples_ ? meanSampleSpacing<3>(samples_.points) : 0.0;
-  bake_ = std::move(bake);
+  bake_ = std::move(volume.bake);
   glFinish();
   checkGl("implicit tracer upload");
   uploadMs_ = msSince(t1);
@@ -868,6 +911,8 @@ ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const Herm
   content.showPoints = settings.showPoints;
   content.showNormals = settings.showNormals;
   content.showBounds = settings.showBounds;
+  content.showGround = settings.showGround;
+  content.groundUp = Vec<3>(settings.groundUp[0], settings.groundUp[1], settings.groundUp[2]);
   content.bounds = frame.bounds;
   scaleMarksToSpacing(frame, content);
   overlay->draw(frame.camera, frame.viewProj, content);
@@ -884,7 +929,8 @@ ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const Herm
 
 // A frame in passes: the GPU trace; the CPU refinement of its hits against the true field (or,
 // unrefined, the GPU's hits as they are) and the composite with the slice plane; the overlays.
-TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& settings) {
+// With `deferred`, a baked refining frame leaves the refinement to refineDeferred.
+TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& settings, DeferredRefinement* deferred) {
   if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
   if (settings.mode == TracerMode::Exact && !radialSum_)
     throw InputError("implicit tracer: exact mode needs an HRBF or RBF-offset model");
@@ -901,26 +947,69 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   result.tracedPixels = gpu_->trace(frame, *bake_, radialSum_, result.exactDouble);
   result.traceMs = msSince(t0);
 
-  const std::vector<float> surfaceT = readSurfaceHits(target, result);
-  const std::vector<int> undecided = undecidedPixels(surfaceT);
+  std::vector<float> surfaceT = readSurfaceHits(target, result);
+  std::vector<int> undecided = undecidedPixels(surfaceT);
   result.cpuTracedPixels = int(undecided.size());
-  if ((settings.refineExact || !undecided.empty()) && settings.showSurface) {
+  const bool refine = (settings.refineExact || !undecided.empty()) && settings.showSurface;
+  if (refine && deferred && settings.mode == TracerMode::Baked) {
+    DeferredRefinement& job = *deferred;
+    job = DeferredRefinement{};
+    job.camera = camera;
+    job.settings = settings;
+    job.bounds = bounds_;
+    job.depthRange = depthRange(camera);
+    job.bake = bake_;
+    job.field = field_;
+    TracePassPixels pass = readTracePass(target);
+    job.color = std::move(pass.color);
+    job.planeColor = std::move(pass.planeColor);
+    job.depth = std::move(pass.depth);
+    job.result = result;
+    job.surfaceT = surfaceT;
+    job.undecided = std::move(undecided);
+    keepVisibleSurface(frame, surfaceT, result);
+  } else if (refine) {
     t0 = Clock::now();
-    HitRefinementOptions options;
-    options.refine = settings.refineExact;
-    options.cell = bake_->spacing().norm();
-    options.cpuMinStep = settings.minStepCells * 1e-3;  // the exact march's ε, relative to the diagonal
-    const HitRefinement hits =
-        refineHits(*field_, bounds_, camera, GpuHits{surfaceT, result.normal, undecided}, options);
+    const HitRefinement hits = refineHits(*field_, bounds_, camera, GpuHits{surfaceT, result.normal, undecided},
+                                          refinementOptions(settings, *bake_, nullptr));
     result.ringHits = hits.ringHits;
     result.droppedHits = hits.droppedHits;
-    result.refinedPixels = compositeRefined(target, frame, hits, result);
+    TracePassPixels pass = readTracePass(target);
+    result.refinedPixels = compositeRefinedPixels(frame, hits, pass.planeColor, pass.color, pass.depth, result);
+    writeTracePass(target, pass.color, pass.depth);
     result.refineMs = msSince(t0);
   } else {
     keepVisibleSurface(frame, surfaceT, result);
   }
 
   t0 = Clock::now();
+  result.image = gpu_->drawOverlays(frame, hasSamples_ ? &samples_ : nullptr);
+  result.overlayMs = msSince(t0);
+  return result;
+}
+
+void refineDeferred(DeferredRefinement& job, const CancelToken* cancel) {
+  if (!job.camera || !job.bake || !job.field) throw InputError("implicit tracer: refinement of an empty job");
+  const auto t0 = Clock::now();
+  const TraceFrame frame(*job.camera, job.settings, job.bounds, *job.bake, job.depthRange);
+  TraceResult& result = job.result;
+  const HitRefinement hits = refineHits(*job.field, job.bounds, *job.camera,
+                                        GpuHits{job.surfaceT, result.normal, job.undecided},
+                                        refinementOptions(job.settings, *job.bake, cancel));
+  result.ringHits = hits.ringHits;
+  result.droppedHits = hits.droppedHits;
+  result.refinedPixels = compositeRefinedPixels(frame, hits, job.planeColor, job.color, job.depth, result);
+  result.refineMs = msSince(t0);
+  job.refined = true;
+}
+
+TraceResult ImplicitTracer::finishDeferred(DeferredRefinement& job) {
+  if (!job.refined || !job.camera) throw InputError("implicit tracer: finishing a refinement that did not run");
+  const TraceFrame frame(*job.camera, job.settings, job.bounds, *job.bake, job.depthRange);
+  const TraceTarget& target = gpu_->targetFor(frame.width, frame.height);
+  writeTracePass(target, job.color, job.depth);
+  TraceResult result = std::move(job.result);
+  const auto t0 = Clock::now();
   result.image = gpu_->drawOverlays(frame, hasSamples_ ? &samples_ : nullptr);
   result.overlayMs = msSince(t0);
   return result;

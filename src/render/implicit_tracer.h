@@ -35,6 +35,7 @@
 #include <optional>
 #include <vector>
 
+#include "core/base/cancel_token.h"
 #include "core/base/implicit_field.h"
 #include "core/points/hermite_samples.h"
 #include "core/rbf/radial_sum.h"
@@ -67,6 +68,8 @@ struct TraceSettings {
   bool showPoints = false;    // samples as 4 px points
   bool showNormals = false;   // normals as lines of 5 % of the bounds diagonal
   bool showBounds = false;    // the bounds box as lines
+  bool showGround = false;    // the ground grid under the samples (ground_grid.h)
+  std::array<double, 3> groundUp{0, 1, 0};  // the grid's plane is across this direction
   SliceSettings slice;
   std::array<double, 3> background{1, 1, 1};  // each in [0, 1]; misses get round(255·c) exactly
   // Baked mode without a slice plane: run the trace pass only on the tiles the tile pass did not
@@ -104,6 +107,49 @@ struct TracerUploadOptions {
   int brickCells = 8;        // cells per brick edge (16³ bricks at R = 128)
 };
 
+// The CPU half of an upload: the bake and every texture's texels, made without GL on any thread
+// (the window bakes on a worker); ImplicitTracer::upload(TracerVolume, …) then only copies them
+// to the GPU.
+struct TracerVolume {
+  std::shared_ptr<const VolumeBake> bake;
+  std::vector<float> brickTexels;          // RGBA32F per bake brick (bake->bricks.count)
+  std::vector<float> bakedBrickTexels;     // RGBA32F per brick of the baked march's own grid
+  Eigen::Array3i bakedBrickCount = Eigen::Array3i::Zero();
+  Vec<3> bakedBrickSize = Vec<3>::Zero();  // world units
+  std::vector<std::uint8_t> normalTexels;  // RGBA8 per sample (baked_normals.h)
+  double bakeMs = 0;                       // wall clock of all of the above
+};
+
+// Bakes `field` over `bounds` (core/trace/volume_bake.h) and makes the textures' texels. Polls
+// `cancel` slab by slab and throws Cancelled when it is set.
+TracerVolume prepareTracerVolume(const ImplicitField<3>& field, const Box<3>& bounds,
+                                 const TracerUploadOptions& options = {}, const CancelToken* cancel = nullptr);
+
+// A settled frame whose exact refinement runs off the GL thread, in three steps:
+// ImplicitTracer::render(camera, settings, &job) returns the baked image at once (unrefined) and
+// fills `job`; refineDeferred(job) refines and composites it on any thread; on the GL thread
+// ImplicitTracer::finishDeferred(job) draws the overlays over it and reads it back.
+struct DeferredRefinement {
+  std::optional<Camera> camera;
+  TraceSettings settings;
+  Box<3> bounds;
+  Eigen::Vector2d depthRange = Eigen::Vector2d::Zero();
+  std::shared_ptr<const VolumeBake> bake;
+  const ImplicitField<3>* field = nullptr;  // the uploaded field: must outlive the job
+  std::vector<float> surfaceT;              // W·H, row 0 = top: the GPU's hits (readSurfaceHits)
+  std::vector<int> undecided;               // pixels the GPU march left undecided
+  // The trace pass's colour, plane colour (RGBA8) and window depth, GL rows bottom-up; refineDeferred
+  // composites the refined surface into color and depth.
+  std::vector<std::uint8_t> color, planeColor;
+  std::vector<float> depth;
+  TraceResult result;  // hit, depth and normal as read back; refined by refineDeferred
+  bool refined = false;
+};
+
+// The CPU step of a deferred refinement (any thread). Throws Cancelled when `cancel` is set
+// (polled between bands of rows); the job is then unusable.
+void refineDeferred(DeferredRefinement& job, const CancelToken* cancel = nullptr);
+
 class ImplicitTracer {
  public:
   // Needs a current GL 4.5 context; compiles the shaders (EnvironmentError on failure).
@@ -118,10 +164,18 @@ class ImplicitTracer {
   // `samples` (may be null) feed the point and normal overlays (copied).
   void upload(const ImplicitField<3>& field, const Box<3>& bounds, const HermiteSamples<3>* samples = nullptr,
               const TracerUploadOptions& options = {});
+  // The GL half of an upload: `volume` (prepareTracerVolume of `field`) to the GPU.
+  void upload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples = nullptr);
 
   // Draws into an own offscreen target of the camera's size and reads it back. Throws
   // InputError for exact mode without a RadialSum model, or before upload().
-  TraceResult render(const Camera& camera, const TraceSettings& settings);
+  // With `deferred` (baked mode with refineExact), the exact refinement is left to
+  // refineDeferred: the result is the baked image, and `deferred` gets what refinement needs.
+  TraceResult render(const Camera& camera, const TraceSettings& settings, DeferredRefinement* deferred = nullptr);
+  // The refined image of a job that refineDeferred finished: its colour and depth into the
+  // target, the overlays over them, read back. The tracer must hold the upload the job was made
+  // from (the samples the overlays draw).
+  TraceResult finishDeferred(DeferredRefinement& job);
 
   // True when exact mode is available (the uploaded field is a RadialSum<3>).
   bool hasExactModel() const;
@@ -145,7 +199,7 @@ class ImplicitTracer {
   const RadialSum<3>* radialSum_ = nullptr;
   mutable std::optional<bool> exactNeedsDouble_;  // cache of exactNeedsDouble(), reset by upload
   Box<3> bounds_;
-  std::unique_ptr<VolumeBake> bake_;
+  std::shared_ptr<const VolumeBake> bake_;
   HermiteSamples<3> samples_;
   bool hasSamples_ = false;
   double bakeMs_ = 0, uploadMs_ = 0;

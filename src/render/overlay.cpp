@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "render/gl/glm_convert.h"
+#include "render/ground_grid.h"
 #include "render/gl/shader_library.h"
 
 namespace hermite::render {
@@ -49,6 +50,14 @@ void OverlayRenderer::draw(const Camera& camera, const glm::mat4& viewProj, cons
           push(vertices, corner(c), content.boundsColor);
           push(vertices, corner(c | bit), content.boundsColor);
         }
+  }
+  if (content.showGround) {
+    const GroundGrid grid = groundGrid(content.samples ? content.samples->points : Points<3>(3, 0), content.bounds,
+                                       content.groundUp);
+    for (const auto& [a, b] : grid.segments) {
+      push(vertices, a, content.groundColor);
+      push(vertices, b, content.groundColor);
+    }
   }
   const int lineVertices = int(vertices.size());
   if (content.samples && content.showPoints)

@@ -16,12 +16,15 @@ struct OverlayContent {
   bool showPoints = true;
   bool showNormals = true;
   bool showBounds = false;
+  bool showGround = false;       // the ground grid (ground_grid.h) under the samples (the bounds without)
+  Vec<3> groundUp = Vec<3>(0, 1, 0);  // the grid's plane is across this direction
   Box<3> bounds;                 // the view bounds: box lines, and the scale of normals and bias
   float pointSize = 4.0f;        // pixels
   double normalLength = 0.05;    // fraction of the bounds diagonal
   glm::vec4 pointColor{0.10f, 0.10f, 0.10f, 1.0f};
   glm::vec4 normalColor{0.05f, 0.45f, 0.15f, 1.0f};
   glm::vec4 boundsColor{0.35f, 0.35f, 0.35f, 1.0f};
+  glm::vec4 groundColor{0.62f, 0.62f, 0.62f, 1.0f};
 };
 
 class OverlayRenderer {

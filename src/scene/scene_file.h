@@ -37,6 +37,10 @@ inline constexpr EnumName<Projection> kProjectionNames[] = {{"perspective", Proj
 inline constexpr EnumName<TraceMode> kTraceModeNames[] = {
     {"auto", TraceMode::Auto}, {"baked", TraceMode::Baked}, {"exact", TraceMode::Exact}};
 
+// The 3D view's ground plane (render/ground_grid.h): none, or a grid under the data.
+enum class Ground { Off, Grid };
+inline constexpr EnumName<Ground> kGroundNames[] = {{"off", Ground::Off}, {"grid", Ground::Grid}};
+
 std::string_view sceneModeName(SceneMode m);
 std::string_view fitMethodName(FitMethod m);
 std::string_view projectionName(Projection p);
@@ -130,6 +134,7 @@ struct ViewSpec {
   bool showBounds = false;
   bool showAxes = false;                       // the axes gizmo in the lower-left corner (3D, GUI)
   bool presenter = false;                      // GUI: start in presenter mode (panels hidden, a large caption)
+  Ground ground = Ground::Off;                 // a grid under the data, across the camera's up (3D implicit views)
   TraceMode trace = TraceMode::Auto;
   SliceSpec slice;
   // Whether the normals of `samples` samples are drawn (show_normals, with "auto" decided here).

@@ -116,6 +116,7 @@ constexpr SceneKey<ViewSpec> kViewKeys[] = {
     valueKey<ViewSpec, &ViewSpec::showBounds, &Reader::boolean>("show_bounds"),
     valueKey<ViewSpec, &ViewSpec::showAxes, &Reader::boolean>("show_axes"),
     valueKey<ViewSpec, &ViewSpec::presenter, &Reader::boolean>("presenter"),
+    enumKey<ViewSpec, &ViewSpec::ground, kGroundNames>("ground"),
     enumKey<ViewSpec, &ViewSpec::trace, kTraceModeNames>("trace"),
     {"slice",
      [](const Reader& r, const json& x, const std::string& p, ViewSpec& v, int dim) { v.slice = readObject<SliceSpec>(r, x, p, kSliceKeys, dim); },

@@ -61,7 +61,9 @@ class GuiApp {
   const GuiStatus& status() const { return ctx_.status; }
   // Screen position (view pixels) of a patch handle of the current document; nullopt if behind.
   std::optional<Vec<2>> patchHandleScreenPosition(const PatchHandle& h) const { return patch_.handlePosition(h); }
-  // The view on screen shows the fit of the document's current version.
+  // Work for the view (bakes, refinement) runs in the background: the window keeps drawing frames.
+  bool viewPending() const { return ctx_.image.pending(); }
+  // The view on screen shows the fit of the document's current version, at its final quality.
   bool viewIsCurrent() const {
     return shownFit() && shownVersion() == ctx_.document.version() && ctx_.image.shows(shownFit());
   }
@@ -82,6 +84,7 @@ class GuiApp {
   // Screen rectangles (min x, min y, max x, max y) of the named widgets drawn last frame
   // ("fit.radius", "fit.kernel", "diagnostics.cancel", ...): how scripted UI tests find them.
   std::optional<std::array<float, 4>> widgetRect(const std::string& name) const;
+  const std::map<std::string, std::array<float, 4>>& widgetRects() const { return ctx_.widgets; }
   Vec<2> viewOrigin() const { return ctx_.view.origin(); }
   Vec<2> viewSize() const { return Vec<2>(ctx_.view.w, ctx_.view.h); }  // the whole view, both halves when comparing
   // The transform gizmo (tests switch it on and find its handles).

@@ -1,18 +1,21 @@
-// `hermite-lab [SCENE]`: the GUI in a GLFW window. GLFW callbacks fill a FrameInput per frame
-// (the same struct the UI tests script), GuiApp draws it. Without a display the program says so
-// on stderr and prints the scene's fit report instead (what earlier versions did), so a script
-// or an ssh session still gets something useful.
+// `hermite-lab [SCENE]`: the GUI in a GLFW window. GLFW callbacks record events in an
+// InputQueue that frames take in order as FrameInputs (the same struct the UI tests script);
+// GuiApp draws them. Without a display the program says so on stderr and prints the scene's fit
+// report instead (what earlier versions did), so a script or an ssh session still gets
+// something useful.
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <memory>
 
 #include "app/commands/commands.h"
 #include "app/gui/camera_framing.h"
+#include "app/gui/frame_log.h"
 #include "app/gui/gui_app.h"
+#include "app/gui/input_queue.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
 #include "render/gl/context.h"
@@ -21,84 +24,89 @@ namespace hermite::app {
 
 namespace {
 
-// Input gathered by the callbacks between two frames.
+// Input gathered by the callbacks: every event with its own position and time, taken by the
+// frames in order (input_queue.h).
 struct InputCollector {
-  FrameInput input;
-  float wheel = 0;
-  std::vector<unsigned> characters;
-  std::vector<std::string> dropped;
+  InputQueue queue;
   double scaleX = 1, scaleY = 1;  // framebuffer pixels per window unit (high-DPI screens)
-  // Presses since the last frame: a key or button pressed and released between two frames
-  // (xdotool, fast typing) must still be seen down for one frame.
-  std::array<bool, 512> keyLatch{};
-  std::array<bool, 3> buttonLatch{};
-  bool ctrlLatch = false, shiftLatch = false;
 
-  // The input of the next frame, and the latches reset.
-  FrameInput take() {
-    FrameInput in = input;
-    for (int k = 0; k < 512; ++k) in.keysDown[k] = in.keysDown[k] || keyLatch[k];
-    for (int b = 0; b < 3; ++b) in.mouseDown[b] = in.mouseDown[b] || buttonLatch[b];
-    in.ctrl = in.ctrl || ctrlLatch;
-    in.shift = in.shift || shiftLatch;
-    in.wheel = wheel;
-    in.characters = std::move(characters);
-    in.droppedFiles = std::move(dropped);
-    keyLatch.fill(false);
-    buttonLatch.fill(false);
-    ctrlLatch = shiftLatch = false;
-    wheel = 0;
-    characters.clear();
-    dropped.clear();
-    return in;
+  void push(InputEvent e) {
+    e.time = glfwGetTime();
+    queue.push(std::move(e));
   }
 };
 
 InputCollector& collector(GLFWwindow* w) { return *static_cast<InputCollector*>(glfwGetWindowUserPointer(w)); }
 
+InputEvent modifiedEvent(InputEvent::Kind kind, int code, bool down, int mods) {
+  InputEvent e;
+  e.kind = kind;
+  e.code = code;
+  e.down = down;
+  e.ctrl = mods & GLFW_MOD_CONTROL;
+  e.shift = mods & GLFW_MOD_SHIFT;
+  e.alt = mods & GLFW_MOD_ALT;
+  return e;
+}
+
 void installCallbacks(GLFWwindow* window, InputCollector* state) {
   glfwSetWindowUserPointer(window, state);
   glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) {
     InputCollector& c = collector(w);
-    c.input.mouseX = x * c.scaleX;
-    c.input.mouseY = y * c.scaleY;
+    InputEvent e;
+    e.x = x * c.scaleX;
+    e.y = y * c.scaleY;
+    c.push(std::move(e));
   });
   glfwSetCursorEnterCallback(window, [](GLFWwindow* w, int entered) {
-    if (!entered) collector(w).input.mouseX = collector(w).input.mouseY = -1;
+    if (entered) return;
+    InputEvent e;
+    e.kind = InputEvent::Kind::Leave;
+    collector(w).push(std::move(e));
   });
   glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
-    InputCollector& c = collector(w);
-    if (button >= 0 && button < 3) {
-      c.input.mouseDown[button] = action == GLFW_PRESS;
-      if (action == GLFW_PRESS) c.buttonLatch[button] = true;
-    }
-    c.input.ctrl = mods & GLFW_MOD_CONTROL;
-    c.input.shift = mods & GLFW_MOD_SHIFT;
-    c.input.alt = mods & GLFW_MOD_ALT;
+    collector(w).push(modifiedEvent(InputEvent::Kind::Button, button, action == GLFW_PRESS, mods));
   });
-  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) { collector(w).wheel += float(dy); });
+  glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+    InputEvent e;
+    e.kind = InputEvent::Kind::Wheel;
+    e.wheel = float(dy);
+    collector(w).push(std::move(e));
+  });
   glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int mods) {
-    InputCollector& c = collector(w);
-    if (key >= 0 && key < 512 && action != GLFW_REPEAT) {
-      c.input.keysDown[key] = action == GLFW_PRESS;
-      if (action == GLFW_PRESS) c.keyLatch[key] = true;
-    }
-    c.input.ctrl = mods & GLFW_MOD_CONTROL;
-    c.input.shift = mods & GLFW_MOD_SHIFT;
-    c.input.alt = mods & GLFW_MOD_ALT;
-    if (action == GLFW_PRESS) {
-      c.ctrlLatch = c.ctrlLatch || c.input.ctrl;
-      c.shiftLatch = c.shiftLatch || c.input.shift;
-    }
-    // Modifier keys report their own state in the next event's mods: track them directly.
-    if (key == GLFW_KEY_LEFT_CONTROL || key == GLFW_KEY_RIGHT_CONTROL) c.input.ctrl = action != GLFW_RELEASE;
-    if (key == GLFW_KEY_LEFT_SHIFT || key == GLFW_KEY_RIGHT_SHIFT) c.input.shift = action != GLFW_RELEASE;
-    if (key == GLFW_KEY_LEFT_ALT || key == GLFW_KEY_RIGHT_ALT) c.input.alt = action != GLFW_RELEASE;
+    if (action == GLFW_REPEAT) return;
+    collector(w).push(modifiedEvent(InputEvent::Kind::Key, key, action == GLFW_PRESS, mods));
   });
-  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned codepoint) { collector(w).characters.push_back(codepoint); });
+  glfwSetCharCallback(window, [](GLFWwindow* w, unsigned codepoint) {
+    InputEvent e;
+    e.kind = InputEvent::Kind::Char;
+    e.code = int(codepoint);
+    collector(w).push(std::move(e));
+  });
   glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
-    for (int i = 0; i < count; ++i) collector(w).dropped.emplace_back(paths[i]);
+    for (int i = 0; i < count; ++i) {
+      InputEvent e;
+      e.kind = InputEvent::Kind::Drop;
+      e.path = paths[i];
+      collector(w).push(std::move(e));
+    }
   });
+}
+
+// The frame log's record of a frame (frame_log.h): what went down since the previous one.
+FrameLog::Frame logFrame(GuiApp& app, const FrameInput& in, const FrameInput& previous, double start,
+                         double oldestEvent) {
+  FrameLog::Frame f;
+  f.time = start;
+  f.ms = 1000 * (glfwGetTime() - start);
+  f.inputWaitMs = oldestEvent >= 0 ? 1000 * (start - oldestEvent) : 0;
+  for (int k = 0; k < int(in.keysDown.size()); ++k)
+    if (in.keysDown[std::size_t(k)] && !previous.keysDown[std::size_t(k)]) f.keysPressed.push_back(k);
+  for (int b = 0; b < 3; ++b)
+    if (in.mouseDown[std::size_t(b)] && !previous.mouseDown[std::size_t(b)]) f.buttonsPressed.push_back(b);
+  f.fits = app.fitSubmissions();
+  f.version = app.document().version();
+  return f;
 }
 
 }  // namespace
@@ -131,11 +139,16 @@ int runDefault(const SceneArgs& args, double uiScale) {
   glfwGetWindowContentScale(window, &contentScaleX, &contentScaleY);
   options.uiScale = uiScale > 0 ? float(uiScale) : contentScaleX;
   GuiApp app(Document(scene, documentPath), options);
+  std::unique_ptr<FrameLog> log;
+  if (const char* logPath = std::getenv("HERMITE_GUI_LOG"); logPath && *logPath) log = std::make_unique<FrameLog>(logPath);
+  FrameInput previous;
   double last = glfwGetTime();
   std::string title = documentTitle(app.document());
   while (!glfwWindowShouldClose(window) && !app.quitRequested()) {
-    // Wait for events while nothing is moving; poll while a fit, a sweep or a redraw is pending.
-    if (app.worker().busy() || app.explorer().running()) glfwWaitEventsTimeout(1.0 / 60.0);
+    // Wait for events while nothing is moving; poll while a fit, a sweep or a redraw is pending,
+    // and do not wait at all while events recorded earlier still wait for their frames.
+    if (input.queue.pending() > 0) glfwPollEvents();
+    else if (app.worker().busy() || app.viewPending() || app.explorer().running()) glfwWaitEventsTimeout(1.0 / 60.0);
     else glfwWaitEventsTimeout(0.1);
     int ww = 0, wh = 0;
     glfwGetWindowSize(window, &ww, &wh);
@@ -143,14 +156,20 @@ int runDefault(const SceneArgs& args, double uiScale) {
     if (fb.width <= 0 || fb.height <= 0) continue;  // minimised
     input.scaleX = ww > 0 ? double(fb.width) / ww : 1.0;
     input.scaleY = wh > 0 ? double(fb.height) / wh : 1.0;
-    FrameInput in = input.take();
-    in.width = fb.width;
-    in.height = fb.height;
+    FrameInput in = input.queue.takeFrame(fb.width, fb.height);
     const double now = glfwGetTime();
     in.deltaSeconds = now - last;
     last = now;
     app.frame(in);
     context->present();
+    if (log) {
+      FrameLog::Frame f = logFrame(app, in, previous, now, input.queue.oldestTakenTime());
+      f.fitRunning = app.worker().busy();
+      f.viewPending = app.viewPending();
+      log->frame(f);
+      log->widgets(app.widgetRects());
+    }
+    previous = std::move(in);
     if (std::string shown = documentTitle(app.document()); shown != title) {
       title = std::move(shown);
       glfwSetWindowTitle(window, title.c_str());

@@ -5,7 +5,7 @@
 // of a key it already saw change: a click that arrived during a slow frame is replayed over the
 // next frames at the position where it happened, and a press and release within one frame are
 // still seen as a press, then a release. GLFW-free (key codes are GLFW's), so tests script it.
-// The UI tests drive GuiApp through it; the GLFW window does not yet (docs/design.md).
+// The GLFW window (gui_window.cpp) and the UI tests drive GuiApp through it.
 
 #include <cstddef>
 #include <deque>
@@ -37,10 +37,13 @@ class InputQueue {
   FrameInput takeFrame(int width, int height);
   // The state the taken events left (mouse, buttons, keys, modifiers).
   const FrameInput& state() const { return state_; }
+  // The time of the oldest event the last takeFrame took; −1 when it took none.
+  double oldestTakenTime() const { return oldestTaken_; }
 
  private:
   std::deque<InputEvent> events_;
   FrameInput state_;
+  double oldestTaken_ = -1;
 };
 
 }  // namespace hermite::app

@@ -98,17 +98,50 @@ void SceneViewRenderer::renderField2d(const std::shared_ptr<const FitOutcome>& f
   field_ = fit;
 }
 
+namespace {
+
+// The tracer's settings for a scene's view of a 3D fit at a quality.
+render::TraceSettings traceSettings(const ViewSpec& v, const SceneFit<3>& f, ViewQuality quality, bool exactModel) {
+  render::TraceSettings s;
+  s.mode = v.trace == TraceMode::Exact && exactModel ? render::TracerMode::Exact : render::TracerMode::Baked;
+  s.refineExact = quality == ViewQuality::Settled;
+  s.showPoints = v.showPoints;
+  s.showNormals = v.normalsShown(f.data.size());
+  s.showBounds = v.showBounds;
+  s.showGround = v.ground == Ground::Grid;
+  s.groundUp = v.camera.up;
+  s.slice.enabled = v.slice.enabled;
+  s.slice.normal = v.slice.normal;
+  s.slice.offset = v.slice.offset;
+  s.background = v.background;
+  return s;
+}
+
+std::vector<double> boxKey(const Box<3>& b) {
+  return {b.lo.x(), b.lo.y(), b.lo.z(), b.hi.x(), b.hi.y(), b.hi.z()};
+}
+
+void takeTrace(render::TraceResult& r, SceneViewResult& out) {
+  out.image = std::move(r.image);
+  out.depth = std::move(r.depth);
+  out.refinedPixels = r.refinedPixels;
+  out.colourRange = r.sliceRange;  // the slice plane's heat map (0 without one)
+  out.isoSpacing = r.sliceIsoSpacing;
+}
+
+}  // namespace
+
 // A 3D field sphere-traced from its bake (re-baked when the field, the quality or the bounds
 // changed), refined exactly when settled.
 void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
                                       const Scene& viewScene, ViewQuality quality, SceneViewResult& out) {
+  if (background_) return renderField3dInBackground(fit, f, viewScene, quality, out);
   const ViewSpec& v = viewScene.view;
   const int width = out.width, height = out.height;
   if (!tracer_) tracer_ = std::make_unique<render::ImplicitTracer>();
   const Box<3> bounds = viewBounds<3>(v, f.data.points);
   const int resolution = quality == ViewQuality::Interactive ? 64 : 128;
-  const std::vector<double> boundsKey{bounds.lo.x(), bounds.lo.y(), bounds.lo.z(),
-                                      bounds.hi.x(), bounds.hi.y(), bounds.hi.z()};
+  const std::vector<double> boundsKey = boxKey(bounds);
   if (field_ != fit || bakeResolution_ != resolution || bakedBounds_ != boundsKey) {
     render::TracerUploadOptions uo;
     uo.bakeResolution = resolution;
@@ -117,24 +150,112 @@ void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& f
     bakeResolution_ = resolution;
     bakedBounds_ = boundsKey;
   }
-  render::TraceSettings s;
-  const bool exact = v.trace == TraceMode::Exact && tracer_->hasExactModel();
-  s.mode = exact ? render::TracerMode::Exact : render::TracerMode::Baked;
-  s.refineExact = quality == ViewQuality::Settled;
-  s.showPoints = v.showPoints;
-  s.showNormals = v.normalsShown(f.data.size());
-  s.showBounds = v.showBounds;
-  s.slice.enabled = v.slice.enabled;
-  s.slice.normal = v.slice.normal;
-  s.slice.offset = v.slice.offset;
-  s.background = v.background;
+  const render::TraceSettings s = traceSettings(v, f, quality, tracer_->hasExactModel());
   render::TraceResult r = tracer_->render(sceneCamera(viewScene, width, height), s);
-  out.image = std::move(r.image);
-  out.depth = std::move(r.depth);
-  out.refinedPixels = r.refinedPixels;
-  out.traceMode = exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
-  out.colourRange = r.sliceRange;  // the slice plane's heat map (0 without one)
-  out.isoSpacing = r.sliceIsoSpacing;
+  takeTrace(r, out);
+  out.traceMode = s.mode == render::TracerMode::Exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
+}
+
+// The same without waiting. A fit without a bake yet keeps the bake of the fit before it on
+// screen (nothingYet when there is none) while a 64³ bake runs; a settled view traces the bake it
+// has (64³ until the 128³ one arrives) and, on the 128³ bake, leaves the exact refinement to the
+// worker; the refined image replaces the baked one when it arrives, unless the view changed
+// meanwhile (a gesture cancels its job).
+void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
+                                                  const Scene& viewScene, ViewQuality quality, SceneViewResult& out) {
+  const ViewSpec& v = viewScene.view;
+  if (!tracer_) tracer_ = std::make_unique<render::ImplicitTracer>();
+  const Box<3> bounds = viewBounds<3>(v, f.data.points);
+  const std::vector<double> boundsKey = boxKey(bounds);
+  const int wanted = quality == ViewQuality::Interactive ? 64 : 128;
+  const bool baked = field_ == fit && bakedBounds_ == boundsKey;
+  if (!baked) requestBake(fit, bounds, boundsKey, 64);  // the coarse bake first, the fine one when settled
+  else if (bakeResolution_ < wanted) requestBake(fit, bounds, boundsKey, wanted);
+  if (!field_) {
+    out.nothingYet = true;
+    return;
+  }
+  const RefinedView view{fit.get(), v, out.width, out.height};
+  if (baked && refinedView_ == view) {  // the refined image of this very view arrived
+    out.image = refined_.image;
+    out.depth = refined_.depth;
+    out.refinedPixels = refined_.refinedPixels;
+    out.colourRange = refined_.colourRange;
+    out.isoSpacing = refined_.isoSpacing;
+    out.traceMode = refined_.traceMode;
+    return;
+  }
+  if (refining_ && !(*refining_ == view)) {  // the view moved on: its refinement is of no use
+    jobs_.cancel();
+    refining_.reset();
+  }
+  render::TraceSettings s = traceSettings(v, f, quality, tracer_->hasExactModel());
+  const bool refineNow = baked && quality == ViewQuality::Settled && bakeResolution_ >= 128;
+  s.refineExact = refineNow;
+  auto job = std::make_shared<render::DeferredRefinement>();
+  render::TraceResult r = tracer_->render(sceneCamera(viewScene, out.width, out.height), s, job.get());
+  takeTrace(r, out);
+  out.traceMode = s.mode == render::TracerMode::Exact ? "exact" : "baked";
+  // Other frames leave pixels the GPU left undecided as it drew them: a later frame replaces them.
+  if (refineNow && job->camera && s.mode == render::TracerMode::Baked) {
+    refining_ = view;
+    requestRefinement(std::move(job), fit);
+  }
+}
+
+void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit, const Box<3>& bounds,
+                                    const std::vector<double>& boundsKey, int resolution) {
+  const BakeRequest request{fit.get(), boundsKey, resolution};
+  if (baking_ == request) return;  // already on its way
+  // A coarse bake after a coarse bake (a drag's refits) lets the running one finish and show.
+  const bool letRunningFinish = baking_ && baking_->resolution == 64 && resolution == 64;
+  baking_ = request;
+  refining_.reset();
+  jobs_.submit(
+      [this, fit, bounds, boundsKey, resolution](const CancelToken& cancel) -> ViewJobRunner::Apply {
+        const SceneFit<3>& f = *fit->as<SceneFit<3>>();
+        render::TracerUploadOptions uo;
+        uo.bakeResolution = resolution;
+        auto volume =
+            std::make_shared<render::TracerVolume>(render::prepareTracerVolume(f.field(), bounds, uo, &cancel));
+        return [this, fit, volume, boundsKey, resolution] {
+          const SceneFit<3>& g = *fit->as<SceneFit<3>>();
+          tracer_->upload(std::move(*volume), g.field(), &g.data);
+          field_ = fit;
+          bakeResolution_ = resolution;
+          bakedBounds_ = boundsKey;
+          if (baking_ && baking_->fit == fit.get() && baking_->resolution == resolution) baking_.reset();
+          refinedView_.reset();
+        };
+      },
+      letRunningFinish);
+}
+
+void SceneViewRenderer::requestRefinement(std::shared_ptr<render::DeferredRefinement> job,
+                                          const std::shared_ptr<const FitOutcome>& fit) {
+  const RefinedView view = *refining_;
+  jobs_.submit([this, job, fit, view](const CancelToken& cancel) -> ViewJobRunner::Apply {
+    render::refineDeferred(*job, &cancel);
+    return [this, job, fit, view] {
+      if (field_ != fit) return;  // another upload came first: the job's samples are gone
+      render::TraceResult r = tracer_->finishDeferred(*job);
+      refined_ = SceneViewResult{};
+      refined_.width = view.width;
+      refined_.height = view.height;
+      takeTrace(r, refined_);
+      refined_.traceMode = job->settings.refineExact ? "baked + refined" : "baked";
+      refinedView_ = view;
+      refining_.reset();
+    };
+  });
+}
+
+bool SceneViewRenderer::adoptFinished() {
+  if (!background_) return false;
+  ViewJobRunner::Apply apply = jobs_.takeFinished();
+  if (!apply) return false;
+  apply();
+  return true;
 }
 
 void patchLines(const PatchDisplay& patch, const PatchSpec& spec, std::vector<Vec<3>>& ends, std::vector<Vec<3>>& colors) {

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "app/gui/fit_worker.h"
+#include "app/gui/view_job_runner.h"
 #include "core/trace/image.h"
 #include "render/field2d_view.h"
 #include "render/gl/context.h"
@@ -38,6 +39,9 @@ struct SceneViewResult {
   // Set instead of `image` when the render was asked to stay on the GPU (2D): the colour texture
   // of the renderer's own target, GL rows bottom-up, valid until its next render.
   const render::Texture* gpuImage = nullptr;
+  // Background renders (SceneViewRenderer::setBackground): nothing to show yet for this fit (its
+  // bake runs); the image on screen stays until one arrives.
+  bool nothingYet = false;
 };
 
 class SceneViewRenderer {
@@ -57,6 +61,17 @@ class SceneViewRenderer {
   // The pixels of the last keepOnGpu render (row 0 = top). Throws InputError when there is none.
   ImageRgba8 readGpuImage() const;
 
+  // The window's 3D path: with `on`, bakes and exact refinement (with the CPU tracing of pixels
+  // the GPU left undecided) run on a worker thread, and render() returns at once with the best
+  // image it has — the coarse bake first, the baked settled image, then the refined one when it
+  // arrives (adoptFinished). Off (the default): render() does all of it before returning.
+  void setBackground(bool on) { background_ = on; }
+  // Applies finished background work on the GL thread (uploads a bake, draws a refined image);
+  // true when something arrived and the view is worth drawing again. Throws what the work threw.
+  bool adoptFinished();
+  // Background work for the last render still runs or waits to be adopted.
+  bool pending() const { return background_ && jobs_.busy(); }
+
   // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
   double colourRange = 0;
 
@@ -73,8 +88,33 @@ class SceneViewRenderer {
   // The rasterised modes' images (the mesh view).
   ImageRgba8 renderPatch(const PatchDisplay& patch, const Scene& viewScene, int width, int height);
   ImageRgba8 renderHoleFill(const HoleFillStages& stages, const Scene& viewScene, int width, int height);
+  void renderField3dInBackground(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
+                                 const Scene& viewScene, ViewQuality quality, SceneViewResult& out);
+  void requestBake(const std::shared_ptr<const FitOutcome>& fit, const Box<3>& bounds,
+                   const std::vector<double>& boundsKey, int resolution);
+  void requestRefinement(std::shared_ptr<render::DeferredRefinement> job, const std::shared_ptr<const FitOutcome>& fit);
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
+
+  // Background renders: what the worker does now, and the refined image of the last settled view.
+  struct BakeRequest {
+    const FitOutcome* fit = nullptr;
+    std::vector<double> bounds;
+    int resolution = 0;
+    bool operator==(const BakeRequest&) const = default;
+  };
+  struct RefinedView {
+    const FitOutcome* fit = nullptr;
+    ViewSpec view;
+    int width = 0, height = 0;
+    bool operator==(const RefinedView&) const = default;
+  };
+  bool background_ = false;
+  ViewJobRunner jobs_;
+  std::optional<BakeRequest> baking_;        // the bake submitted last (until it is uploaded)
+  std::optional<RefinedView> refining_;      // the view whose refinement was submitted last
+  std::optional<RefinedView> refinedView_;   // the view `refined_` shows
+  SceneViewResult refined_;
 };
 
 // A hidden offscreen context of the given size on a headless backend ("osmesa", "egl"),

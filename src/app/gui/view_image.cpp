@@ -45,15 +45,25 @@ void ViewImage::redrawIfStale(GuiContext& ctx) {
   const int w = split ? std::max(1, viewW / 2) : viewW;
   const Drawn now{shown.get(), split ? shownCompare.get() : nullptr, ctx.scene().view, viewW, viewH,
                   ctx.colourRange, quality, split};
-  if (drawn_ && *drawn_ == now) return;
+  renderer_.setBackground(!ctx.options.synchronousFits);
+  bool arrived = false;
+  try {
+    arrived = renderer_.adoptFinished();
+  } catch (const std::exception& e) {
+    ctx.setStatus(std::string("drawing failed: ") + e.what(), true);
+  }
+  if (!arrived && drawn_ && *drawn_ == now) return;
   renderer_.colourRange = compareRenderer_.colourRange = ctx.colourRange;
   // A drag draws the 3D view at half resolution (the texture is stretched): ~4× fewer rays.
   const bool half = quality == ViewQuality::Interactive && ctx.dimension() == 3;
   const int rw = half ? std::max(1, w / 2) : w, rh = half ? std::max(1, viewH / 2) : viewH;
   try {
     // 2D views stay on the GPU (no read-back and re-upload per frame); 3D ones are read back.
-    view_ = renderer_.render(shown, ctx.scene(), rw, rh, quality, true);
-    if (!view_.gpuImage) uploadImage(viewTexture_, view_.image);
+    SceneViewResult r = renderer_.render(shown, ctx.scene(), rw, rh, quality, true);
+    if (!r.nothingYet) {  // else the image on screen stays until the fit's bake arrives
+      view_ = std::move(r);
+      if (!view_.gpuImage) uploadImage(viewTexture_, view_.image);
+    }
     if (split) {
       compareView_ = compareRenderer_.render(shownCompare, ctx.scene(), rw, rh, quality, true);
       if (!compareView_.gpuImage) uploadImage(compareTexture_, compareView_.image);

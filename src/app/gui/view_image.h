@@ -1,8 +1,10 @@
 #pragma once
 // The view's image: the shown fit drawn by a SceneViewRenderer (and the compare fit in the right
 // half), redrawn only when the fit, the view, the size or the quality changed — interactive
-// (half-resolution 3D, coarse 2D grid) during a gesture, settled a few frames after — and put on
-// screen as ImGui background images with the compare labels and the legends (view_legends.h).
+// (half-resolution 3D, coarse 2D grid) during a gesture, settled a few frames after — or when
+// background work for it arrived, and put on screen as ImGui background images with the compare
+// labels and the legends (view_legends.h). Unless fits are synchronous (tests, `render --ui`), the
+// 3D view's bakes and exact refinement run on the renderer's worker and arrive over later frames.
 
 #include <optional>
 
@@ -23,8 +25,10 @@ class ViewImage {
   const SceneViewResult& result() const { return view_; }
   // Its pixels (row 0 = top), read back when it stayed on the GPU.
   ImageRgba8 pixels() const;
-  // The image on screen was drawn from `fit`.
-  bool shows(const FitOutcome* fit) const { return drawn_ && drawn_->fit == fit; }
+  // The image on screen was drawn from `fit`, at its final quality (no background work left).
+  bool shows(const FitOutcome* fit) const { return drawn_ && drawn_->fit == fit && !pending(); }
+  // Bakes or refinement for the view run on the renderer's worker (scene_view.h).
+  bool pending() const { return renderer_.pending(); }
 
  private:
   // What the images on screen were drawn from.

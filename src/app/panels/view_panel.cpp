@@ -102,6 +102,13 @@ bool ViewPanel::draw3dOptions(ViewSpec& v) {
   ImGui::SameLine();
   changed |= ImGui::Checkbox("axes", &v.showAxes);
   ctx_.recordWidget("view.axes");
+  ImGui::SameLine();
+  bool ground = v.ground == Ground::Grid;
+  if (ImGui::Checkbox("ground", &ground)) {
+    v.ground = ground ? Ground::Grid : Ground::Off;
+    changed = true;
+  }
+  ctx_.recordWidget("view.ground");
   return changed;
 }
 

@@ -76,7 +76,7 @@ void CameraTool::fitToView() {
   const FitOutcome* shown = ctx_.fits.shown().get();
   if (!shown) return;
   const ViewSpec& v = ctx_.scene().view;
-  const double aspect = double(ctx_.view.w) / ctx_.view.h;
+  const double aspect = double(ctx_.view.primaryWidth()) / ctx_.view.h;  // the left half when comparing
   if (const auto* f2 = shown->as<SceneFit<2>>()) {
     const Box<2> b = samplesBox<2>(v, f2->data.points);
     const Vec<2> c = b.center();

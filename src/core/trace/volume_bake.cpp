@@ -52,7 +52,8 @@ void fillBrickGrid(const ImplicitField<3>& field, BrickGrid& grid) {
 // along x, 8 x-samples per vector, with what depends only on the row and the centre (dy² + dz²,
 // βy dy + βz dz) hoisted out of the x loop — the structure evaluateBatch cannot see. Per pair:
 // f += x (α x² − 3 β·d). Threaded over rows. False (nothing written) for other fields.
-bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out) {
+bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out,
+                        const CancelToken* cancel) {
   const RadialSum<3>* rs = field.asRadialSum();
   if (rs == nullptr || rs->kernel().type != KernelType::Cubic) return false;
   const int n = int(rs->centres().cols());
@@ -79,6 +80,7 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
   const std::size_t plane = std::size_t(R) * R;
 #pragma omp parallel for schedule(dynamic, 16)
   for (int row = 0; row < R * R; ++row) {
+    if (cancel && cancel->cancelled()) continue;  // the caller throws after the loop
     const int j = row % R, k = row / R;
     const double y = bounds.lo.y() + h.y() * j, z = bounds.lo.z() + h.z() * k;
     float* dst = out + plane * k + std::size_t(R) * j;
@@ -130,7 +132,9 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
 }
 
 #else
-bool bakeCubicRadialSum(const ImplicitField<3>&, const Box<3>&, int, const Vec<3>&, float*) { return false; }
+bool bakeCubicRadialSum(const ImplicitField<3>&, const Box<3>&, int, const Vec<3>&, float*, const CancelToken*) {
+  return false;
+}
 #endif
 }  // namespace
 
@@ -202,13 +206,14 @@ VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const
   const Vec<3> h = bake.spacing();
 
   auto t0 = std::chrono::steady_clock::now();
-  if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data())) {
+  if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data(), options.cancel)) {
   // Slabs of whole z-planes, ~64k points each: large enough for evaluateBatch's threads,
   // small enough to keep X (3 × points doubles) in cache-friendly sizes.
   const int planesPerSlab = std::max<int>(1, int(65536 / plane));
   Points<3> X;
   Eigen::VectorXd f;
   for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
+    throwIfCancelled(options.cancel);
     const int k1 = std::min(R, k0 + planesPerSlab);
     const Eigen::Index m = Eigen::Index(plane) * (k1 - k0);
     X.resize(3, m);
@@ -227,6 +232,7 @@ VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const
     for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
   }
   }
+  throwIfCancelled(options.cancel);
   bake.sampleMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();

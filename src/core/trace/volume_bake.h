@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/cancel_token.h"
 #include "core/base/implicit_field.h"
 
 namespace hermite {
@@ -37,6 +38,8 @@ BrickGrid computeBrickGrid(const ImplicitField<3>& field, const Box<3>& bounds, 
 struct VolumeBakeOptions {
   int resolution = 128;  // R samples per axis, ≥ 2 (vertex-centred: R − 1 cells)
   int brickCells = 8;    // cells per brick edge, ≥ 1; 8 at R = 128 gives 16³ bricks
+  // Polled slab by slab (a few z-planes, ~64k samples); bakeVolume throws Cancelled when set.
+  const CancelToken* cancel = nullptr;
 };
 
 struct VolumeBake {

@@ -87,3 +87,48 @@ TEST_CASE("input queue: moves and wheel notches between transitions share a fram
   CHECK(!f3.ctrl);
   CHECK(q.pending() == 0);
 }
+
+TEST_CASE("input queue: a drag's last step and its release in one frame: the step is seen with the button held") {
+  InputQueue q;
+  q.push(move(0, 10, 10));
+  q.push(button(0.01, 0, true));
+  CHECK(q.takeFrame(100, 100).mouseDown[0]);
+  // The last steps of a drag and the release arrive before the next frame.
+  q.push(move(0.02, 20, 12));
+  q.push(move(0.03, 30, 14));
+  q.push(button(0.04, 0, false));
+  const FrameInput f1 = q.takeFrame(100, 100);
+  CHECK(f1.mouseDown[0]);
+  CHECK(f1.mouseX == 30);
+  CHECK(f1.mouseY == 14);
+  const FrameInput f2 = q.takeFrame(100, 100);
+  CHECK(!f2.mouseDown[0]);
+  CHECK(f2.mouseX == 30);  // released where the drag ended
+  CHECK(q.pending() == 0);
+}
+
+TEST_CASE("input queue: Ctrl released before the key it modifies (xdotool's ctrl+q) still reaches the key with Ctrl") {
+  InputQueue q;
+  q.push(key(0.10, GLFW_KEY_LEFT_CONTROL, true, false));  // a modifier's own event has the state before it
+  q.push(key(0.11, GLFW_KEY_Q, true, true));
+  q.push(key(0.11, GLFW_KEY_LEFT_CONTROL, false, true));
+  q.push(key(0.12, GLFW_KEY_Q, false, false));
+  const FrameInput f1 = q.takeFrame(100, 100);
+  CHECK(f1.keysDown[GLFW_KEY_Q]);
+  CHECK(f1.ctrl);
+  const FrameInput f2 = q.takeFrame(100, 100);
+  CHECK(!f2.ctrl);
+  CHECK(!f2.keysDown[GLFW_KEY_LEFT_CONTROL]);
+  const FrameInput f3 = q.takeFrame(100, 100);
+  CHECK(!f3.keysDown[GLFW_KEY_Q]);
+  CHECK(q.pending() == 0);
+  // Ctrl pressed in an earlier frame: the same.
+  q.push(key(1.0, GLFW_KEY_LEFT_CONTROL, true, false));
+  CHECK(q.takeFrame(100, 100).ctrl);
+  q.push(key(1.1, GLFW_KEY_S, true, true));
+  q.push(key(1.1, GLFW_KEY_LEFT_CONTROL, false, true));
+  q.push(key(1.2, GLFW_KEY_S, false, false));
+  const FrameInput g1 = q.takeFrame(100, 100);
+  CHECK(g1.keysDown[GLFW_KEY_S]);
+  CHECK(g1.ctrl);
+}
