@@ -26,6 +26,7 @@ void drawHelpOverlay(GuiContext& ctx) {
         {"Ctrl+S", "save the scene"},
         {"Tab", "hide / show the panels"},
         {"F12", "screenshot (numbered PNG)"},
+        {"E", "r explorer (plots against r, thumbnails)"},
         {"F1 or ?", "this help"},
     };
     for (const auto& r : rows) {
