@@ -1,12 +1,17 @@
 #include "scene/radius_sweep.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <regex>
+#include <tuple>
 
 #include "core/base/errors.h"
+#include "core/mesh/zero_set_check.h"
 #include "core/rbf/leave_one_out.h"
+#include "scene/holdout_validation.h"
 #include "scene/scene_fit.h"
+#include "scene/view_bounds.h"
 
 namespace hermite {
 
@@ -40,6 +45,48 @@ std::vector<double> parseRadiiArgument(const std::string& text) {
   }
 }
 
+namespace {
+
+// The region whose zero set the suggestion counts: view.bounds (or the default box), what is
+// meshed and traced and where `fit` checks for a degenerate field.
+template <int Dim>
+Box<Dim> zeroSetBox(const Scene& s, const SceneFit<Dim>& fit) {
+  return viewBounds<Dim>(s.view, fit.data.points);
+}
+
+// Leave-one-out (global HRBF) or k-fold (the rest) into the row's validation columns.
+template <int Dim>
+void validate(const Scene& s, const SceneFit<Dim>& fit, RadiusSweepRow& row) {
+  try {
+    if (s.fit.method == FitMethod::Hrbf && !fit.pu()) {
+      row.validation = "leave-one-out";
+      HrbfOptions o;
+      o.kernel = Kernel{s.fit.kernel, s.fit.radius};
+      o.polynomial = s.fit.polynomial;
+      o.smoothing = s.fit.smoothing;
+      const LeaveOneOutResult loo = hrbfLeaveOneOut<Dim>(fit.samples, o);
+      row.looRmsValue = loo.rmsValue;
+      row.looRmsGradient = loo.rmsGradient;
+      row.looCombined = loo.combined;
+      row.validationError = loo.combined;
+    } else if (fit.samples.size() >= kHoldoutFolds) {
+      row.validation = std::to_string(kHoldoutFolds) + "-fold";
+      row.validationError = kFoldValidation<Dim>(s, fit.samples).combined;
+    }
+  } catch (const NumericalError& e) {
+    row.looError = e.what();  // the fit stands; its validation error is undefined
+  }
+}
+
+}  // namespace
+
+std::string RadiusSweepRow::rejection() const {
+  if (!ok()) return "failed";
+  if (!(conditionEstimate <= kSuggestionMaxCondition)) return "ill-conditioned";
+  if (!std::isfinite(validationError)) return "validation not finite";
+  return "";
+}
+
 template <int Dim>
 RadiusSweepRow radiusSweepRow(const Scene& s, const SceneFit<Dim>& fit, double spacing) {
   RadiusSweepRow row;
@@ -51,19 +98,16 @@ RadiusSweepRow radiusSweepRow(const Scene& s, const SceneFit<Dim>& fit, double s
   row.maxAbsF = res.maxAbsF;
   row.maxGradError = res.maxGradError;
   row.fitMs = fit.report.fitMs;
-  if (s.fit.method == FitMethod::Hrbf && !fit.pu()) {
-    HrbfOptions o;
-    o.kernel = Kernel{s.fit.kernel, s.fit.radius};
-    o.polynomial = s.fit.polynomial;
-    o.smoothing = s.fit.smoothing;
-    try {
-      const LeaveOneOutResult loo = hrbfLeaveOneOut<Dim>(fit.samples, o);
-      row.looRmsValue = loo.rmsValue;
-      row.looRmsGradient = loo.rmsGradient;
-      row.looCombined = loo.combined;
-    } catch (const NumericalError& e) {
-      row.looError = e.what();  // the fit stands; its leave-one-out error is undefined
-    }
+  validate<Dim>(s, fit, row);
+  try {
+    const ZeroSetCheck z = checkZeroSet<Dim>(fit.unmaskedField(), zeroSetBox<Dim>(s, fit), fit.data);
+    row.components = z.components;
+    row.spuriousComponents = z.spurious;
+    row.signFailures = z.signFailures;
+    row.flatFraction = z.degenerate.flatFraction;
+    row.degenerate = z.degenerate.degenerate;
+  } catch (const std::exception& e) {
+    row.zeroSetError = e.what();
   }
   return row;
 }
@@ -95,16 +139,49 @@ std::vector<RadiusSweepRow> sweepRadii(const Scene& scene, const std::vector<dou
 
 int suggestedRadiusIndex(const std::vector<RadiusSweepRow>& rows) {
   int best = -1;
-  for (int i = 0; i < int(rows.size()); ++i)
-    if (rows[i].ok() && std::isfinite(rows[i].looCombined) && (best < 0 || rows[i].looCombined < rows[best].looCombined))
+  for (int i = 0; i < int(rows.size()); ++i) {
+    const RadiusSweepRow& r = rows[std::size_t(i)];
+    if (!r.rejection().empty()) continue;
+    if (best < 0) {
       best = i;
+      continue;
+    }
+    const RadiusSweepRow& b = rows[std::size_t(best)];
+    const auto key = [](const RadiusSweepRow& x) { return std::make_tuple(x.defects(), x.degenerate ? 1 : 0); };
+    if (key(r) < key(b) || (key(r) == key(b) && r.validationError < b.validationError)) best = i;
+  }
   return best;
+}
+
+std::string radiusSweepVerdict(const RadiusSweepRow& r, int dim) {
+  if (!r.ok()) return "failed: " + r.error;
+  const std::string why = r.rejection();
+  if (!why.empty()) return "ill-conditioned";
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "%s %-9.3g", r.validation == "leave-one-out" ? "loo" : r.validation.c_str(),
+                r.validationError);
+  std::string out = buf;
+  if (r.components < 0) return out + "  zero set not checked: " + r.zeroSetError;
+  const char* noun = dim == 2 ? (r.components == 1 ? "curve" : "curves") : (r.components == 1 ? "surface" : "surfaces");
+  std::snprintf(buf, sizeof buf, "  %d %s", r.components, noun);
+  out += buf;
+  if (r.defects() > 0) {
+    std::snprintf(buf, sizeof buf, " (%d spurious, %d sign failure%s)", r.spuriousComponents, r.signFailures,
+                  r.signFailures == 1 ? "" : "s");
+    out += buf;
+  }
+  if (r.degenerate) {
+    std::snprintf(buf, sizeof buf, ", degenerate (flat over %.0f%%)", 100 * r.flatFraction);
+    out += buf;
+  }
+  return out;
 }
 
 std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows, const std::vector<std::string>* images) {
   std::string out =
       "radius,radius_in_spacing,solver,condition_estimate,max_abs_f,max_grad_error,loo_rms_value,loo_rms_gradient,"
       "loo_combined,fit_ms,suggested,error";
+  out += ",validation,validation_error,components,spurious_components,sign_failures,flat_fraction,degenerate,rejected";
   out += images ? ",image\n" : "\n";
   const int best = suggestedRadiusIndex(rows);
   char buf[512];
@@ -116,6 +193,10 @@ std::string radiusSweepCsv(const std::vector<RadiusSweepRow>& rows, const std::v
     std::snprintf(buf, sizeof buf, "%.17g,%.17g,%s,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.3f,%d,\"%s\"", r.radius,
                   r.radiusInSpacing, r.solver.c_str(), r.conditionEstimate, r.maxAbsF, r.maxGradError, r.looRmsValue,
                   r.looRmsGradient, r.looCombined, r.fitMs, i == best ? 1 : 0, err.c_str());
+    out += buf;
+    std::snprintf(buf, sizeof buf, ",%s,%.6g,%d,%d,%d,%.4f,%d,%s", r.validation.c_str(), r.validationError,
+                  r.components, r.spuriousComponents, r.signFailures, r.flatFraction, r.degenerate ? 1 : 0,
+                  r.rejection().c_str());
     out += buf;
     if (images) out += "," + (*images)[std::size_t(i)];
     out += "\n";

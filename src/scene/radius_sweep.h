@@ -1,8 +1,11 @@
 #pragma once
 // The r-sensitivity sweep (the GUI's "Explore r" panel and `hermite-lab sweep`): the scene's data and fit
 // settings refitted at k radii spaced logarithmically between two bounds, with the diagnostics
-// a user compares across r — condition estimate, residuals, leave-one-out error — and the
-// radius with the smallest leave-one-out error as the suggestion.
+// a user compares across r — condition estimate, residuals, leave-one-out error, the zero set's
+// components — and a suggested radius (docs/maths.md, "Suggesting r"): among the radii whose
+// condition estimate is at most 10¹⁴ and whose validation error is finite, fields that are not
+// degenerate come first, then the fewest spurious components and sign failures, then the least
+// validation error.
 
 #include <atomic>
 #include <string>
@@ -23,10 +26,27 @@ struct RadiusSweepRow {
   double looRmsGradient = NAN;
   double looCombined = NAN;          // LeaveOneOutResult::combined
   double fitMs = 0;
+  // What the suggestion ranks by: "leave-one-out" (global HRBF, closed form) or "5-fold"
+  // (partition of unity, RBF-offset: kFoldValidation); validationError is its combined error.
+  std::string validation;
+  double validationError = NAN;
+  int components = -1;               // curves (2D) / surfaces (3D) of the zero set in the view; −1: not checked
+  int spuriousComponents = -1;       // of which near no sample
+  int signFailures = -1;             // samples whose ±εn pushed points have the wrong sign
+  double flatFraction = NAN;         // of the view where f is flat (degenerate_field.h)
+  bool degenerate = false;           // flatFraction above DegenerateFieldOptions::largeFraction
+  std::string zeroSetError;          // non-empty: the zero set could not be contoured (why)
   std::string looError;              // non-empty: the fit is fine but M is numerically singular
   std::string error;                 // non-empty: this radius failed to fit (the reason)
   bool ok() const { return error.empty(); }
+  // Why the suggestion skips this row ("" when it is a candidate): "failed", "ill-conditioned"
+  // (condition estimate above kSuggestionMaxCondition), "validation not finite".
+  std::string rejection() const;
+  int defects() const { return spuriousComponents < 0 ? 0 : spuriousComponents + signFailures; }
 };
+
+// Above this condition estimate a radius is never suggested: about 2 of double's 16 digits are left.
+inline constexpr double kSuggestionMaxCondition = 1e14;
 
 // k radii a·(b/a)^(i/(k−1)), i = 0..k−1 (k = 1: a). InputError unless 0 < a ≤ b, k in [1, 1000].
 std::vector<double> logSpacedRadii(double a, double b, int k);
@@ -48,8 +68,14 @@ struct SceneFit;
 template <int Dim>
 RadiusSweepRow radiusSweepRow(const Scene& scene, const SceneFit<Dim>& fit, double spacing);
 
-// Index of the row with the smallest finite looCombined (−1 when none).
+// Index of the suggested row (−1 when no row is a candidate): among rows with an empty
+// rejection(): not degenerate first, then the fewest defects(), then the least validationError.
 int suggestedRadiusIndex(const std::vector<RadiusSweepRow>& rows);
+
+// One row's verdict in words, for `sweep`'s standard output and the explorer's tooltips:
+// "loo 0.0123  1 curve", "5-fold 0.02  3 surfaces (2 spurious, 4 sign failures)",
+// "ill-conditioned" (a rejected row), or "failed: REASON". `dim` picks curves or surfaces.
+std::string radiusSweepVerdict(const RadiusSweepRow& row, int dim);
 
 // The rows as CSV with a header line (what `sweep` writes as diagnostics.csv and the GUI exports);
 // with `images` (one per row) a last column `image` names each row's picture.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/base/affine_field.h"
+#include "core/mesh/degenerate_field.h"
 #include "core/pu/pu_model.h"
 #include "core/rbf/hrbf.h"
 #include "core/rbf/rbf_offset.h"
@@ -49,6 +50,8 @@ struct SceneFitReport {
   std::vector<std::string> warnings;       // data + fit warnings, in order
   bool transformed = false;
   TransformReport transform;
+  // checkDegenerateField's verdict (scene/degenerate_check.h); empty until it ran.
+  std::optional<DegenerateFieldReport> degenerateField;
 };
 
 // The fitted model: one global interpolant of fit.method, or a partition of unity
@@ -71,9 +74,16 @@ struct SceneFit : SceneFitReport {
   FittedModel<Dim> model;       // the fitted (and, by a similarity, transformed) model
   // transform.matrix outside the similarities: the exact composition f(T⁻¹x) of `model`.
   std::unique_ptr<ImplicitField<Dim>> composed;
+  // A degenerate field with its flat regions marked "no data" (scene/degenerate_check.h), or null.
+  std::unique_ptr<ImplicitField<Dim>> masked;
 
   // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
   const ImplicitField<Dim>& field() const {
+    if (masked) return *masked;
+    return unmaskedField();
+  }
+  // The field without the degenerate-region mask (what the mask itself and the r sweep judge).
+  const ImplicitField<Dim>& unmaskedField() const {
     if (composed) return *composed;
     return modelField();
   }

@@ -182,6 +182,7 @@ int dispatch(int argc, char** argv) {
     cmd.add_flag("--overwrite", a.overwrite,
                  "reuse a non-empty output directory: remove its earlier sweep images and diagnostics.csv first");
     cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+    cmd.add_option("--sheet", a.sheet, "also write a contact sheet of every image (a .png file)");
     cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
         ->check(CLI::IsMember({"osmesa", "egl"}));
     addThreads(cmd, threads);

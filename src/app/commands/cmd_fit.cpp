@@ -12,6 +12,7 @@
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
 #include "core/points/hermite_samples.h"
+#include "scene/degenerate_check.h"
 #include "scene/scene_fit.h"
 
 namespace hermite::app {
@@ -132,6 +133,10 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   for (const auto& [phase, ms] : fit.report.solvePhasesMs) phases[phase] = phases.value(phase, 0.0) + ms;
   out["solve_phases_ms"] = phases;
   out["warnings"] = fit.warnings;
+  if (fit.degenerateField)
+    out["degenerate_field"] = {{"degenerate", fit.degenerateField->degenerate},
+                               {"flat_fraction", fit.degenerateField->flatFraction},
+                               {"tolerance", fit.degenerateField->scale.tolerance}};
   if (const PuModel<Dim>* pu = fit.pu()) {
     out["partition"] = {{"boxes", fit.puReport.boxes},
                         {"max_box_samples", fit.puReport.maxBoxSamples},
@@ -216,7 +221,8 @@ void printReadable(const Scene& scene, const json& j) {
 // a report of NaN residuals would pass for a result.
 template <int Dim>
 json fitAndReport(const Scene& scene, bool coefficients) {
-  const SceneFit<Dim> fit = fitScene<Dim>(scene);
+  SceneFit<Dim> fit = fitScene<Dim>(scene);
+  checkDegenerateField<Dim>(scene, fit);
   json report = fitReportJson<Dim>(scene, fit, coefficients);
   const double maxAbsF = report["max_abs_f"].get<double>(), maxGradError = report["max_grad_error"].get<double>();
   if (!std::isfinite(maxAbsF) || !std::isfinite(maxGradError))

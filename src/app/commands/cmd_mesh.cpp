@@ -3,6 +3,7 @@
 // closed polylines as OBJ `l` elements or SVG paths). One summary line on stdout.
 
 #include <cstdio>
+#include <iostream>
 #include <string>
 
 #include "app/commands/commands.h"
@@ -99,6 +100,15 @@ void checkMeshGrid(const Scene& scene, int resolution) {
 
 }  // namespace
 
+// The mesh's closedness in words: a degenerate field's mesh is never called a closed manifold (its
+// components may be noise, docs/maths.md "Degenerate fields").
+const char* degenerateText(bool degenerate, bool closedManifold) {
+  if (degenerate)
+    return closedManifold ? "closed, but the field is degenerate (components may be noise)"
+                          : "open (degenerate regions left out)";
+  return closedManifold ? "closed manifold" : "open (the surface leaves view.bounds)";
+}
+
 std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution) {
   const Scene& scene = fit.scene;
   const int dim = scene.dimension();
@@ -114,11 +124,14 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
     const TriMesh mesh = marchingCubes(f3->field(), bounds, options, &report);
     saveMesh(output, mesh);
     const MeshCheck c = checkMesh(mesh);
+    // A degenerate field's flat regions are "no data": what is left is not closed over them.
+    const bool degenerate = f3->degenerateField && f3->degenerateField->degenerate;
     std::snprintf(line, sizeof line,
                   "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
                   "%.1f ms (field %.1f ms) -> ",
                   mesh.vertexCount(), mesh.triangleCount(),
-                  c.closedManifold() ? "closed manifold" : "open (the surface leaves view.bounds)", c.eulerCharacteristic,
+                  degenerateText(degenerate, mesh.triangleCount() > 0 && c.closedManifold()),
+                  c.eulerCharacteristic,
                   cellsText(report, 3).c_str(), report.maxAbsF, report.totalMs, report.evaluateMs);
   } else if (const SceneFit<2>* f2 = fit.as<SceneFit<2>>()) {
     const Box<2> bounds = viewBounds<2>(scene.view, f2->data.points);
@@ -148,11 +161,16 @@ int runMesh(const MeshArgs& args) {
   if (scene.mode == SceneMode::Implicit3d) checkMeshGrid<3>(scene, args.resolution);
   if (scene.mode == SceneMode::Implicit2d) checkMeshGrid<2>(scene, args.resolution);
   std::string summary;
+  std::shared_ptr<const FitOutcome> fit;
   {
     const TerminalProgress progress("fitting and meshing " + scene.sourceName);
-    summary = exportZeroSet(*fitOutcomeOrThrow(scene), args.output, args.resolution);
+    fit = fitOutcomeOrThrow(scene);
+    summary = exportZeroSet(*fit, args.output, args.resolution);
   }
   writeStdout(summary + "\n");
+  // A degenerate field's flat regions are left out of the mesh (no data); say why it is open.
+  for (const std::string& w : fit->warnings())
+    if (w.rfind(kDegenerateFieldWarningStart, 0) == 0) std::cerr << "warning: " << w << "\n";
   return 0;
 }
 

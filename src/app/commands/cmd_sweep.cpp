@@ -1,16 +1,20 @@
 // `hermite-lab sweep SCENE --radii A:B:K -o DIR` (docs/cli.md): the scene
 // refitted at K radii spaced logarithmically in [A, B], one PNG per radius (the view `render`
 // draws) and diagnostics.csv with the condition estimate, residuals and leave-one-out error per
-// radius, the suggested r (least leave-one-out error) marked — a teacher's figure in one command.
+// radius, the suggested r (radius_sweep.h) marked — a teacher's figure in one command.
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "app/commands/commands.h"
+#include "app/commands/image_caption.h"
 #include "app/commands/output.h"
+#include "app/commands/output_path.h"
+#include "app/gui/colour_range.h"
 #include "app/gui/fit_worker.h"
 #include "app/gui/scene_loading.h"
 #include "app/gui/scene_view.h"
@@ -64,6 +68,43 @@ void prepareDirectory(const std::string& dir, bool overwrite) {
     if (!fs::remove(p, ec) && ec) throw EnvironmentError("sweep: cannot remove '" + p.string() + "': " + ec.message());
 }
 
+// The caption burnt into each image: what was fitted and how well.
+std::vector<std::string> captionLines(const Scene& s, const RadiusSweepRow& row) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf, "%s  r = %.4g (%.3g x spacing)  cond %.3g", std::string(kernelName(s.fit.kernel)).c_str(),
+                row.radius, row.radiusInSpacing, row.conditionEstimate);
+  return {buf, radiusSweepVerdict(row, s.dimension()).substr(0, 120)};
+}
+
+// Tiles of at most ~2400 px per sheet row: each image shrunk by a whole factor, its own caption.
+struct SheetBuilder {
+  int columns = 1, factor = 1;
+  std::vector<ImageRgba8> tiles;
+  SheetBuilder(int count, int w) {
+    columns = std::max(1, int(std::ceil(std::sqrt(double(count)))));
+    factor = std::max(1, (columns * w + 2399) / 2400);
+  }
+  std::vector<int> rowOf;  // the sweep row of each tile
+  void add(const ImageRgba8& image, const std::vector<std::string>& caption, int row) {
+    tiles.push_back(shrinkImage(image, factor));
+    burnCaption(tiles.back(), caption, 1);
+    rowOf.push_back(row);
+  }
+  // A 3-pixel orange frame around the suggested row's tile.
+  void markSuggested(int row) {
+    for (std::size_t t = 0; t < tiles.size(); ++t) {
+      if (rowOf[t] != row) continue;
+      ImageRgba8& im = tiles[t];
+      for (int y = 0; y < im.height; ++y)
+        for (int x = 0; x < im.width; ++x)
+          if (x < 3 || y < 3 || x >= im.width - 3 || y >= im.height - 3) {
+            std::uint8_t* p = im.at(x, y);
+            p[0] = 255, p[1] = 160, p[2] = 40, p[3] = 255;
+          }
+    }
+  }
+};
+
 std::string imageName(int k, double r) {
   char buf[64];
   std::snprintf(buf, sizeof buf, "r_%02d_%.4g.png", k, r);
@@ -99,16 +140,22 @@ int runSweep(const SweepArgs& args) {
   checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
   if (scene.mode == SceneMode::Implicit2d) checkSweepMemory<2>(scene);
   else checkSweepMemory<3>(scene);
+  if (!args.sheet.empty()) {
+    requireExtension("sweep --sheet", args.sheet, {"png"});
+    requireWritableLocation("sweep --sheet", args.sheet);
+  }
   prepareDirectory(args.outputDirectory, args.overwrite);
   const std::filesystem::path dir(args.outputDirectory);
 
   const int w = scene.view.size[0], h = scene.view.size[1];
   const auto context = offscreenContext(args.backend, w, h);
   SceneViewRenderer renderer;
+  renderer.colourRange = sharedColourRange(scene);  // one heat-map range for every radius
   std::vector<RadiusSweepRow> rows;
   std::vector<std::string> images;
   double spacing = -1;
   std::string firstError;
+  SheetBuilder sheet(int(radii.size()), w);
   for (std::size_t k = 0; k < radii.size(); ++k) {
     Scene s = scene;
     s.fit.radius = radii[k];
@@ -122,7 +169,10 @@ int runSweep(const SweepArgs& args) {
         row = radiusSweepRow<D>(s, f, spacing);
       });
       image = imageName(int(k), radii[k]);
-      const SceneViewResult view = renderer.render(fit, s, w, h, ViewQuality::Settled);
+      SceneViewResult view = renderer.render(fit, s, w, h, ViewQuality::Settled);
+      const std::vector<std::string> caption = captionLines(s, row);
+      if (!args.sheet.empty()) sheet.add(view.image, caption, int(k));
+      burnCaption(view.image, caption, std::max(1, w / 500));
       writePng((dir / image).string(), view.image);
     } else {
       row.radius = radii[k];
@@ -135,18 +185,31 @@ int runSweep(const SweepArgs& args) {
   writeFileAtomically((dir / "diagnostics.csv").string(), radiusSweepCsv(rows, &images));
 
   const int best = suggestedRadiusIndex(rows);
+  const int dim = scene.dimension();
   std::string out;
   char buf[256];
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const RadiusSweepRow& r = rows[k];
     if (r.ok())
-      std::snprintf(buf, sizeof buf, "%s r = %-10.4g cond %-10.3g loo %-10.3g %s\n", int(k) == best ? "*" : " ", r.radius,
-                    r.conditionEstimate, r.looCombined, images[k].c_str());
+      std::snprintf(buf, sizeof buf, "%s r = %-10.4g cond %-10.3g ", int(k) == best ? "*" : " ", r.radius,
+                    r.conditionEstimate);
     else
-      std::snprintf(buf, sizeof buf, "  r = %-10.4g failed: %.160s\n", r.radius, r.error.c_str());
-    out += buf;
+      std::snprintf(buf, sizeof buf, "  r = %-10.4g ", r.radius);
+    out += buf + radiusSweepVerdict(r, dim).substr(0, 200);
+    out += images[k].empty() ? "\n" : "  " + images[k] + "\n";
   }
+  if (best < 0)
+    out += "no radius suggested: every radius failed, is ill-conditioned (condition above 1e14) or has no finite "
+           "validation error; try smaller radii or a polynomial term\n";
+  else if (rows[std::size_t(best)].degenerate || rows[std::size_t(best)].defects() > 0)
+    out += "note: every candidate radius has a degenerate field, spurious zero-set components or sign failures; the "
+           "suggestion has the fewest — try a wider range of radii or a polynomial term\n";
   out += "wrote " + std::to_string(radii.size()) + " rows to " + (dir / "diagnostics.csv").string() + "\n";
+  if (!args.sheet.empty()) {
+    sheet.markSuggested(best);
+    writePng(args.sheet, contactSheet(sheet.tiles, sheet.columns));
+    out += "wrote a contact sheet of " + std::to_string(sheet.tiles.size()) + " images to " + args.sheet + "\n";
+  }
   writeStdout(out);
   bool anyOk = false;
   for (const auto& r : rows) anyOk |= r.ok();

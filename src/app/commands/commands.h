@@ -59,6 +59,7 @@ struct SweepArgs {
   std::string size;                // --size WxH; empty: the scene's view.size
   std::string backend = "osmesa";
   bool overwrite = false;          // --overwrite: reuse a folder holding an earlier sweep
+  std::string sheet;               // --sheet FILE.png: also a contact sheet of every image; empty: none
 };
 int runSweep(const SweepArgs& args);
 

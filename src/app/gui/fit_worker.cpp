@@ -6,6 +6,7 @@
 #include "app/gui/drag_refit.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "scene/degenerate_check.h"
 
 namespace hermite::app {
 
@@ -28,10 +29,15 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene, const st
   auto out = std::make_shared<FitOutcome>();
   out->scene = scene;
   const auto t0 = std::chrono::steady_clock::now();
-  if (scene.mode == SceneMode::Implicit2d)
-    out->result = fitScene<2>(scene, cancel);
-  else if (scene.mode == SceneMode::Implicit3d)
-    out->result = fitScene<3>(scene, cancel);
+  if (scene.mode == SceneMode::Implicit2d) {
+    SceneFit<2> fit = fitScene<2>(scene, cancel);
+    checkDegenerateField<2>(scene, fit);
+    out->result = std::move(fit);
+  } else if (scene.mode == SceneMode::Implicit3d) {
+    SceneFit<3> fit = fitScene<3>(scene, cancel);
+    checkDegenerateField<3>(scene, fit);
+    out->result = std::move(fit);
+  }
   else if (scene.mode == SceneMode::Patch)
     out->result = buildPatchDisplay(scene.patch);
   else

@@ -143,6 +143,13 @@ void GuiApp::drawPanels() {
                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing)) {
     ImGui::PushItemWidth(-ctx_.px(110.0f));
+    if (ctx_.scene().mode == SceneMode::Implicit2d || ctx_.scene().mode == SceneMode::Implicit3d) {
+      // The r explorer's toolbar button (shortcut E): highlighted while the strip is open.
+      if (ctx_.panels.explore) ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+      const bool pressed = ImGui::Button("r explorer (E)");
+      if (ctx_.panels.explore) ImGui::PopStyleColor();
+      if (pressed) ctx_.panels.explore = !ctx_.panels.explore;
+    }
     if (ctx_.scene().mode == SceneMode::Patch || ctx_.scene().mode == SceneMode::HoleFill) {
       ImGui::SetNextItemOpen(true, ImGuiCond_Once);
       if (ctx_.scene().mode == SceneMode::Patch) {
@@ -165,10 +172,6 @@ void GuiApp::drawPanels() {
     }
     ImGui::SetNextItemOpen(ctx_.panels.view, ImGuiCond_Once);
     if (ImGui::CollapsingHeader("View")) view_.draw();
-    if (ctx_.scene().mode == SceneMode::Implicit2d || ctx_.scene().mode == SceneMode::Implicit3d) {
-      ImGui::Checkbox("Explore r", &ctx_.panels.explore);
-      ImGui::SameLine();
-    }
     ImGui::Checkbox("Help (F1)", &ctx_.panels.help);
     ImGui::SameLine();
     ImGui::Checkbox("Messages (F2)", &ctx_.panels.messages);
@@ -223,6 +226,7 @@ void GuiApp::handleShortcuts(const FrameInput& in) {
   if (keyPressed(in, prev, GLFW_KEY_F5)) ctx_.panels.presenter = !ctx_.panels.presenter;
   if (io.WantCaptureKeyboard) return;
   if (keyPressed(in, prev, GLFW_KEY_F)) camera_.fitToView();
+  if (keyPressed(in, prev, GLFW_KEY_E)) ctx_.panels.explore = !ctx_.panels.explore;
   if (keyPressed(in, prev, GLFW_KEY_HOME)) camera_.resetView();
   if (keyPressed(in, prev, GLFW_KEY_N)) samples_.flipSelected();
   if (keyPressed(in, prev, GLFW_KEY_DELETE) || keyPressed(in, prev, GLFW_KEY_BACKSPACE)) samples_.deleteSelected();

@@ -29,6 +29,7 @@ void drawHelpOverlay(GuiContext& ctx) {
         {"Ctrl + / Ctrl \xE2\x88\x92 / Ctrl 0", "larger / smaller type and panels / back to the start scale"},
         {"F5", "presenter mode: panels hidden, a large caption"},
         {"F2", "the message log: every message in full"},
+        {"E", "r explorer (plots against r, thumbnails)"},
         {"F1 or ?", "this help"},
     };
     for (const auto& r : rows) {

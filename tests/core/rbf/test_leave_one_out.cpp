@@ -79,7 +79,7 @@ TEST_CASE("log-spaced radii and the --radii argument") {
   CHECK_THROWS_AS(parseRadiiArgument("0:1:3"), UsageError);
 }
 
-TEST_CASE("radius sweep: rows per radius, failures as rows, the suggestion has the least LOO error") {
+TEST_CASE("radius sweep: rows per radius, failures as rows, the suggestion is the cleanest candidate with the least LOO error") {
   Scene scene;
   scene.mode = SceneMode::Implicit2d;
   scene.data.preset = "curve2d";
@@ -104,8 +104,16 @@ TEST_CASE("radius sweep: rows per radius, failures as rows, the suggestion has t
   CHECK(rows[1].conditionEstimate < rows[4].conditionEstimate);
   const int best = suggestedRadiusIndex(rows);
   REQUIRE(best >= 0);
-  for (const RadiusSweepRow& row : rows)
-    if (std::isfinite(row.looCombined)) CHECK(rows[best].looCombined <= row.looCombined);
+  CHECK(rows[best].rejection().empty());
+  CHECK(rows[best].conditionEstimate <= kSuggestionMaxCondition);
+  for (const RadiusSweepRow& row : rows) {
+    CAPTURE(row.radius);
+    CHECK(row.validation == "leave-one-out");
+    CHECK(row.components >= 0);
+    if (!row.rejection().empty()) continue;
+    CHECK(rows[best].defects() <= row.defects());
+    if (row.defects() == rows[best].defects()) CHECK(rows[best].looCombined <= row.looCombined);
+  }
   const std::string csv = radiusSweepCsv(rows);
   CHECK(std::count(csv.begin(), csv.end(), '\n') == int(rows.size()) + 1);
 

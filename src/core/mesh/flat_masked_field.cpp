@@ -1,0 +1,27 @@
+#include "core/mesh/flat_masked_field.h"
+
+namespace hermite {
+
+template <int Dim>
+bool FlatMaskedField<Dim>::valid(const Vec<Dim>& x) const {
+  if (!inner_.valid(x)) return false;
+  Vec<Dim> g;
+  const double f = inner_.evaluate(x, &g);
+  return !scale_.flat(f, g.norm());
+}
+
+template <int Dim>
+void FlatMaskedField<Dim>::evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f,
+                                              std::vector<char>& valid) const {
+  Points<Dim> G;
+  inner_.evaluateBatch(X, f, &G);
+  if (inner_.everywhereValid()) valid.assign(std::size_t(X.cols()), 1);
+  else inner_.validBatch(X, valid);
+  for (Eigen::Index i = 0; i < X.cols(); ++i)
+    if (valid[std::size_t(i)] && scale_.flat(f(i), G.col(i).norm())) valid[std::size_t(i)] = 0;
+}
+
+template class FlatMaskedField<2>;
+template class FlatMaskedField<3>;
+
+}  // namespace hermite
