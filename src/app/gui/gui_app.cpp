@@ -40,7 +40,7 @@ void layoutView(GuiContext& ctx, int width, int height) {
   view.x = side ? panelWidth : 0;
   view.y = 0;
   view.w = std::max(1, width - view.x);
-  const int below = hidden ? 0 : int(ctx.px(kStatusBarHeight)) + (panels.explore ? int(kExplorerHeight) : 0);
+  const int below = hidden ? 0 : int(ctx.px(kStatusBarHeight)) + (panels.explore ? int(ctx.px(kExplorerHeight)) : 0);
   view.h = std::max(1, height - below);
 }
 

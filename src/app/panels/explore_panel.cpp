@@ -128,9 +128,10 @@ ExplorePanel::ExplorePanel(GuiContext& ctx) : ctx_(ctx) {
 
 void ExplorePanel::draw() {
   const ImGuiIO& io = ImGui::GetIO();
-  const float h = kExplorerHeight;
-  ImGui::SetNextWindowPos(ImVec2(kLeftPanelWidth, io.DisplaySize.y - kStatusBarHeight - h), ImGuiCond_Always);
-  ImGui::SetNextWindowSize(ImVec2(std::max(100.0f, io.DisplaySize.x - kLeftPanelWidth), h), ImGuiCond_Always);
+  // The strip between the left panel and the status bar, at the UI scale.
+  const float h = ctx_.px(kExplorerHeight), left = ctx_.px(kLeftPanelWidth);
+  ImGui::SetNextWindowPos(ImVec2(left, io.DisplaySize.y - ctx_.px(kStatusBarHeight) - h), ImGuiCond_Always);
+  ImGui::SetNextWindowSize(ImVec2(std::max(100.0f, io.DisplaySize.x - left), h), ImGuiCond_Always);
   ImGui::SetNextWindowBgAlpha(0.94f);
   if (!ImGui::Begin("r explorer (E)", &ctx_.panels.explore,
                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoSavedSettings |
