@@ -167,11 +167,11 @@ SupportLimits supportLimits(const PuOptions& options) {
   return limits;
 }
 
-// blended[i] of an empty leaf blended only to cover the data reach (blendReachCover) whose box is
-// more than twice as large as the data box that brings it in: its support, capped at the
-// support-sample limit, may shrink to just beyond the box (no floor), so it neither fits
-// thousands of samples nor reaches far over the surface.
-constexpr char kBigCover = 2;
+// blended[i] of an empty leaf blended only to cover the data reach (blendReachCover): its
+// support, capped at the support-sample limit, may shrink to just beyond the box (no floor), so
+// a box beside dense data (or larger than the data's boxes) neither fits thousands of samples
+// nor reaches far over the surface.
+constexpr char kCover = 2;
 
 // Per-thread scratch of the local fits, reused from box to box.
 template <int Dim>
@@ -197,15 +197,27 @@ class LeafFitter {
   void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     const Box<Dim>& box = tree_.leafBox(i);
     const int n = samples_.size();
-    if (!leaf.blended) {
-      // Not blended (no data there): no fit, its nominal support for display.
+    const auto unblend = [&] {  // no data there: no fit, its nominal support for display
+      leaf.blended = false;
       leaf.support = scaledBox<Dim>(box, options_.overlap);
       leaf.factor = options_.overlap;
       leaf.samples = 0;
-      return;
-    }
+    };
+    if (!leaf.blended) return unblend();
     std::vector<int>& idx = scratch.idx;
-    double s = initialFactor(box, kind_[static_cast<std::size_t>(i)] == kBigCover ? 1.0 : 0.5 * (1.0 + options_.overlap), scratch);
+    const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
+    double s = initialFactor(box, cover ? 1.0 : 0.5 * (1.0 + options_.overlap), scratch);
+    // A cover box fits its nearest few samples; one whose support cannot stay small (samples at
+    // one L∞ distance: a box off a flat cloud reaches a whole square of it) or whose fit fails is
+    // left out, not grown: it only widens where f has a value.
+    if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
+      const int want = std::min(limits_.min, n);
+      if (static_cast<int>(idx.size()) > want) {
+        s = factorReaching(box, want, 1.0, scratch);
+        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+      }
+      if (static_cast<int>(idx.size()) > 4 * want) return unblend();
+    }
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
     for (int attempt = 0;; ++attempt) {
       std::sort(idx.begin(), idx.end());
@@ -218,6 +230,7 @@ class LeafFitter {
         leaf.samples = k;
         return;
       } catch (const NumericalError& e) {
+        if (cover) return unblend();
         if (attempt >= 4 || k >= n)
           throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
                                " samples) failed: " + e.what());
@@ -282,7 +295,7 @@ class LeafFitter {
   const PuOptions& options_;
   const HrbfOptions& local_;
   SupportLimits limits_;
-  const std::vector<char>& kind_;  // per leaf: 0 not blended, 1 blended, kBigCover
+  const std::vector<char>& kind_;  // per leaf: 0 not blended, 1 blended, kCover
 };
 
 // Which leaves the blend uses (docs/maths.md, "No data"). Smooth blend: the boxes holding
@@ -341,14 +354,13 @@ void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const P
   const auto& nodes = tree.nodes();
   std::vector<double> nodeR(nodes.size(), 0.0);  // largest 2·rᵢ of each node's samples
   for (std::size_t id = 0; id < nodes.size(); ++id)
-    for (int j = nodes[id].begin; j < nodes[id].end; ++j) nodeR[id] = std::max(nodeR[id], 2.0 * reach.radiusAt(j));
+    for (int j = nodes[id].begin; j < nodes[id].end; ++j) nodeR[id] = std::max(nodeR[id], reach.radiusAt(j));
   const int n = tree.leafCount();
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     if (blended[static_cast<std::size_t>(i)]) continue;
     const Box<Dim>& b = tree.leafBox(i);
-    const double edge = (1.0 - 1e-9) * b.extent().maxCoeff();
-    bool near = false, big = false;
+    bool near = false;
     int stack[64 * PuTree<Dim>::kChildren];
     int top = 0;
     stack[top++] = 0;
@@ -361,11 +373,9 @@ void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const P
         continue;
       }
       for (int j = nd.begin; j < nd.end && !near; ++j)
-        near = b.distanceTo(frameY.col(tree.order()[static_cast<std::size_t>(j)])) <= 2.0 * reach.radiusAt(j);
-      // A box more than twice as large as the data's: its support may shrink to the box (kBigCover).
-      if (near && 2.0 * nd.box.extent().maxCoeff() < edge) big = true;
+        near = b.distanceTo(frameY.col(tree.order()[static_cast<std::size_t>(j)])) <= reach.radiusAt(j);
     }
-    if (near) blended[static_cast<std::size_t>(i)] = big ? kBigCover : 1;
+    if (near) blended[static_cast<std::size_t>(i)] = kCover;
   }
 }
 
