@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "core/base/errors.h"
 #include "core/points/normal_estimation.h"
@@ -177,6 +178,7 @@ HermiteSamples<Dim> loadSamples(const std::string& path, std::vector<std::string
   const int fileDim = pointFileDimension(path);
   if (fileDim != Dim)
     throw InputError(path + ": a " + std::to_string(fileDim) + "D point file (" + lowercaseExtension(path) +
+                     (lowercaseExtension(path) == ".xyz" ? fileDim == 2 ? " with 2 or 4 numbers per line" : "" : "") +
                      ") cannot be used in a " + std::to_string(Dim) + "D scene; use " +
                      (Dim == 2 ? ".xyn (x y nx ny)" : ".xyz, .pwn or .xyzn (x y z nx ny nz)"));
   return parseSamples<Dim>(readWholeFile(path), path, warnings);
@@ -249,11 +251,32 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
   return samples;
 }
 
+// Blank-separated fields of the first data line of a text file (read from its first 64 KiB; 0
+// when there is none or the file cannot be read: the loader then reports the problem).
+int xyzColumns(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(1 << 16, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  LineReader lines(head);
+  std::string_view line;
+  long number = 0;
+  if (!lines.next(line, number)) return 0;
+  int fields = 0;
+  for (std::size_t i = 0; i < line.size(); ++i)
+    if (!isBlank(line[i]) && (i == 0 || isBlank(line[i - 1]))) ++fields;
+  return fields;
+}
+
 }  // namespace
 
 int pointFileDimension(const std::string& path) {
   const std::string ext = lowercaseExtension(path);
-  if (ext == ".xyz" || ext == ".pwn" || ext == ".xyzn") return 3;
+  if (ext == ".xyz") {
+    const int columns = xyzColumns(path);
+    return columns == 2 || columns == 4 ? 2 : 3;
+  }
+  if (ext == ".pwn" || ext == ".xyzn") return 3;
   if (ext == ".xyn") return 2;
   if (isMeshFileExtension(path)) return 3;
   throw InputError(path + ": unsupported point file extension '" + ext +

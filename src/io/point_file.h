@@ -2,6 +2,7 @@
 // Oriented point files (docs/scene-format.md):
 //   .xyz / .pwn / .xyzn   x y z nx ny nz per line (3 columns = no normals: estimated)
 //   .xyn                  2D: x y nx ny per line (2 columns = no normals: estimated too)
+//   .xyz                  also 2D when its first data line has 2 or 4 numbers (x y [nx ny])
 //   .ply .obj .gltf .glb .off  3D: the vertices and vertex normals of a mesh or point-set file
 //                         (PLY nx ny nz, OBJ v + vn, glTF POINTS/TRIANGLES with NORMAL, NOFF),
 //                         read by mesh_io. A mesh without vertex normals gets the area-weighted
@@ -20,8 +21,9 @@
 
 namespace hermite {
 
-// Dimension a point file's extension implies (2 for .xyn, 3 otherwise); InputError for an
-// unknown extension, listing the supported ones.
+// Dimension of a point file: 2 for .xyn and for a .xyz whose first data line has 2 or 4 numbers
+// (the file is read for that), 3 otherwise; InputError for an unknown extension, listing the
+// supported ones.
 int pointFileDimension(const std::string& path);
 
 // Loads and validates (validateSamples) a point file; warnings are appended.

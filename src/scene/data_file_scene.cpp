@@ -19,6 +19,7 @@ void measureSamples(const Scene& scene, DataFileScene& out) {
   const HermiteSamples<Dim> s = sceneSamples<Dim>(scene, out.warnings);
   out.samples = s.size();
   out.spacing = meanSampleSpacing<Dim>(s.points);
+  out.points = s.points;
   const Vec<Dim> lo = s.points.rowwise().minCoeff(), hi = s.points.rowwise().maxCoeff();
   out.samplesBox.assign(lo.data(), lo.data() + Dim);
   out.samplesBox.insert(out.samplesBox.end(), hi.data(), hi.data() + Dim);

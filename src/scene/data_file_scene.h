@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "scene/scene_file.h"
 
 namespace hermite {
@@ -32,6 +34,7 @@ bool isSceneFilePath(const std::string& path);
 struct DataFileScene {
   Scene scene;
   std::vector<double> samplesBox;
+  Eigen::MatrixXd points;  // Dim × N: the samples' positions (the GUI draws them while the fit runs)
   int samples = 0;
   double spacing = 0;
   std::vector<std::string> warnings;

@@ -68,6 +68,7 @@ struct PartitionSpec {
   double boxSize = 0.0;      // ≥ 0; 0 = only the point-count rule
   double overlap = 1.5;      // ≥ 1: support = box scaled about its centre
   PuBlend blend = PuBlend::Smooth;  // added key: smooth (Shepard, C² bumps) | hard (box cut-off: artefact demo)
+  double dataReach = 3.0;  // added key, > 0: data within this many local spacings of a sample (pu_data_reach.h)
   bool operator==(const PartitionSpec&) const = default;
 };
 

@@ -235,6 +235,7 @@ PuOptions scenePuOptions(const FitSpec& f, const CancelToken* cancel) {
   o.boxSize = f.partition.boxSize;
   o.overlap = f.partition.overlap;
   o.blend = f.partition.blend;
+  o.dataReach = f.partition.dataReach;
   return o;
 }
 

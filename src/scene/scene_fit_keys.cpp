@@ -36,6 +36,7 @@ constexpr SceneKey<PartitionSpec> kPartitionKeys[] = {
      },
      [](const PartitionSpec& s, int) -> Written { return s.overlap; }},
     namedKey<PartitionSpec, &PartitionSpec::blend, parsePuBlend, puBlendName>("blend"),
+    valueKey<PartitionSpec, &PartitionSpec::dataReach, &Reader::positive>("data_reach"),
 };
 
 constexpr SceneKey<FitSpec> kFitKeys[] = {

@@ -125,6 +125,42 @@ TEST_CASE("io_points: 2D files") {
                        InputError);
 }
 
+TEST_CASE("io_points: a .xyz file with 2 or 4 numbers per line is 2D data") {
+  TempDir dir;
+  std::string positions, oriented;
+  for (int i = 0; i < 40; ++i) {
+    const double c = std::cos(2 * M_PI * i / 40), s = std::sin(2 * M_PI * i / 40);
+    positions += std::to_string(c) + " " + std::to_string(s) + "\n";
+    oriented += std::to_string(2 * c) + "\t" + std::to_string(2 * s) + " " + std::to_string(c) + " " + std::to_string(s) + "\n";
+  }
+  const std::string two = dir.write("circle2.xyz", "# x y\n\n" + positions);
+  const std::string four = dir.write("circle4.XYZ", oriented);
+  CHECK(hermite::pointFileDimension(two) == 2);
+  CHECK(hermite::pointFileDimension(four) == 2);
+  CHECK(hermite::pointFileDimension(dir.write("three.xyz", "0 0 0\n1 0 0\n")) == 3);
+  CHECK(hermite::pointFileDimension(dir.write("six.xyz", "0 0 0 0 0 1\n")) == 3);
+  std::vector<std::string> warnings;
+  const auto est = hermite::loadPointFile2d(two, warnings);
+  REQUIRE(est.size() == 40);
+  REQUIRE(warnings.size() == 1);  // normals estimated
+  for (int i = 0; i < est.size(); ++i) CHECK(est.normals.col(i).dot(est.points.col(i).normalized()) > 0.99);
+  warnings.clear();
+  const auto given = hermite::loadPointFile2d(four, warnings);
+  REQUIRE(given.size() == 40);
+  CHECK(warnings.empty());
+  CHECK(std::abs(given.points.col(10).norm() - 2) < 1e-5);
+  CHECK(given.normals.col(10).dot(given.points.col(10).normalized()) > 1 - 1e-9);
+  CHECK_THROWS_WITH_AS(hermite::loadPointFile3d(two, warnings),
+                       (two + ": a 2D point file (.xyz with 2 or 4 numbers per line) cannot be used in a 3D scene; "
+                              "use .xyz, .pwn or .xyzn (x y z nx ny nz)")
+                           .c_str(),
+                       InputError);
+  // Every line must match the first one.
+  const std::string mixed = dir.write("mixed2.xyz", "0 0\n1 0 0\n");
+  CHECK_THROWS_WITH_AS(hermite::loadPointFile2d(mixed, warnings),
+                       (mixed + ":2: expected 2 numbers (x y) like line 1, got 3").c_str(), InputError);
+}
+
 TEST_CASE("io_points: malformed files name the file and line") {
   const std::string p = kPoints;
   CHECK(load3dError(p + "/short_line.xyz") == p + "/short_line.xyz:4: expected 6 numbers (x y z nx ny nz), got 5");

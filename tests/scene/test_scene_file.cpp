@@ -303,6 +303,11 @@ TEST_CASE("scene: fit validation") {
         "x.json: fit.partition.blend: unknown blend 'soft' (expected smooth or hard)");
   CHECK(errorOf(scene3d(R"("fit": {"partition": {"blend": 1}})")) ==
         "x.json: fit.partition.blend: must be a string (got 1)");
+  // Added key fit.partition.data_reach: > 0, default 3.
+  CHECK(parse(scene3d(R"("fit": {})")).fit.partition.dataReach == 3.0);
+  CHECK(parse(scene3d(R"("fit": {"partition": {"data_reach": 2.5}})")).fit.partition.dataReach == 2.5);
+  CHECK(errorOf(scene3d(R"("fit": {"partition": {"data_reach": 0}})")) ==
+        "x.json: fit.partition.data_reach: must be > 0 (got 0)");
 }
 
 TEST_CASE("scene: fixture with an out-of-range radius names the file and key") {

@@ -1,6 +1,7 @@
 #include "app/gui/document_actions.h"
 
 #include <filesystem>
+#include <memory>
 
 #include "app/gui/camera_framing.h"
 #include "app/gui/scene_loading.h"
@@ -33,7 +34,8 @@ void openDataFile(GuiContext& ctx, const std::string& path) {
     ctx.setHomeFromScene();
     ctx.selected = -1;
     ctx.savePath = std::filesystem::path(path).replace_extension(".json").string();
-    ctx.loadedData = GuiContext::LoadedData{d.scene.data, d.samples, d.spacing, d.warnings};
+    ctx.loadedData = GuiContext::LoadedData{d.scene.data, d.samples, d.spacing, d.warnings,
+                                            std::make_shared<const Eigen::MatrixXd>(std::move(d.points))};
     std::string status = "loaded " + path + ": " + std::to_string(d.samples) + " samples (" +
                          std::to_string(d.scene.dimension()) + "D)";
     if (!d.warnings.empty()) status += "; " + d.warnings.front();

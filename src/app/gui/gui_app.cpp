@@ -11,6 +11,7 @@
 #include "app/gui/axes_overlay.h"
 #include "app/gui/document_actions.h"
 #include "app/gui/gui_widgets.h"
+#include "app/gui/loaded_points_overlay.h"
 #include "app/gui/partition_box_overlay.h"
 #include "app/gui/ui_scale.h"
 #include "app/panels/help_overlay.h"
@@ -98,6 +99,7 @@ void GuiApp::frame(const FrameInput& in) {
   ctx_.fits.adoptFinished(ctx_.status);  // synchronous fits (and fast ones) show in this very frame
   ctx_.image.redrawIfStale(ctx_);
   ctx_.image.draw(ctx_);
+  drawLoadedPoints(ctx_);
   drawOverlays();
   ImGui::Render();
   glyphMisses_ += render::countFallbackGlyphs(*ImGui::GetDrawData());

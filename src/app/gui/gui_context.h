@@ -5,6 +5,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -80,6 +81,8 @@ struct GuiContext {
     int samples = 0;
     double spacing = 0;
     std::vector<std::string> warnings;
+    // The samples' positions (Dim × N), drawn until a fit of this data is shown (loaded_points_overlay.h).
+    std::shared_ptr<const Eigen::MatrixXd> points;
   };
   std::optional<LoadedData> loadedData;
   std::map<std::string, std::array<float, 4>> widgets;  // this frame's named widget rectangles

@@ -26,8 +26,9 @@ struct MarchingGrid {
   std::array<std::int64_t, Dim> stride{};  // point-index step per axis (points: n + 1 per axis)
   std::int64_t pointCount = 0;
   Eigen::VectorXd values;              // f at every grid point
-  // valid[p] = 0: grid point p has no data (ImplicitField::valid); empty when every point is
-  // valid. Edges and cells touching such a point get no vertex and no geometry.
+  // valid[p] = 0: grid point p has no data (ImplicitField::valid, asked by markUsable where it
+  // matters); empty when every point is valid. Edges and cells touching such a point get no
+  // vertex and no geometry.
   std::vector<char> valid;
 
   // Sign-changing grid edges, key = pointIndex · Dim + axis (from the point to its +axis
@@ -79,6 +80,62 @@ void evaluateChunked(const ImplicitField<Dim>& field, const Points<Dim>& X, Eige
   }
 }
 
+// A 3-wide maximum of `mask` along each axis in turn: afterwards mask[p] is set when a point
+// within one grid step of p on every axis (Chebyshev distance 1) was set.
+template <int Dim>
+void dilateMask(const MarchingGrid<Dim>& g, std::vector<char>& mask) {
+  std::vector<char> next(mask.size());
+  for (int a = 0; a < Dim; ++a) {
+    const std::int64_t step = g.stride[a];
+#pragma omp parallel for schedule(static)
+    for (std::int64_t p = 0; p < g.pointCount; ++p) {
+      const int c = g.coords(p)[a];
+      char v = mask[static_cast<size_t>(p)];
+      if (c > 0) v |= mask[static_cast<size_t>(p - step)];
+      if (c < g.n[a]) v |= mask[static_cast<size_t>(p + step)];
+      next[static_cast<size_t>(p)] = v;
+    }
+    mask.swap(next);
+  }
+}
+
+// g.valid for a field that may have no data (ImplicitField::valid): asked only where it can
+// matter, at the grid points within one step (Chebyshev) of an end of a sign-changing edge — the
+// corners of every sign-changing cell. Other points count as without data: their cells have no
+// sign change and make no geometry whatever their validity.
+template <int Dim>
+void markUsable(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const CancelToken* cancel) {
+  std::vector<char> mask(static_cast<size_t>(g.pointCount), 0);
+#pragma omp parallel for schedule(static)
+  for (std::int64_t p = 0; p < g.pointCount; ++p) {
+    const std::array<int, Dim> c = g.coords(p);
+    for (int a = 0; a < Dim; ++a) {
+      if (c[a] > 0 && g.inside(p) != g.inside(p - g.stride[a])) mask[static_cast<size_t>(p)] = 1;
+      if (c[a] < g.n[a] && g.inside(p) != g.inside(p + g.stride[a])) mask[static_cast<size_t>(p)] = 1;
+    }
+  }
+  dilateMask(g, mask);
+  g.valid.assign(static_cast<size_t>(g.pointCount), 0);
+  constexpr std::size_t kChunk = 1 << 14;
+  std::vector<std::int64_t> todo;
+  Points<Dim> X;
+  std::vector<char> ok;
+  auto flush = [&] {
+    throwIfCancelled(cancel);
+    X.resize(Dim, static_cast<Eigen::Index>(todo.size()));
+    for (size_t i = 0; i < todo.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = g.point(todo[i]);
+    field.validBatch(X, ok);
+    for (size_t i = 0; i < todo.size(); ++i) g.valid[static_cast<size_t>(todo[i])] = ok[i];
+    todo.clear();
+  };
+  for (std::int64_t p = 0; p < g.pointCount; ++p) {
+    if (!mask[static_cast<size_t>(p)]) continue;
+    todo.push_back(p);
+    if (todo.size() == kChunk) flush();
+  }
+  if (!todo.empty()) flush();
+}
+
 // Grid layout and f at every grid point (batched by slabs of the last axis to bound memory).
 template <int Dim>
 MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& box, const MarchingOptions& options,
@@ -111,20 +168,10 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
   std::vector<std::int64_t> todo;
   Points<Dim> X;
   Eigen::VectorXd f;
-  // Validity only where f is evaluated: culled points lie in blocks without a sign change, whose
-  // cells make no geometry whatever their validity.
-  const bool checkValid = !field.everywhereValid();
-  if (checkValid) g.valid.assign(static_cast<size_t>(s), 1);
-  std::vector<char> ok;
   auto flush = [&] {
     X.resize(Dim, static_cast<Eigen::Index>(todo.size()));
     for (size_t i = 0; i < todo.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = g.point(todo[i]);
-    if (checkValid) {
-      field.evaluateValidBatch(X, f, ok);
-      for (size_t i = 0; i < todo.size(); ++i) g.valid[static_cast<size_t>(todo[i])] = ok[i];
-    } else {
-      field.evaluateBatch(X, f);
-    }
+    field.evaluateBatch(X, f);
     for (size_t i = 0; i < todo.size(); ++i) {
       if (!std::isfinite(f[static_cast<Eigen::Index>(i)])) {
         std::string where;
@@ -150,6 +197,7 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
   throwIfCancelled(options.cancel);
   if (!todo.empty()) flush();
   if (options.progress) options.progress(1.0);
+  if (!field.everywhereValid()) markUsable(g, field, options.cancel);
   if (report) {
     report->gridPoints = s;
     report->evaluatedPoints = total;

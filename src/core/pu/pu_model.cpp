@@ -167,6 +167,12 @@ SupportLimits supportLimits(const PuOptions& options) {
   return limits;
 }
 
+// blended[i] of an empty leaf blended only to cover the data reach (blendReachCover): its
+// support, capped at the support-sample limit, may shrink to just beyond the box (no floor), so
+// a box beside dense data (or larger than the data's boxes) neither fits thousands of samples
+// nor reaches far over the surface.
+constexpr char kCover = 2;
+
 // Per-thread scratch of the local fits, reused from box to box.
 template <int Dim>
 struct LeafScratch {
@@ -183,23 +189,35 @@ class LeafFitter {
   using Leaf = typename PuModel<Dim>::Leaf;
 
   LeafFitter(const HermiteSamples<Dim>& samples, const Points<Dim>& frameY, const PuTree<Dim>& tree,
-             const PuOptions& options, const HrbfOptions& local, SupportLimits limits)
-      : samples_(samples), frameY_(frameY), tree_(tree), options_(options), local_(local), limits_(limits) {}
+             const PuOptions& options, const HrbfOptions& local, SupportLimits limits, const std::vector<char>& kind)
+      : samples_(samples), frameY_(frameY), tree_(tree), options_(options), local_(local), limits_(limits), kind_(kind) {}
 
   const CancelToken* cancel() const { return local_.cancel; }
   // Fits leaf i; throws NumericalError when its system stays singular after growing.
   void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     const Box<Dim>& box = tree_.leafBox(i);
     const int n = samples_.size();
-    if (!leaf.blended) {
-      // Not blended (no data there): no fit, its nominal support for display.
+    const auto unblend = [&] {  // no data there: no fit, its nominal support for display
+      leaf.blended = false;
       leaf.support = scaledBox<Dim>(box, options_.overlap);
       leaf.factor = options_.overlap;
       leaf.samples = 0;
-      return;
-    }
+    };
+    if (!leaf.blended) return unblend();
     std::vector<int>& idx = scratch.idx;
-    double s = initialFactor(box, scratch);
+    const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
+    double s = initialFactor(box, cover ? 1.0 : 0.5 * (1.0 + options_.overlap), scratch);
+    // A cover box fits its nearest few samples; one whose support cannot stay small (samples at
+    // one L∞ distance: a box off a flat cloud reaches a whole square of it) or whose fit fails is
+    // left out, not grown: it only widens where f has a value.
+    if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
+      const int want = std::min(limits_.min, n);
+      if (static_cast<int>(idx.size()) > want) {
+        s = factorReaching(box, want, 1.0, scratch);
+        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+      }
+      if (static_cast<int>(idx.size()) > 4 * want) return unblend();
+    }
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
     for (int attempt = 0;; ++attempt) {
       std::sort(idx.begin(), idx.end());
@@ -212,6 +230,7 @@ class LeafFitter {
         leaf.samples = k;
         return;
       } catch (const NumericalError& e) {
+        if (cover) return unblend();
         if (attempt >= 4 || k >= n)
           throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
                                " samples) failed: " + e.what());
@@ -225,7 +244,7 @@ class LeafFitter {
  private:
   // The support factor of a box, its samples in scratch.idx: the overlap, grown until the
   // support holds limits.min samples, or shrunk (not below the floor) to hold at most limits.max.
-  double initialFactor(const Box<Dim>& box, LeafScratch<Dim>& scratch) const {
+  double initialFactor(const Box<Dim>& box, double floor, LeafScratch<Dim>& scratch) const {
     std::vector<int>& idx = scratch.idx;
     double s = options_.overlap;
     tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
@@ -238,7 +257,7 @@ class LeafFitter {
       s = factorReaching(box, want, options_.overlap, scratch);
       tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
     } else if (static_cast<int>(idx.size()) > limits_.max) {
-      s = factorReaching(box, limits_.max, 0.5 * (1.0 + options_.overlap), scratch);
+      s = factorReaching(box, limits_.max, floor, scratch);
       tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
     }
     return s;
@@ -276,6 +295,7 @@ class LeafFitter {
   const PuOptions& options_;
   const HrbfOptions& local_;
   SupportLimits limits_;
+  const std::vector<char>& kind_;  // per leaf: 0 not blended, 1 blended, kCover
 };
 
 // Which leaves the blend uses (docs/maths.md, "No data"). Smooth blend: the boxes holding
@@ -315,6 +335,48 @@ std::vector<char> blendedLeaves(const PuTree<Dim>& tree, const Points<Dim>& fram
     out[static_cast<std::size_t>(i)] = near ? 1 : 0;
   }
   return out;
+}
+
+// Distance between two boxes (0 when they meet).
+template <int Dim>
+double boxDistance(const Box<Dim>& a, const Box<Dim>& b) {
+  return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec<Dim>::Zero()).norm();
+}
+
+// The data reach doubled is covered by blended boxes (docs/maths.md, "No data"): an empty leaf
+// whose box comes within 2·rᵢ of a sample pᵢ is blended too. So S > 0 — f has a value, not the
+// no-data jump — wherever the data reach holds and one reach further: the mesher's one-step
+// widening of the data (grid steps up to about the reach) never meets the jump.
+template <int Dim>
+void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
+                     std::vector<char>& blended) {
+  if (reach.empty()) return;
+  const auto& nodes = tree.nodes();
+  std::vector<double> nodeR(nodes.size(), 0.0);  // largest 2·rᵢ of each node's samples
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    for (int j = nodes[id].begin; j < nodes[id].end; ++j) nodeR[id] = std::max(nodeR[id], reach.radiusAt(j));
+  const int n = tree.leafCount();
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < n; ++i) {
+    if (blended[static_cast<std::size_t>(i)]) continue;
+    const Box<Dim>& b = tree.leafBox(i);
+    bool near = false;
+    int stack[64 * PuTree<Dim>::kChildren];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0 && !near) {
+      const int id = stack[--top];
+      const auto& nd = nodes[static_cast<std::size_t>(id)];
+      if (nd.begin == nd.end || boxDistance<Dim>(nd.box, b) > nodeR[static_cast<std::size_t>(id)]) continue;
+      if (nd.firstChild >= 0) {
+        for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+        continue;
+      }
+      for (int j = nd.begin; j < nd.end && !near; ++j)
+        near = b.distanceTo(frameY.col(tree.order()[static_cast<std::size_t>(j)])) <= reach.radiusAt(j);
+    }
+    if (near) blended[static_cast<std::size_t>(i)] = kCover;
+  }
 }
 
 // Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
@@ -436,8 +498,12 @@ Similarity<Dim> composeSimilarity(const Similarity<Dim>& S, const Similarity<Dim
 
 template <int Dim>
 PuModel<Dim>::PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOptions& options,
-                      const Similarity<Dim>& frame)
-    : tree_(std::move(tree)), leaves_(std::move(leaves)), options_(options), frame_(frame) {
+                      const Similarity<Dim>& frame, PuDataReach<Dim> dataReach)
+    : tree_(std::move(tree)),
+      leaves_(std::move(leaves)),
+      options_(options),
+      frame_(frame),
+      dataReach_(std::move(dataReach)) {
   identityFrame_ = isIdentity(frame_);
   minFactor_ = std::numeric_limits<double>::infinity();
   for (const Leaf& l : leaves_)
@@ -560,6 +626,7 @@ double PuModel<Dim>::evaluateValid(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H, 
     }
   });
   if (!(S > 0)) return evaluateUncovered(x, y, g, H, valid);
+  if (valid) *valid = dataReach_.reaches(tree_, y);
   const double f = N / S;
   if (needG) {
     const Vec<Dim> gf = (gN - f * gS) / S;
@@ -574,7 +641,10 @@ double PuModel<Dim>::evaluateUncovered(const Vec<Dim>& x, const Vec<Dim>& y, Vec
                                        bool* valid) const {
   if (tree_.root().contains(y)) {
     const Leaf& own = leaves_[tree_.locateLeaf(y)];
-    if (own.blended) return own.model.evaluate(x, g, H);
+    if (own.blended) {
+      if (valid) *valid = dataReach_.reaches(tree_, y);
+      return own.model.evaluate(x, g, H);
+    }
   }
   if (valid) *valid = false;
   if (g) g->setZero();
@@ -591,7 +661,7 @@ bool PuModel<Dim>::valid(const Vec<Dim>& x) const {
   forSupportsAt(y, [&](int i) {
     if (!reached && bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0) reached = true;
   });
-  return reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended);
+  return (reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended)) && dataReach_.reaches(tree_, y);
 }
 
 template <int Dim>
@@ -681,17 +751,14 @@ double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
       yb.hi = yb.hi.cwiseMax(y);
     }
   }
-  // Every point of a blended leaf box lies in its support, at least minFactor times larger: there
-  // |tₖ| ≤ 1/minFactor on every axis, so S ≥ (1 − 1/minFactor²)^(3·Dim) where such boxes cover yb.
-  const double u0 = 1.0 - 1.0 / (minFactor_ * minFactor_);
-  const double s0 = std::pow(u0, 3 * Dim);
   const Vec<Dim> xc = box.center();
   const double reach = 0.5 * box.extent().norm();
-  double sumGF = 0, sumG = 0, fMax = 0, lMax = 0, sMin = 0;
+  double sumGF = 0, sumG = 0, fMax = 0, lMax = 0, sMin = 0, factorMin = std::numeric_limits<double>::infinity();
   int touching = 0;
   forSupportsTouching(yb, [&](int i) {
     ++touching;
     const Leaf& leaf = leaves_[i];
+    factorMin = std::min(factorMin, leaf.factor);
     double inv2 = 0, wMin = 1;
     for (int k = 0; k < Dim; ++k) {
       const double c = 0.5 * (leaf.support.lo(k) + leaf.support.hi(k));
@@ -711,7 +778,11 @@ double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
     sMin += wMin;
   });
   if (touching == 0) return 0.0;  // no data reaches the box: f is the constant noDataValue()
-  if (coveredByData(yb)) sMin = std::max(sMin, s0);
+  // Every point of a blended leaf box lies in its support, σ ≥ factorMin times larger (the leaf's
+  // support touches yb): there |tₖ| ≤ 1/σ on every axis, so S ≥ (1 − 1/factorMin²)^(3·Dim) where
+  // such boxes cover yb. The smallest factor of the supports here, not of the whole model: one
+  // capped support elsewhere must not loosen every bound.
+  if (factorMin > 1.0 && coveredByData(yb)) sMin = std::max(sMin, std::pow(1.0 - 1.0 / (factorMin * factorMin), 3 * Dim));
   // Where S has no positive lower bound f may jump to noDataValue(): no finite bound.
   if (!(sMin > 0)) return std::numeric_limits<double>::infinity();
   // Rounding of the sums: a relative 1e-12 margin.
@@ -746,19 +817,21 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   const auto leafCount = static_cast<std::size_t>(tree.leafCount());
   std::vector<typename PuModel<Dim>::Leaf> leaves(leafCount);
   std::vector<FitReport> reports(leafCount);
-  const std::vector<char> blended =
-      blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
+  PuDataReach<Dim> dataReach;
+  if (options.blend == PuBlend::Smooth) dataReach = PuDataReach<Dim>(tree, frameY, options.dataReach);
+  std::vector<char> blended = blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
+  blendReachCover<Dim>(tree, frameY, dataReach, blended);
   for (std::size_t i = 0; i < leafCount; ++i) leaves[i].blended = blended[i] != 0;
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;
   checkLocalFitMemory<Dim>(n, limits, local);
-  fitLeaves<Dim>(LeafFitter<Dim>(samples, frameY, tree, options, local, limits), leaves, reports);
+  fitLeaves<Dim>(LeafFitter<Dim>(samples, frameY, tree, options, local, limits, blended), leaves, reports);
   if (report) {
     *report = summariseFits<Dim>(tree, leaves, reports, options, local);
     report->treeMs = treeMs;
     report->fitMs = msSince(t0);
   }
-  return PuModel<Dim>(std::move(tree), std::move(leaves), options, frame);
+  return PuModel<Dim>(std::move(tree), std::move(leaves), options, frame, std::move(dataReach));
 }
 
 template <int Dim>
@@ -768,7 +841,8 @@ PuModel<Dim> transformPu(const PuModel<Dim>& model, const Similarity<Dim>& T) {
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < count; ++i)
     if (leaves[i].blended) leaves[i].model = transformModel<Dim>(leaves[i].model, T);
-  return PuModel<Dim>(model.tree(), std::move(leaves), model.options(), composeSimilarity<Dim>(T, model.frame()));
+  return PuModel<Dim>(model.tree(), std::move(leaves), model.options(), composeSimilarity<Dim>(T, model.frame()),
+                      model.dataReach());
 }
 
 template class PuModel<2>;

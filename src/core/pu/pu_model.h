@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "core/pu/pu_data_reach.h"
 #include "core/pu/pu_tree.h"
 #include "core/rbf/hrbf.h"
 #include "core/rbf/similarity_transform.h"
@@ -38,6 +39,10 @@ struct PuOptions {
   // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2: a big
   // box beside a dense region would otherwise solve thousands of unknowns.
   int maxSupportSamples = 0;
+  // c of the data reach (pu_data_reach.h; scene key `fit.partition.data_reach`): the smooth
+  // blend has data within c·dₖ of a sample, dₖ its distance to the (2·Dim)-th nearest other
+  // sample. 3 keeps every cell of a mesh as fine as the sampling, across the surface, inside.
+  double dataReach = 3.0;
 };
 
 // What the fit reports besides the model (`fit --json` "partition").
@@ -70,7 +75,8 @@ class PuModel : public ImplicitField<Dim> {
   };
 
   PuModel() = default;
-  PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOptions& options, const Similarity<Dim>& frame);
+  PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOptions& options, const Similarity<Dim>& frame,
+          PuDataReach<Dim> dataReach = {});
 
   double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override;
   void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
@@ -79,7 +85,8 @@ class PuModel : public ImplicitField<Dim> {
   // Zero where no data support reaches the box (f is constant there), infinite where the box
   // reaches the edge of the data (f may jump to noDataValue()).
   double lipschitzBound(const Box<Dim>& box) const override;
-  // Some blended support reaches x (its box, with overlap 1); always for the hard blend.
+  // Some blended support reaches x (its box, with overlap 1) and so does a sample (dataReach());
+  // always for the hard blend.
   bool valid(const Vec<Dim>& x) const override;
   bool everywhereValid() const override { return options_.blend == PuBlend::Hard; }
   void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const override;
@@ -89,6 +96,8 @@ class PuModel : public ImplicitField<Dim> {
   const PuTree<Dim>& tree() const { return tree_; }
   const std::vector<Leaf>& leaves() const { return leaves_; }
   const PuOptions& options() const { return options_; }
+  // The samples' reach (frame coordinates): where valid() may be true. Empty for the hard blend.
+  const PuDataReach<Dim>& dataReach() const { return dataReach_; }
   // World x = frame.apply(y) for frame coordinates y of boxes and supports.
   const Similarity<Dim>& frame() const { return frame_; }
 
@@ -116,6 +125,7 @@ class PuModel : public ImplicitField<Dim> {
   std::vector<char> allBlended_;  // per tree node: every leaf below it is blended
   PuOptions options_;
   Similarity<Dim> frame_;
+  PuDataReach<Dim> dataReach_;
   bool identityFrame_ = true;
   double minFactor_ = 1.0;  // smallest support factor of a data leaf (the weight sum's lower bound needs it)
   double noData_ = 1.0;

@@ -212,6 +212,7 @@ VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const
   const int planesPerSlab = std::max<int>(1, int(65536 / plane));
   Points<3> X;
   Eigen::VectorXd f;
+  std::vector<char> valid;
   for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
     throwIfCancelled(options.cancel);
     const int k1 = std::min(R, k0 + planesPerSlab);
@@ -226,10 +227,18 @@ VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const
         for (int i = 0; i < R; ++i, ++col) X.col(col) = Vec<3>(bounds.lo.x() + h.x() * i, y, z);
       }
     }
-    field.evaluateBatch(X, f);
     float* out = bake.values.data() + plane * k0;
+    if (field.everywhereValid()) {
+      field.evaluateBatch(X, f);
 #pragma omp parallel for schedule(static)
-    for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
+      for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
+    } else {
+      // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
+      // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
+      field.evaluateValidBatch(X, f, valid);
+#pragma omp parallel for schedule(static)
+      for (Eigen::Index q = 0; q < m; ++q) out[q] = float(valid[std::size_t(q)] ? f(q) : std::abs(f(q)));
+    }
   }
   }
   throwIfCancelled(options.cancel);
