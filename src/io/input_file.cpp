@@ -100,20 +100,47 @@ std::string fileKindName(unsigned mode) {
   return "not a regular file";
 }
 
-std::string readInputFile(const std::string& path, std::string_view what) {
-  // stat before open: opening a FIFO for reading blocks until a writer appears.
-  struct stat st {};
+namespace {
+
+// Opens `path` for reading once it is known to be a regular file, by name and again on the
+// descriptor (opening a FIFO for reading would block until a writer appears; O_NONBLOCK covers
+// a file replaced by a FIFO between the two). `st` gets the open file's status.
+void openRegular(const std::string& path, FileDescriptor& file, struct stat& st) {
   if (::stat(path.c_str(), &st) != 0) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
   requireRegular(path, st);
-  requireWithinCap(path, what, static_cast<std::uint64_t>(st.st_size));
-  // O_NONBLOCK: the file may have been replaced by a FIFO since the stat; fstat checks again.
-  FileDescriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC)};
+  file.fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
   if (file.fd < 0) throw InputError(path + ": cannot open (" + std::strerror(errno) + ")");
   if (::fstat(file.fd, &st) != 0) throwReadError(path);
   requireRegular(path, st);
-  requireWithinCap(path, what, static_cast<std::uint64_t>(st.st_size));
+}
 
+}  // namespace
+
+std::string readInputFile(const std::string& path, std::string_view what) {
+  FileDescriptor file;
+  struct stat st {};
+  openRegular(path, file, st);
+  requireWithinCap(path, what, static_cast<std::uint64_t>(st.st_size));
   return readAll(file.fd, static_cast<std::size_t>(st.st_size), path, what);
+}
+
+std::string readInputFileHead(const std::string& path, std::size_t bytes) {
+  FileDescriptor file;
+  struct stat st {};
+  openRegular(path, file, st);
+  std::string head(bytes, '\0');
+  std::size_t filled = 0;
+  while (filled < head.size()) {
+    const ssize_t got = ::read(file.fd, head.data() + filled, head.size() - filled);
+    if (got == 0) break;
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      throwReadError(path);
+    }
+    filled += static_cast<std::size_t>(got);
+  }
+  head.resize(filled);
+  return head;
 }
 
 }  // namespace hermite

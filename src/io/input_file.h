@@ -4,6 +4,7 @@
 // (default 4 GiB; `--max-input-size` changes it, docs/cli.md). A device such as /dev/zero, a
 // FIFO, a socket or a directory is refused by name before anything is read.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <string_view>
@@ -21,6 +22,10 @@ void setMaxInputSize(std::uint64_t bytes);
 // the size, the cap and the remedy when it is larger than maxInputSize(). `what` names the
 // content in that message ("scene", "point file", "PLY"). An empty file is returned as "".
 std::string readInputFile(const std::string& path, std::string_view what);
+
+// At most the first `bytes` bytes of the file, with readInputFile's checks and errors but no
+// size cap (the read is bounded): for sniffing a file's layout before it is loaded.
+std::string readInputFileHead(const std::string& path, std::size_t bytes);
 
 // "a FIFO", "a character device", … for a stat mode that is not a regular file.
 std::string fileKindName(unsigned mode);

@@ -9,7 +9,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "core/base/errors.h"
 #include "core/points/normal_estimation.h"
@@ -252,12 +251,15 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
 }
 
 // Blank-separated fields of the first data line of a text file (read from its first 64 KiB; 0
-// when there is none or the file cannot be read: the loader then reports the problem).
+// when there is none or the file cannot be read — a missing file, a FIFO, which is never opened
+// for reading: the loader then reports the problem).
 int xyzColumns(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::string head(1 << 16, '\0');
-  in.read(head.data(), static_cast<std::streamsize>(head.size()));
-  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(in.gcount(), 0)));
+  std::string head;
+  try {
+    head = readInputFileHead(path, std::size_t{1} << 16);
+  } catch (const InputError&) {
+    return 0;
+  }
   LineReader lines(head);
   std::string_view line;
   long number = 0;
