@@ -26,15 +26,18 @@ int checkResolution(const SceneFit<Dim>& fit) {
 
 }  // namespace
 
+bool degenerateCheckApplies(KernelType kernel) { return Kernel{kernel, 1.0}.strictlyPositiveDefinite(); }
+
 template <int Dim>
 void checkDegenerateField(const Scene& scene, SceneFit<Dim>& fit) {
-  if (fit.data.size() == 0) return;
+  fit.degenerateField.reset();
+  fit.masked.reset();
+  if (fit.data.size() == 0 || !degenerateCheckApplies(scene.fit.kernel)) return;
   const Box<Dim> box = viewBounds<Dim>(scene.view, fit.data.points);
   DegenerateFieldOptions options;
   options.resolution = checkResolution(fit);
   const DegenerateFieldReport report = detectDegenerateField<Dim>(fit.unmaskedField(), box, fit.data, options);
   fit.degenerateField = report;
-  fit.masked.reset();
   if (!report.degenerate) return;
   fit.warnings.push_back(report.message());
   fit.masked = std::make_unique<FlatMaskedField<Dim>>(fit.unmaskedField(), report.scale);

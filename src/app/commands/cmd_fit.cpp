@@ -137,6 +137,9 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
     out["degenerate_field"] = {{"degenerate", fit.degenerateField->degenerate},
                                {"flat_fraction", fit.degenerateField->flatFraction},
                                {"tolerance", fit.degenerateField->scale.tolerance}};
+  else if (!degenerateCheckApplies(scene.fit.kernel))
+    out["degenerate_field"] = {{"degenerate", false},
+                               {"skipped", "the kernel grows with distance: its field is not flat away from the data"}};
   if (const PuModel<Dim>* pu = fit.pu()) {
     out["partition"] = {{"boxes", fit.puReport.boxes},
                         {"max_box_samples", fit.puReport.maxBoxSamples},

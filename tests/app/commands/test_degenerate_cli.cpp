@@ -41,6 +41,12 @@ TEST_CASE("fit --json: the degenerate teaching scenes warn, with the flat fracti
   const nlohmann::json j = nlohmann::json::parse(ok.out);
   CHECK_FALSE(hasDegenerateWarning(j));
   CHECK_FALSE(j["degenerate_field"]["degenerate"].get<bool>());
+  // A kernel that grows with distance is never flat away from the data: the check is skipped.
+  const CliResult cubic = runCli("fit --json " + teachingScene("polyharmonic_bunny_64pts_quadratic.json"));
+  REQUIRE(cubic.rc == 0);
+  const nlohmann::json c = nlohmann::json::parse(cubic.out);
+  CHECK_FALSE(c["degenerate_field"]["degenerate"].get<bool>());
+  CHECK(c["degenerate_field"].contains("skipped"));
 }
 
 TEST_CASE("mesh: a degenerate field warns and its mesh is not called a closed manifold") {
