@@ -50,7 +50,8 @@ struct SceneFitReport {
   std::vector<std::string> warnings;       // data + fit warnings, in order
   bool transformed = false;
   TransformReport transform;
-  // checkDegenerateField's verdict (scene/degenerate_check.h); empty until it ran.
+  // checkDegenerateField's verdict (scene/degenerate_check.h); empty until it ran and where it does
+  // not apply (kernels that grow with distance).
   std::optional<DegenerateFieldReport> degenerateField;
 };
 
