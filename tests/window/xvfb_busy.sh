@@ -22,24 +22,9 @@ cleanup() {
 trap cleanup EXIT
 fail() { echo "FAIL: $*"; [ -f "$WORK/app.log" ] && sed 's/^/  app: /' "$WORK/app.log"; [ -f "$WORK/gui.log" ] && tail -5 "$WORK/gui.log" | sed 's/^/  log: /'; exit 1; }
 
-for tool in Xvfb xdotool python3; do
-  if ! command -v "$tool" > /dev/null; then
-    if [ "${HERMITE_REQUIRE_XVFB:-0}" = 1 ]; then fail "$tool is not installed (HERMITE_REQUIRE_XVFB=1)"; fi
-    echo "SKIP: $tool is not installed (scripts/install-deps.sh installs it)"
-    exit 77
-  fi
-done
-
-D=""
-for n in $(seq 161 230); do
-  if [ ! -e "/tmp/.X11-unix/X$n" ] && [ ! -e "/tmp/.X$n-lock" ]; then D=$n; break; fi
-done
-[ -n "$D" ] || fail "no free X display number"
-Xvfb ":$D" -screen 0 1400x900x24 -nolisten tcp > "$WORK/xvfb.log" 2>&1 &
-XPID=$!
-for _ in $(seq 100); do [ -e "/tmp/.X11-unix/X$D" ] && break; sleep 0.1; done
-[ -e "/tmp/.X11-unix/X$D" ] || fail "Xvfb did not start: $(cat "$WORK/xvfb.log")"
-export DISPLAY=":$D"
+source "$(dirname "$0")/xvfb_common.sh"
+require_tools Xvfb xdotool python3
+start_xvfb 161 230
 
 # A partition-of-unity fit of the bunny's 1 839 samples: the fit takes a moment, the settled
 # view (bake and exact refinement at full size) takes seconds on llvmpipe.

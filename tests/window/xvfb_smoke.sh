@@ -18,25 +18,9 @@ cleanup() {
 trap cleanup EXIT
 fail() { echo "FAIL: $*"; [ -f "$WORK/app.log" ] && sed 's/^/  app: /' "$WORK/app.log"; exit 1; }
 
-for tool in Xvfb xdotool import compare python3; do
-  if ! command -v "$tool" > /dev/null; then
-    if [ "${HERMITE_REQUIRE_XVFB:-0}" = 1 ]; then fail "$tool is not installed (HERMITE_REQUIRE_XVFB=1)"; fi
-    echo "SKIP: $tool is not installed (scripts/install-deps.sh installs it)"
-    exit 77
-  fi
-done
-
-# A free display number.
-D=""
-for n in $(seq 91 160); do
-  if [ ! -e "/tmp/.X11-unix/X$n" ] && [ ! -e "/tmp/.X$n-lock" ]; then D=$n; break; fi
-done
-[ -n "$D" ] || fail "no free X display number"
-Xvfb ":$D" -screen 0 1400x900x24 -nolisten tcp > "$WORK/xvfb.log" 2>&1 &
-XPID=$!
-for _ in $(seq 100); do [ -e "/tmp/.X11-unix/X$D" ] && break; sleep 0.1; done
-[ -e "/tmp/.X11-unix/X$D" ] || fail "Xvfb did not start: $(cat "$WORK/xvfb.log")"
-export DISPLAY=":$D"
+source "$(dirname "$0")/xvfb_common.sh"
+require_tools Xvfb xdotool import compare python3
+start_xvfb 91 160
 
 # Eight samples on the unit circle; the view shows [-1.5, 1.5] vertically around the origin.
 python3 - "$WORK/scene.json" <<'PY'
