@@ -7,9 +7,7 @@
 #include <chrono>
 #include <thread>
 
-#include "app/gui/gui_app.h"
-#include "render/gl/context.h"
-#include "render/gl/offscreen.h"
+#include "support/gui_harness.h"
 
 using namespace hermite;
 using namespace hermite::app;
@@ -25,44 +23,19 @@ Scene sphereScene() {
   return s;
 }
 
-struct App {
-  std::unique_ptr<render::RenderContext> context;
-  std::unique_ptr<render::OffscreenTarget> target;
-  std::unique_ptr<GuiApp> app;
-  FrameInput input;
-
-  App(bool synchronous, int w, int h) {
-    render::ContextOptions co;
-    co.width = w;
-    co.height = h;
-    co.visible = false;
-    context = render::createContext("osmesa", co);
-    target = std::make_unique<render::OffscreenTarget>(w, h, false);
-    GuiOptions o;
-    o.synchronousFits = synchronous;
-    app = std::make_unique<GuiApp>(Document(sphereScene()), o);
-    input.width = w;
-    input.height = h;
-  }
-  void frame() {
-    target->bind();
-    app->frame(input);
-  }
-};
-
 }  // namespace
 
 TEST_CASE("UI: the settled 3D view arrives from the view worker, coarse first, equal to the synchronous one") {
   SceneViewResult want;
   {
-    App sync(true, 640, 480);
+    testing::Harness sync(sphereScene(), true, 640, 480);
     for (int k = 0; k < 6; ++k) sync.frame();
     REQUIRE(sync.app->viewIsCurrent());
     want = sync.app->viewResult();
   }
   REQUIRE(want.traceMode == "baked + refined");
 
-  App a(false, 640, 480);
+  testing::Harness a(sphereScene(), false, 640, 480);
   bool sawUnrefined = false, sawPending = false;
   int frames = 0;
   for (; frames < 5000 && !a.app->viewIsCurrent(); ++frames) {
