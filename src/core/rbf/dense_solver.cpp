@@ -20,6 +20,7 @@
 #include "core/rbf/cholesky_solve.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/lapack_errors.h"
+#include "core/rbf/symmetric_norm.h"
 
 // LAPACK's reverse-communication 1-norm estimator (no LAPACKE wrapper exists for it).
 extern "C" void dlacn2_(const int* n, double* v, double* x, int* isgn, double* est, int* kase, int* isave);
@@ -152,9 +153,11 @@ double reciprocalCondition(double anorm, Index n, const std::function<void(Eigen
 
 // Cholesky of sign·M in place, M = the k × k block at `M` with leading dimension `ld` (lower
 // triangle only; the upper triangle is left untouched so a failure can be undone). Solves
-// sign·M y = sign·rhs in place of rhs.
+// sign·M y = sign·rhs in place of rhs. `knownNorm` is M's 1-norm when the caller has it (a
+// negative value: read it here, in the pass that also finds non-finite entries).
 Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Eigen::Ref<Eigen::VectorXd> rhs,
-                         PhaseClock& clock, const CancelToken* cancel, bool estimateCondition = true) {
+                         PhaseClock& clock, const CancelToken* cancel, bool estimateCondition = true,
+                         double knownNorm = -1) {
   Factorised out;
   if (k == 0) {  // nothing to solve (LAPACK would reject the empty right-hand side's stride)
     out.ok = true;
@@ -164,14 +167,20 @@ Factorised choleskySolve(double* M, lapack_int k, lapack_int ld, double sign, Ei
   if (sign < 0)
     for (lapack_int j = 0; j < k; ++j)
       for (lapack_int i = j; i < k; ++i) M[size_t(j) * ld + i] = -M[size_t(j) * ld + i];
-  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', k, M, ld);
-  const lapack_int info = cancel ? cancellableCholesky(M, k, ld, cancel) : LAPACKE_dpotrf(LAPACK_COL_MAJOR, 'L', k, M, ld);
+  const double anorm = knownNorm >= 0 ? knownNorm : lowerSymmetricOneNorm(M, k, ld);
+  if (!std::isfinite(anorm)) {
+    clock.lap("factor");
+    out.failure = "Cholesky: the matrix has non-finite entries (an overflow, e.g. in the projection)";
+    return out;
+  }
+  // The _work form: LAPACKE's own NaN scan would read the triangle once more.
+  const lapack_int info =
+      cancel ? cancellableCholesky(M, k, ld, cancel) : LAPACKE_dpotrf_work(LAPACK_COL_MAJOR, 'L', k, M, ld);
   clock.lap("factor");
   if (info != 0) {
     out.failure = info > 0 ? "Cholesky: the matrix is not positive definite (pivot " + std::to_string(info) +
                                  " of " + std::to_string(k) + ")"
-                           : info == -4 ? "Cholesky: the matrix has NaN entries (an overflow, e.g. in the projection)"
-                                        : "Cholesky: invalid argument " + std::to_string(-info);
+                           : "Cholesky: invalid argument " + std::to_string(-info);
     return out;
   }
   if (estimateCondition) {
@@ -217,7 +226,7 @@ Factorised ldltSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs, PhaseClock& clock
   takeLapackError();  // a failed earlier path reported its own error through info
   const lapack_int n = toLapack(K.rows());
   std::vector<lapack_int> ipiv(n);
-  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', n, K.data(), n);
+  const double anorm = lowerSymmetricOneNorm(K.data(), n, n);
   const lapack_int info = LAPACKE_dsytrf(LAPACK_COL_MAJOR, 'L', n, K.data(), n, ipiv.data());
   clock.lap("factor");
   if (info != 0) {
@@ -239,9 +248,11 @@ Factorised luSolve(Eigen::MatrixXd& K, Eigen::VectorXd& rhs, PhaseClock& clock, 
   takeLapackError();  // a failed earlier path reported its own error through info
   const lapack_int n = toLapack(K.rows());
   std::vector<lapack_int> ipiv(n);
-  const double anorm = LAPACKE_dlange(LAPACK_COL_MAJOR, '1', n, n, K.data(), n);
-  const lapack_int info =
-      cancel ? cancellableLu(K.data(), n, ipiv.data(), cancel) : LAPACKE_dgetrf(LAPACK_COL_MAJOR, n, n, K.data(), n, ipiv.data());
+  // K is symmetric (the saddle matrix), so its lower triangle gives the 1-norm; K's entries are
+  // finite (solveSaddle checks A, P and b), so dgetrf goes without LAPACKE's NaN scan.
+  const double anorm = lowerSymmetricOneNorm(K.data(), n, n);
+  const lapack_int info = cancel ? cancellableLu(K.data(), n, ipiv.data(), cancel)
+                                 : LAPACKE_dgetrf_work(LAPACK_COL_MAJOR, n, n, K.data(), n, ipiv.data());
   clock.lap("factor");
   if (info != 0) {
     out.failure = info > 0 ? "LU: U(" + std::to_string(info) + "," + std::to_string(info) +
@@ -299,15 +310,6 @@ void mirrorLowerToUpper(Eigen::MatrixXd& M) {
         for (Index j = j0; j < std::min(j1, i); ++j) M(j, i) = M(i, j);
     }
   }
-}
-
-// Whether the lower triangle and diagonal of the square M are finite (the upper is not read).
-bool lowerFinite(const Eigen::MatrixXd& M) {
-  const Index n = M.rows();
-  bool finite = true;
-#pragma omp parallel for schedule(dynamic, 64) reduction(&& : finite)
-  for (Index j = 0; j < n; ++j) finite = finite && M.col(j).tail(n - j).allFinite();
-  return finite;
 }
 
 bool isCholeskyPath(SolverChoice path) {
@@ -368,7 +370,7 @@ struct ProjectedFactors {
 // The projected-cholesky path on the system's A (m = 0; read from its lower triangle). On
 // success x = A⁻¹ b and the factors are returned; on failure A's lower triangle and diagonal are
 // overwritten (restoreAfterCholesky undoes it) and `failure` says why.
-Factorised projectedCholeskySolve(SaddleSystem& sys, Eigen::VectorXd& x, PhaseClock& clock) {
+Factorised projectedCholeskySolve(SaddleSystem& sys, double aNorm, Eigen::VectorXd& x, PhaseClock& clock) {
   Factorised out;
   const Index n = sys.A.rows();
   ProjectedFactors F;
@@ -381,7 +383,6 @@ Factorised projectedCholeskySolve(SaddleSystem& sys, Eigen::VectorXd& x, PhaseCl
   }
   const Index q = F.q();
   clock.lap("qr");
-  const double anorm = LAPACKE_dlansy(LAPACK_COL_MAJOR, '1', 'L', toLapack(n), sys.A.data(), toLapack(n));
   projectLower(sys.A, F.QR, F.tau);
   clock.lap("project");
   throwIfCancelled(sys.cancel);
@@ -412,7 +413,7 @@ Factorised projectedCholeskySolve(SaddleSystem& sys, Eigen::VectorXd& x, PhaseCl
   F.solve(x);
   clock.lap("solve");
   // 1-norm condition of A itself: ‖A‖₁ times the Hager–Higham estimate of ‖A⁻¹‖₁.
-  out.rcond = reciprocalCondition(anorm, n, [&F](Eigen::VectorXd& v) { F.solve(v); });
+  out.rcond = reciprocalCondition(aNorm, n, [&F](Eigen::VectorXd& v) { F.solve(v); });
   clock.lap("condition");
   return out;
 }
@@ -451,7 +452,9 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   // failed factorisation restores from, unnecessary when A can be rebuilt.
   if (!(sys.assembleLower && isCholeskyPath(plannedSolverPath(choice, m, sys.definiteSign, projectable))))
     mirrorLowerToUpper(sys.A);
-  if (!lowerFinite(sys.A) || !sys.P.allFinite() || !sys.b.allFinite())
+  // ‖A‖₁ from its lower triangle, in the pass that also finds non-finite entries.
+  const double aNorm = lowerSymmetricOneNorm(sys.A.data(), n, n);
+  if (!std::isfinite(aNorm) || !sys.P.allFinite() || !sys.b.allFinite())
     throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
   clock.lap("prepare");
   throwIfCancelled(sys.cancel);
@@ -476,7 +479,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   Factorised fact;
   if (choice == SolverChoice::Cholesky) {
     out.x = sys.b;
-    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock, sys.cancel);
+    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock, sys.cancel, true, aNorm);
     if (fact.ok) {
       out.solver = "cholesky";
       out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n);
@@ -507,7 +510,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
       restoreAfterCholesky(sys, diagonal);
     }
   } else if (choice == SolverChoice::ProjectedCholesky) {
-    fact = projectedCholeskySolve(sys, out.x, clock);
+    fact = projectedCholeskySolve(sys, aNorm, out.x, clock);
     if (fact.ok) {
       out.solver = "projected-cholesky";
       out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n - sys.definiteOn.cols());
