@@ -19,9 +19,16 @@ void setThreadCount(int n) {
   openblas_set_num_threads(n);
 }
 
-void setBlasThreadCount(int n) { openblas_set_num_threads(n < 1 ? 1 : n); }
+void setBlasThreadCount(int n) {
+  // OpenBLAS built for OpenMP sets OpenMP's count with its own; the OpenMP loops keep theirs.
+  const int openmp = omp_get_max_threads();
+  openblas_set_num_threads(n < 1 ? 1 : n);
+  omp_set_num_threads(openmp);
+}
 
 int threadCount() { return omp_get_max_threads(); }
+
+int blasThreadCount() { return openblas_get_num_threads(); }
 
 int availableCores() {
   // The CPUs this process may run on (taskset, cgroup cpusets), else all of the machine's.
@@ -60,15 +67,23 @@ int idleCores() {
   return others <= 0 ? cores : (others >= cores ? 1 : cores - others);
 }
 
-BlasThreadsForLoad::BlasThreadsForLoad(bool large) : previous_(openblas_get_num_threads()) {
+BlasThreadsForLoad::BlasThreadsForLoad(bool large)
+    : previous_(openblas_get_num_threads()), previousOpenmp_(omp_get_max_threads()) {
   // Inside a parallel region (partition-of-unity boxes) other threads may be in BLAS calls while
   // this one would change the count under them: left alone there.
   threads_ = large && previous_ > 1 && !omp_in_parallel() ? std::min(previous_, idleCores()) : previous_;
-  if (threads_ != previous_) openblas_set_num_threads(threads_);
+  // Both counts: OpenBLAS built for OpenMP takes its threads from OpenMP's count at each call.
+  if (threads_ != previous_) {
+    openblas_set_num_threads(threads_);
+    omp_set_num_threads(std::min(threads_, previousOpenmp_));
+  }
 }
 
 BlasThreadsForLoad::~BlasThreadsForLoad() {
-  if (threads_ != previous_) openblas_set_num_threads(previous_);
+  if (threads_ != previous_) {
+    openblas_set_num_threads(previous_);
+    omp_set_num_threads(previousOpenmp_);
+  }
 }
 
 }  // namespace hermite

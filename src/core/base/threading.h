@@ -6,11 +6,15 @@ namespace hermite {
 
 // n ≥ 1. Affects both OpenMP and OpenBLAS.
 void setThreadCount(int n);
-// OpenBLAS alone (n ≥ 1): many small factorisations run side by side (one per hole in hole
-// filling) go faster with one BLAS thread each; setThreadCount restores both.
+// OpenBLAS alone (n ≥ 1), OpenMP's count kept: many small factorisations run side by side (one
+// per hole in hole filling, one per partition-of-unity box) go faster with one BLAS thread each;
+// setThreadCount restores both. (OpenBLAS built for OpenMP runs single-threaded inside a parallel
+// region by itself and takes OpenMP's count elsewhere.)
 void setBlasThreadCount(int n);
 // The current OpenMP worker count.
 int threadCount();
+// The current OpenBLAS thread count.
+int blasThreadCount();
 // Hardware threads available to this process: its CPU affinity mask (sched_getaffinity), else
 // std::thread::hardware_concurrency.
 int availableCores();
@@ -20,9 +24,10 @@ int availableCores();
 // first finds any), at least 1.
 int idleCores();
 
-// For one large BLAS call sequence: OpenBLAS gets no more threads than idleCores() (a thread
-// sharing a core with another busy process makes every synchronisation of a factorisation wait
-// for it: 4–10× slower fits, docs/performance.md); the previous count comes back at the end.
+// For one large BLAS call sequence: OpenBLAS and the OpenMP loops of the calling thread get no
+// more threads than idleCores() (a thread sharing a core with another busy process makes every
+// synchronisation of a factorisation wait for it: 4–10× slower fits, docs/performance.md); the
+// previous counts come back at the end.
 // Inside an OpenMP parallel region, and for work that is not `large` (where the check's 5 ms
 // would matter more than the threads), it changes nothing.
 class BlasThreadsForLoad {
@@ -35,6 +40,7 @@ class BlasThreadsForLoad {
 
  private:
   int previous_ = 0;
+  int previousOpenmp_ = 0;
   int threads_ = 0;
 };
 

@@ -18,11 +18,9 @@
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
 #include "core/base/memory_check.h"
+#include "core/base/threading.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/dense_solver.h"
-
-extern "C" int openblas_get_num_threads(void);
-extern "C" void openblas_set_num_threads(int num_threads);
 
 namespace hermite {
 
@@ -410,8 +408,8 @@ void fitLeaves(const LeafFitter<Dim>& fitter, std::vector<typename PuModel<Dim>:
   const int leafCount = static_cast<int>(leaves.size());
   std::exception_ptr failure;
   std::mutex failureMutex;
-  const int blasThreads = openblas_get_num_threads();
-  openblas_set_num_threads(1);
+  const int blasThreads = blasThreadCount();
+  setBlasThreadCount(1);
 #pragma omp parallel
   {
     LeafScratch<Dim> scratch;
@@ -426,7 +424,7 @@ void fitLeaves(const LeafFitter<Dim>& fitter, std::vector<typename PuModel<Dim>:
       }
     }
   }
-  openblas_set_num_threads(blasThreads);
+  setBlasThreadCount(blasThreads);
   if (failure) std::rethrow_exception(failure);
 }
 
