@@ -55,10 +55,10 @@ int runnableNow() {
 
 }  // namespace
 
-int idleCores() {
+int idleCores(bool confirm) {
   const int cores = availableCores();
   int others = runnableNow() - 1;  // the caller is running
-  if (others >= 1) {
+  if (others >= 1 && confirm) {
     // Busy for longer than a moment: a process starting up (the shell reading this program's
     // output) is runnable for a few milliseconds and does not halve a fit; a competing one is.
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
@@ -71,7 +71,7 @@ BlasThreadsForLoad::BlasThreadsForLoad(bool large)
     : previous_(openblas_get_num_threads()), previousOpenmp_(omp_get_max_threads()) {
   // Inside a parallel region (partition-of-unity boxes) other threads may be in BLAS calls while
   // this one would change the count under them: left alone there.
-  threads_ = large && previous_ > 1 && !omp_in_parallel() ? std::min(previous_, idleCores()) : previous_;
+  threads_ = previous_ > 1 && !omp_in_parallel() ? std::min(previous_, idleCores(large)) : previous_;
   // Both counts: OpenBLAS built for OpenMP takes its threads from OpenMP's count at each call.
   if (threads_ != previous_) {
     openblas_set_num_threads(threads_);

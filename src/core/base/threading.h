@@ -20,16 +20,18 @@ int blasThreadCount();
 int availableCores();
 
 // Cores not busy with other work: availableCores() minus the machine's runnable tasks other than
-// the caller (/proc/loadavg's instantaneous count, the smaller of two readings 5 ms apart when the
-// first finds any), at least 1.
-int idleCores();
+// the caller (/proc/loadavg's instantaneous count; with `confirm`, the smaller of two readings
+// 5 ms apart when the first finds any), at least 1.
+int idleCores(bool confirm = true);
 
-// For one large BLAS call sequence: OpenBLAS and the OpenMP loops of the calling thread get no
-// more threads than idleCores() (a thread sharing a core with another busy process makes every
+// For one BLAS call sequence: OpenBLAS and the OpenMP loops of the calling thread get no more
+// threads than idleCores() (a thread sharing a core with another busy process makes every
 // synchronisation of a factorisation wait for it: 4–10× slower fits, docs/performance.md); the
-// previous counts come back at the end.
-// Inside an OpenMP parallel region, and for work that is not `large` (where the check's 5 ms
-// would matter more than the threads), it changes nothing.
+// previous counts come back at the end. Work that is not `large` takes one reading without the
+// 5 ms confirmation: a process that was runnable only for a moment costs such work a few
+// milliseconds at most, while a thread sharing a core with a busy one costs a small fit several
+// times its time (docs/performance.md).
+// Inside an OpenMP parallel region it changes nothing.
 class BlasThreadsForLoad {
  public:
   explicit BlasThreadsForLoad(bool large);
