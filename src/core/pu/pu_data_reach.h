@@ -2,20 +2,21 @@
 // Where a partition-of-unity field rests on data (docs/maths.md, "No data"): within reach of the
 // samples, MPU-style, and not past the edge of the data:
 //
-//   reaches(y)  ⇔  R(y) ≠ ∅  and  |s| ≤ z·σ,
+//   reaches(y)  ⇔  R(y) ≠ ∅  and (edge test)  |s| ≤ z·σ,
 //   R(y) = { i : ‖y − pᵢ‖ ≤ rᵢ },   rᵢ = c · dₖ(pᵢ),
 //
 // with pᵢ the samples in frame coordinates, dₖ(pᵢ) the distance to the k-th nearest other
 // distinct sample (k = 2·Dim: about 1.4 spacings on a surface, 2 along a curve) — the local
-// spacing, so the reach follows the sampling density — and c = PuOptions::dataReach.
-// The edge test: s = P·mean_{i∈R(y)}(pᵢ − y) is the reaching samples' mean offset along the
-// tangent plane of the sample nearest to y (normal n: P = I − nnᵀ), σ the standard deviation
-// of their offsets along s, z = PuOptions::edgeShift. Inside a sampled surface the reaching
-// samples surround y (s ≈ 0); at an open edge they fill half a disc (|s| = 1.6·σ) and beyond it
-// a thinner slice (|s|/σ grows without bound; at once behind a rim sampled as a single row), so
-// a surface ends about a quarter of the reach past its last samples (z = 3) instead of a whole
-// reach, which on a sparse open scan is a sheet a fifth of its size. Sharp edges (0.7·σ) and
-// convex box corners (1.6·σ) pass, and so do points off the surface along n.
+// spacing, so the reach follows the sampling density — capped at twice the median dₖ, and
+// c = PuOptions::dataReach.
+// The edge test (only with z = PuOptions::edgeShift > 0; off by default) applies beyond half a
+// reach from the nearest sample: s = P·mean_{i∈R(y)}(pᵢ − y) is the reaching samples' mean
+// offset along the tangent plane of the sample nearest to y (normal n: P = I − nnᵀ), σ the
+// standard deviation of their offsets along s. Inside a sampled surface the reaching samples
+// surround y (s ≈ 0); at an open edge they fill half a disc (|s| = 1.6·σ) and beyond it a
+// thinner slice (|s|/σ grows without bound), so a surface ends a fraction of the reach past its
+// last samples. Sharp edges (0.7·σ), convex box corners (1.6·σ) and points off the surface
+// along n pass; the tips of limbs thinner than the reach may not (docs/maths.md, "No data").
 // Queries walk the box tree, pruning nodes whose samples' largest radius cannot reach y.
 
 #include <vector>
