@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/base/errors.h"
 
@@ -42,15 +43,38 @@ void leafSpacings(const PuTree<Dim>& tree, const Points<Dim>& frameY, int leaf, 
   }
 }
 
+// rᵢ is at most kSpacingCap times the median dₖ (times c): a sample whose k-th neighbour is far —
+// an isolated sample, or a single row of samples such as the sparse rim of a scan (oni.pwn's
+// neck: dₖ of 3 steps along the row, 5 times the median) — would otherwise reach a fifth of the
+// data across.
+constexpr double kSpacingCap = 2.0;
+
+// Within kInnerReach·rᵢ of its nearest sample y has data whatever the edge test says: the test
+// assumes the surface flat across the reach, which a thin limb's tip is not (there it would
+// open holes), and half a reach past the last samples is no sheet.
+constexpr double kInnerReach = 0.5;
+
 }  // namespace
 
 template <int Dim>
-PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY, double factor) {
+PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY, double factor,
+                              const Points<Dim>* frameNormals, double edgeShift) {
   if (!(factor > 0) || !std::isfinite(factor)) throw InputError("partition: data_reach must be a finite number > 0");
+  if (!(edgeShift >= 0) || !std::isfinite(edgeShift))
+    throw InputError("partition: the edge shift must be a finite number >= 0");
   const auto& order = tree.order();
   const int n = static_cast<int>(order.size());
   points_.resize(Dim, n);
   for (int j = 0; j < n; ++j) points_.col(j) = frameY.col(order[static_cast<std::size_t>(j)]);
+  if (frameNormals && edgeShift > 0) {
+    edgeShift_ = edgeShift;
+    normals_.resize(Dim, n);
+    for (int j = 0; j < n; ++j) {
+      const Vec<Dim> nj = frameNormals->col(order[static_cast<std::size_t>(j)]);
+      const double len = nj.norm();
+      normals_.col(j) = len > 0 ? Vec<Dim>(nj / len) : Vec<Dim>::Zero();  // zero: no tangent plane there
+    }
+  }
   radius_.assign(static_cast<std::size_t>(n), 0.0);
   constexpr int k = 2 * Dim;
   const int leaves = tree.leafCount();
@@ -61,6 +85,12 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
 #pragma omp for schedule(dynamic, 16)
     for (int i = 0; i < leaves; ++i)
       if (tree.leafSampleCount(i) > 0) leafSpacings<Dim>(tree, frameY, i, k, radius_, cand, dist);
+  }
+  if (n > 0) {
+    std::vector<double> sorted = radius_;
+    std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());
+    const double cap = kSpacingCap * sorted[static_cast<std::size_t>(n / 2)];
+    for (double& r : radius_) r = std::min(r, cap);
   }
   for (double& r : radius_) r *= factor;
   const auto& nodes = tree.nodes();
@@ -73,6 +103,12 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
 template <int Dim>
 bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const {
   if (radius_.empty()) return true;
+  const bool edgeTest = normals_.cols() > 0;
+  // Over the reaching samples i: their count, Σ vᵢ and Σ vᵢvᵢᵀ with vᵢ = pᵢ − y, and the nearest.
+  int count = 0, nearest = -1;
+  double nearestSq = std::numeric_limits<double>::infinity();
+  Vec<Dim> sumV = Vec<Dim>::Zero();
+  Mat<Dim> sumVV = Mat<Dim>::Zero();
   const auto& nodes = tree.nodes();
   int stack[64 * PuTree<Dim>::kChildren];
   int top = 0;
@@ -88,10 +124,31 @@ bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const
     }
     for (int j = nd.begin; j < nd.end; ++j) {
       const double rj = radius_[static_cast<std::size_t>(j)];
-      if ((points_.col(j) - y).squaredNorm() <= rj * rj) return true;
+      const Vec<Dim> v = points_.col(j) - y;
+      const double sq = v.squaredNorm();
+      if (sq > rj * rj) continue;
+      if (!edgeTest) return true;
+      ++count;
+      sumV += v;
+      sumVV += v * v.transpose();
+      if (sq < nearestSq) {
+        nearestSq = sq;
+        nearest = j;
+      }
     }
   }
-  return false;
+  if (count == 0) return false;
+  const double inner = kInnerReach * radius_[static_cast<std::size_t>(nearest)];
+  if (nearestSq <= inner * inner) return true;
+  // The tangential mean offset s = P·m (m = Σv/count, P = I − nnᵀ) against the samples' standard
+  // deviation σ along it: |s| ≤ z·σ with σ² = ŝᵀ(M/count)ŝ − |s|² (M = Σvvᵀ, ŝ = s/|s|; Ps = s
+  // and s·m = |s|²), squared and multiplied out: (1 + z²)|s|⁴ ≤ z²·sᵀ(M/count)s.
+  const Vec<Dim> n = normals_.col(nearest);
+  const Vec<Dim> m = sumV / count;
+  const Vec<Dim> shift = m - n * n.dot(m);
+  const double s2 = shift.squaredNorm();
+  const double z2 = edgeShift_ * edgeShift_;
+  return (1 + z2) * s2 * s2 <= z2 * shift.dot(sumVV * shift) / count;
 }
 
 template class PuDataReach<2>;

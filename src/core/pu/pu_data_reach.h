@@ -1,14 +1,23 @@
 #pragma once
-// Where a partition-of-unity field rests on data (docs/maths.md, "No data"): within reach of a
-// sample, MPU-style,
+// Where a partition-of-unity field rests on data (docs/maths.md, "No data"): within reach of the
+// samples, MPU-style, and not past the edge of the data:
 //
-//   reaches(y)  ⇔  ∃ i: ‖y − pᵢ‖ ≤ rᵢ,   rᵢ = c · dₖ(pᵢ),
+//   reaches(y)  ⇔  R(y) ≠ ∅  and (edge test)  |s| ≤ z·σ,
+//   R(y) = { i : ‖y − pᵢ‖ ≤ rᵢ },   rᵢ = c · dₖ(pᵢ),
 //
 // with pᵢ the samples in frame coordinates, dₖ(pᵢ) the distance to the k-th nearest other
 // distinct sample (k = 2·Dim: about 1.4 spacings on a surface, 2 along a curve) — the local
-// spacing, so the reach follows the sampling density: thin on dense data, wide on sparse scans —
-// and c = PuOptions::dataReach. Queries walk the box tree, pruning nodes whose samples' largest
-// radius cannot reach y.
+// spacing, so the reach follows the sampling density — capped at twice the median dₖ, and
+// c = PuOptions::dataReach.
+// The edge test (only with z = PuOptions::edgeShift > 0; off by default) applies beyond half a
+// reach from the nearest sample: s = P·mean_{i∈R(y)}(pᵢ − y) is the reaching samples' mean
+// offset along the tangent plane of the sample nearest to y (normal n: P = I − nnᵀ), σ the
+// standard deviation of their offsets along s. Inside a sampled surface the reaching samples
+// surround y (s ≈ 0); at an open edge they fill half a disc (|s| = 1.6·σ) and beyond it a
+// thinner slice (|s|/σ grows without bound), so a surface ends a fraction of the reach past its
+// last samples. Sharp edges (0.7·σ), convex box corners (1.6·σ) and points off the surface
+// along n pass; the tips of limbs thinner than the reach may not (docs/maths.md, "No data").
+// Queries walk the box tree, pruning nodes whose samples' largest radius cannot reach y.
 
 #include <vector>
 
@@ -20,11 +29,15 @@ template <int Dim>
 class PuDataReach {
  public:
   PuDataReach() = default;  // reaches everywhere (no samples recorded)
-  // The reach of the samples `frameY` (Dim × N, the tree's points) with factor c > 0.
-  PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY, double factor);
+  // The reach of the samples `frameY` (Dim × N, the tree's points) with factor c > 0. With
+  // `frameNormals` (Dim × N, non-zero, frame coordinates) and edgeShift z > 0 the edge test
+  // applies too; without them (or β = 0) the reach alone decides.
+  PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY, double factor,
+              const Points<Dim>* frameNormals = nullptr, double edgeShift = 0.0);
 
   bool empty() const { return radius_.empty(); }
-  // Whether some sample reaches y (frame coordinates); true when empty().
+  // Whether y (frame coordinates) has data: some sample reaches it and it is not past the edge
+  // of the data; true when empty().
   bool reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const;
   // rᵢ of the sample at position j of tree.order(), frame units.
   double radiusAt(int j) const { return radius_[static_cast<std::size_t>(j)]; }
@@ -33,8 +46,10 @@ class PuDataReach {
 
  private:
   Points<Dim> points_;              // Dim × N in tree order: node samples are contiguous
+  Points<Dim> normals_;             // Dim × N unit normals in tree order; empty: no edge test
   std::vector<double> radius_;      // N, in tree order
   std::vector<double> nodeRadius_;  // per tree node: the largest radius of its samples (0 if none)
+  double edgeShift_ = 0.0;          // z of the edge test
 };
 
 extern template class PuDataReach<2>;

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
@@ -375,6 +376,82 @@ void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const P
     }
     if (near) blended[static_cast<std::size_t>(i)] = kCover;
   }
+}
+
+// Empty leaves that some sample reaches (‖b − pᵢ‖ ≤ rᵢ: blendReachCover would blend them as
+// cover boxes) while their longest edge exceeds kCoverEdge·rᵢ. A cover box fits its nearest few
+// samples and alone decides f over the part of its box no other support reaches, so a box many
+// reaches wide extrapolates those few samples into a stray sheet beside the surface (200 000
+// armadillo samples: pieces of 23 and 19 triangles from a box 35 reaches wide).
+constexpr double kCoverEdge = 2.0;
+
+template <int Dim>
+std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>& frameY,
+                                      const PuDataReach<Dim>& reach, const std::vector<char>& nodeBlended) {
+  const auto& nodes = tree.nodes();
+  std::vector<double> nodeR(nodes.size(), 0.0);  // largest rᵢ of each node's samples
+  for (std::size_t id = 0; id < nodes.size(); ++id)
+    for (int j = nodes[id].begin; j < nodes[id].end; ++j) nodeR[id] = std::max(nodeR[id], reach.radiusAt(j));
+  const int n = tree.leafCount();
+  std::vector<char> split(static_cast<std::size_t>(n), 0);
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int i = 0; i < n; ++i) {
+    const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
+    if (tree.leafSampleCount(i) > 0 || (node < nodeBlended.size() && nodeBlended[node])) continue;
+    const Box<Dim>& b = tree.leafBox(i);
+    const double edge = b.extent().maxCoeff();
+    bool coarse = false;
+    int stack[64 * PuTree<Dim>::kChildren];
+    int top = 0;
+    stack[top++] = 0;
+    while (top > 0 && !coarse) {
+      const int id = stack[--top];
+      const auto& nd = nodes[static_cast<std::size_t>(id)];
+      if (nd.begin == nd.end || boxDistance<Dim>(nd.box, b) > nodeR[static_cast<std::size_t>(id)]) continue;
+      if (nd.firstChild >= 0) {
+        for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+        continue;
+      }
+      for (int j = nd.begin; j < nd.end && !coarse; ++j) {
+        const double r = reach.radiusAt(j);
+        coarse = edge > kCoverEdge * r && b.distanceTo(frameY.col(tree.order()[static_cast<std::size_t>(j)])) <= r;
+      }
+    }
+    split[static_cast<std::size_t>(i)] = coarse ? 1 : 0;
+  }
+  std::vector<int> out;
+  for (int i = 0; i < n; ++i)
+    if (split[static_cast<std::size_t>(i)]) out.push_back(i);
+  return out;
+}
+
+// Splits the empty leaves within reach of the data that the smooth blend does not already fit
+// on their own supports (`blended`, per leaf of the tree as built) until none is wider than
+// kCoverEdge reaches of a sample reaching it (each pass halves them). Returns the reach of the
+// final tree; `blended` is carried over to its leaves (the new ones are not blended: at most
+// cover boxes, blendReachCover).
+template <int Dim>
+PuDataReach<Dim> refineCover(PuTree<Dim>& tree, const Points<Dim>& frameY, PuDataReach<Dim> reach,
+                             const std::function<PuDataReach<Dim>()>& rebuild, std::vector<char>& blended) {
+  std::vector<char> nodeBlended(tree.nodes().size(), 0);  // node ids survive splits; new nodes are not blended
+  for (int i = 0; i < tree.leafCount(); ++i)
+    nodeBlended[static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)])] = blended[static_cast<std::size_t>(i)];
+  bool changed = false;
+  for (int pass = 0; pass < 32; ++pass) {
+    const std::vector<int> coarse = oversizedCoverLeaves<Dim>(tree, frameY, reach, nodeBlended);
+    const int before = tree.leafCount();
+    if (!coarse.empty()) tree.splitEmptyLeaves(coarse);
+    if (tree.leafCount() == before) break;
+    changed = true;
+  }
+  if (!changed) return reach;
+  blended.assign(static_cast<std::size_t>(tree.leafCount()), 0);
+  for (int i = 0; i < tree.leafCount(); ++i) {
+    const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
+    if (node < nodeBlended.size()) blended[static_cast<std::size_t>(i)] = nodeBlended[node];
+  }
+  // The samples' order and radii are unchanged; the per-node bounds need the new nodes.
+  return rebuild();
 }
 
 // Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
@@ -810,14 +887,22 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   treeOptions.overlap = options.overlap;
   treeOptions.splitEmpty = options.blend == PuBlend::Hard;
   PuTree<Dim> tree(frameY, treeOptions);
+  PuDataReach<Dim> dataReach;
+  std::vector<char> blended = blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
+  if (options.blend == PuBlend::Smooth) {
+    // Normals in frame coordinates: y = R⁻¹(x − t)/q turns directions by R⁻¹ = Rᵀ.
+    Points<Dim> frameN;
+    if (!identity) frameN = frame.R.transpose() * samples.normals;
+    const auto reachOf = [&] {
+      return PuDataReach<Dim>(tree, frameY, options.dataReach, identity ? &samples.normals : &frameN,
+                              options.edgeShift);
+    };
+    dataReach = refineCover<Dim>(tree, frameY, reachOf(), reachOf, blended);
+  }
   const double treeMs = msSince(t0);
-
   const auto leafCount = static_cast<std::size_t>(tree.leafCount());
   std::vector<typename PuModel<Dim>::Leaf> leaves(leafCount);
   std::vector<FitReport> reports(leafCount);
-  PuDataReach<Dim> dataReach;
-  if (options.blend == PuBlend::Smooth) dataReach = PuDataReach<Dim>(tree, frameY, options.dataReach);
-  std::vector<char> blended = blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
   blendReachCover<Dim>(tree, frameY, dataReach, blended);
   for (std::size_t i = 0; i < leafCount; ++i) leaves[i].blended = blended[i] != 0;
   HrbfOptions local = options.local;

@@ -102,8 +102,14 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
       for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
     }
   }
+  listLeaves();
+}
+
+template <int Dim>
+void PuTree<Dim>::listLeaves() {
   // Leaves in depth-first order (children before later siblings) for locality.
-  stack.assign(1, 0);
+  leaves_.clear();
+  std::vector<int> stack(1, 0);
   while (!stack.empty()) {
     const int id = stack.back();
     stack.pop_back();
@@ -114,6 +120,30 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
       for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(nodes_[id].firstChild + ch);
     }
   }
+}
+
+template <int Dim>
+void PuTree<Dim>::splitEmptyLeaves(const std::vector<int>& leafIds, int maxDepth) {
+  for (int leaf : leafIds) {
+    const int id = leaves_[static_cast<std::size_t>(leaf)];
+    const Node nd = nodes_[static_cast<std::size_t>(id)];
+    if (nd.begin != nd.end || nd.firstChild >= 0 || nd.depth >= maxDepth) continue;
+    const Vec<Dim> c = nd.box.center();
+    nodes_[static_cast<std::size_t>(id)].firstChild = static_cast<int>(nodes_.size());
+    nodes_[static_cast<std::size_t>(id)].leaf = -1;
+    for (int ch = 0; ch < kChildren; ++ch) {
+      Node child;
+      for (int k = 0; k < Dim; ++k) {
+        const bool upper = (ch >> k) & 1;
+        child.box.lo(k) = upper ? c(k) : nd.box.lo(k);
+        child.box.hi(k) = upper ? nd.box.hi(k) : c(k);
+      }
+      child.begin = child.end = nd.begin;
+      child.depth = nd.depth + 1;
+      nodes_.push_back(child);
+    }
+  }
+  listLeaves();
 }
 
 template <int Dim>

@@ -76,7 +76,14 @@ class PuTree {
   // How many samples lie in `query`, counting stops above `limit`.
   int countInBox(const Points<Dim>& points, const Box<Dim>& query, int limit) const;
 
+  // Splits each given leaf that holds no samples into kChildren empty children (leaves with
+  // samples, or at depth `maxDepth`, stay). Leaf indices change: leaves() is listed afresh;
+  // sample order and existing node indices do not.
+  void splitEmptyLeaves(const std::vector<int>& leafIds, int maxDepth = 21);
+
  private:
+  void listLeaves();  // leaves_ in depth-first order
+
   std::vector<Node> nodes_;
   std::vector<int> leaves_;
   std::vector<int> order_;

@@ -7,11 +7,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/pu/pu_model.h"
 #include "support/mesh_samples.h"
+#include "support/test_data.h"
 
 using namespace hermite;
 
@@ -98,8 +100,9 @@ TEST_CASE("pu data reach: 20 000 samples of a closed mesh with thin parts: one w
   }
 }
 
-TEST_CASE("pu data reach: the reach follows the local spacing, and no data far from every sample") {
-  // A dense patch and a sparse one of the same plane: the reach scales with each one's spacing.
+TEST_CASE("pu data reach: the reach follows the local spacing up to twice the median, and no data far from every sample") {
+  // A dense patch and a sparse one (4 times the spacing) of the same plane: the reach scales with
+  // the dense one's spacing, and the sparse one's is capped at twice the median spacing.
   HermiteSamples<3> s;
   const int dense = 60, sparse = 15;
   s.points.resize(3, dense * dense + sparse * sparse);
@@ -119,12 +122,109 @@ TEST_CASE("pu data reach: the reach follows the local spacing, and no data far f
   const auto reaches = [&](const PuModel<3>& m, const Vec<3>& y) { return m.dataReach().reaches(m.tree(), y); };
   CHECK(reaches(pu, Vec<3>(0.5, 0.5, 4.2 * aDense)));
   CHECK_FALSE(reaches(pu, Vec<3>(0.5, 0.5, 4.3 * aDense)));
+  // The sparse patch: 3·min(√2·aSparse, 2·√2·aDense) = 8.49 aDense (uncapped: 16.97).
   const Vec<3> sparseCentre(2 + 7 * aSparse, 7 * aSparse, 0);
-  CHECK(reaches(pu, sparseCentre + Vec<3>(0, 0, 4.2 * aSparse)));
-  CHECK_FALSE(reaches(pu, sparseCentre + Vec<3>(0, 0, 4.3 * aSparse)));
+  CHECK(reaches(pu, sparseCentre + Vec<3>(0, 0, 8.4 * aDense)));
+  CHECK_FALSE(reaches(pu, sparseCentre + Vec<3>(0, 0, 8.6 * aDense)));
   CHECK(pu.valid(Vec<3>(0.5, 0.5, 0.0)));
   CHECK_FALSE(pu.valid(Vec<3>(1.5, 0.5, 0.0)));  // between the patches, far from both
   PuOptions wide = o;
   wide.dataReach = 6.0;
   CHECK(reaches(fitPu<3>(s, wide), Vec<3>(0.5, 0.5, 8.4 * aDense)));
+}
+
+TEST_CASE("pu data reach: a sparse row of samples reaches at most twice the median spacing (oni.pwn's neck)") {
+  // A dense patch (step a) and, apart from it, one row of 11 samples 0.1 apart: a row sample's
+  // 6th neighbour is 3 steps away, so uncapped its reach would be 3·0.3 = 0.9, most of the data.
+  HermiteSamples<3> s;
+  const int side = 60, row = 11;
+  s.points.resize(3, side * side + row);
+  s.normals.resize(3, s.points.cols());
+  int c = 0;
+  for (int i = 0; i < side; ++i)
+    for (int j = 0; j < side; ++j) s.points.col(c++) = Vec<3>(i / double(side), j / double(side), 0);
+  for (int i = 0; i < row; ++i) s.points.col(c++) = Vec<3>(0.1 * i, 2.0, 0);
+  s.normals.colwise() = Vec<3>(0, 0, 1);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  const PuModel<3> pu = fitPu<3>(s, o);
+  const double cap = 2 * 3 * std::sqrt(2.0) / side;  // 2 × c × the median d₆ (the dense patch's)
+  const Vec<3> middle(0.5, 2.0, 0);                  // the row's 6th sample
+  const auto reaches = [&](const Vec<3>& y) { return pu.dataReach().reaches(pu.tree(), y); };
+  CHECK(reaches(middle + Vec<3>(0, 0, 0.98 * cap)));
+  CHECK_FALSE(reaches(middle + Vec<3>(0, 0, 1.02 * cap)));
+  CHECK(pu.dataReach().maxRadius() <= cap * (1 + 1e-12));
+}
+
+TEST_CASE("pu data reach: with the edge test an open surface ends about half a reach past its last samples") {
+  // A hemisphere (z ≥ 0) of 4 000 samples: without the edge test the zero set runs on below the
+  // rim until the reach nearly ends (0.8 of the largest reach); with it (z = 5) within half of one.
+  const HermiteSamples<3> sphere = testing::goldenSphere(8000);
+  std::vector<int> keep;
+  for (int i = 0; i < sphere.size(); ++i)
+    if (sphere.points(2, i) >= 0) keep.push_back(i);
+  HermiteSamples<3> s;
+  s.points = sphere.points(Eigen::all, keep);
+  s.normals = sphere.normals(Eigen::all, keep);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  o.edgeShift = 5;
+  MarchingOptions mo;
+  mo.resolution = 96;
+  const Box<3> bounds = grownBox(s.points, 0.25);
+  const auto farthest = [&](const PuModel<3>& pu, const TriMesh& mesh) {
+    double worst = 0;
+    for (int v = 0; v < mesh.vertexCount(); ++v)
+      worst = std::max(worst, (s.points.colwise() - mesh.vertices.col(v)).colwise().norm().minCoeff());
+    return worst / pu.dataReach().maxRadius();
+  };
+  const PuModel<3> pu = fitPu<3>(s, o);
+  const TriMesh mesh = marchingCubes(pu, bounds, mo);
+  const MeshCheck check = checkMesh(mesh);
+  CHECK(check.components == 1);
+  CHECK(check.boundaryEdges > 0);  // open at the rim
+  PuOptions noTest = o;
+  noTest.edgeShift = 0;  // the default
+  const PuModel<3> plain = fitPu<3>(s, noTest);
+  const double with = farthest(pu, mesh), without = farthest(plain, marchingCubes(plain, bounds, mo));
+  MESSAGE("hemisphere: farthest vertex from the data " << with << " reaches with the edge test, " << without
+                                                       << " without");
+  CHECK(with <= 0.55);
+  CHECK(without >= 0.7);  // the test is what ends it
+}
+
+TEST_CASE("pu data reach: a box with sharp edges and corners gives one watertight component") {
+  // 20 000 samples of the faces of a 2 × 1.5 × 1 box with their exact normals: the edge test
+  // must not take its edges (0.7 σ) or corners (1.6 σ) for the edge of the data.
+  TriMesh box;
+  box.vertices.resize(3, 8);
+  for (int i = 0; i < 8; ++i) box.vertices.col(i) = Vec<3>(i & 1 ? 1.0 : -1.0, i & 2 ? 0.75 : -0.75, i & 4 ? 0.5 : -0.5);
+  box.triangles.resize(3, 12);
+  box.triangles << 0, 0, 4, 4, 0, 0, 2, 2, 0, 0, 1, 1,  //
+      2, 3, 5, 7, 1, 5, 6, 7, 4, 6, 3, 7,                //
+      3, 1, 7, 6, 5, 4, 7, 3, 6, 2, 7, 5;
+  REQUIRE(checkMesh(box).closedManifold());
+  REQUIRE(signedVolume(box) > 0);  // outward
+  const HermiteSamples<3> s = testing::sampleMesh(box, 20000, 17);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  o.edgeShift = 5;  // the edge test on: edges and corners must pass it
+  const PuModel<3> pu = fitPu<3>(s, o);
+  MarchingOptions mo;
+  mo.resolution = 96;
+  const TriMesh mesh = marchingCubes(pu, grownBox(s.points, 0.25), mo);
+  const MeshCheck check = checkMesh(mesh);
+  CHECK(check.components == 1);
+  CHECK(check.closedManifold());
+  CHECK(check.eulerCharacteristic == 2);
+  double worst = 0;  // distance to the box surface
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    const Vec<3> d = mesh.vertices.col(v).cwiseAbs() - Vec<3>(1.0, 0.75, 0.5);
+    const double outside = d.cwiseMax(0.0).norm(), inside = std::min(d.maxCoeff(), 0.0);
+    worst = std::max(worst, std::abs(outside + inside));
+  }
+  const double diagonal = Vec<3>(2, 1.5, 1).norm();
+  MESSAGE("box: " << mesh.triangleCount() << " triangles, farthest vertex " << 100 * worst / diagonal
+                  << " % of the diagonal");
+  CHECK(worst <= 0.01 * diagonal);  // the rounding of the edges at a 96³ grid
 }
