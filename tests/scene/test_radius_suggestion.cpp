@@ -22,7 +22,9 @@ namespace {
 struct ExpectedZeroSet {
   std::string file;
   int components = -1;  // −1: broken on purpose
-  bool notReached = false;  // no radius with condition ≤ 1e14 gives it (the README says why)
+  // "N curves on purpose": the fit shows N components at every radius with condition ≤ 1e14,
+  // not the shape's one (the README says why); the suggestion must show that effect.
+  bool onPurpose = false;
   bool is2d = false;
 };
 
@@ -40,7 +42,7 @@ std::vector<ExpectedZeroSet> readmeExpectations() {
     e.file = m[1].str();
     const std::string z = m[2].str();
     if (z.find("broken on purpose") == std::string::npos) e.components = std::stoi(z);
-    e.notReached = z.find("not reached: ") != std::string::npos;
+    e.onPurpose = z.find("on purpose") != std::string::npos;
     e.is2d = z.find("curve") != std::string::npos || e.file.find("2d_") != std::string::npos;
     out.push_back(e);
   }
@@ -63,10 +65,6 @@ TEST_CASE("radius suggestion: every 2D teaching scene's suggested r gives its ex
   int checked = 0;
   for (const ExpectedZeroSet& e : readmeExpectations()) {
     if (!e.is2d || e.components < 0) continue;
-    if (e.notReached) {
-      MESSAGE(e.file << ": marked 'not reached' in assets/scenes/README.md");
-      continue;
-    }
     CAPTURE(e.file);
     const Scene scene = loadSceneFile(std::string(HERMITE_SOURCE_DIR) + "/assets/scenes/" + e.file);
     std::vector<std::string> warnings;
@@ -78,13 +76,13 @@ TEST_CASE("radius suggestion: every 2D teaching scene's suggested r gives its ex
     const RadiusSweepRow& r = rows[std::size_t(best)];
     CAPTURE(r.radius);
     CHECK(r.components == e.components);
-    CHECK(r.spuriousComponents == 0);
+    if (!e.onPurpose) CHECK(r.spuriousComponents == 0);
     CHECK(r.signFailures == 0);
     CHECK(r.conditionEstimate <= kSuggestionMaxCondition);
     CHECK(std::isfinite(r.validationError));
     ++checked;
   }
-  CHECK(checked >= 12);
+  CHECK(checked >= 18);
 }
 
 TEST_CASE("radius suggestion: the issue's case — gaussian, 40 points, no polynomial — suggests one clean curve") {
