@@ -39,6 +39,9 @@ struct Refiner {
   int p0 = 0, p1 = 0;  // the band: pixels p0 … p1 − 1 (whole rows)
 
   Ray pixelRay(int p) const { return camera.pixelRay(p % camera.width(), p / camera.width()); }
+  // A root counts only where the field has data (a flat-masked field, a partition of unity's
+  // edge): elsewhere its f ≈ 0 is noise, which the bake stores as outside too.
+  bool hasData(const Vec<3>& x) const { return field.everywhereValid() || field.valid(x); }
   std::vector<PixelRay> seedHits();
   std::vector<PixelRay> newton(std::vector<PixelRay> active);
   int searchWindows(const std::vector<SearchWindow>& windows);
@@ -95,6 +98,10 @@ std::vector<PixelRay> Refiner::newton(std::vector<PixelRay> active) {
         continue;
       }
       if (std::abs(stepLength) <= tol || f == 0) {
+        if (!hasData(w.ray.at(tn))) {
+          unsettled.push_back(w);  // the bracket search drops it unless it finds a root with data
+          continue;
+        }
         out.t[w.pixel] = std::clamp(tn, w.tLo, w.tHi);
         out.gradient[w.pixel] = g;
         continue;
@@ -119,7 +126,7 @@ int Refiner::searchWindows(const std::vector<SearchWindow>& windows) {
   for (std::size_t q = 0; q < windows.size(); ++q) {
     const SearchWindow& w = windows[q];
     const std::optional<double> t = refineRayRoot(field, w.ray, w.lo, w.hi, search);
-    if (!t) continue;
+    if (!t || !hasData(w.ray.at(*t))) continue;
     Vec<3> g;
     field.evaluate(w.ray.at(*t), &g);
     out.t[w.pixel] = *t;

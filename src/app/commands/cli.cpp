@@ -36,7 +36,7 @@ constexpr const char* kUsage =
     "                                                            without a display: its fit report\n"
     "  hermite-lab fit SCENE [--json] [--coefficients] [--set KEY=VALUE ...]\n"
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
-    "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--ui-scale S] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
+    "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui [--explore]] [--ui-scale S] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
     "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--overwrite] [--size WxH] [--set KEY=VALUE ...]\n"
     "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
     "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
@@ -165,6 +165,7 @@ int dispatch(int argc, char** argv) {
     cmd.add_option("-o,--output", a.output, "output PNG (written atomically)");
     cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
     cmd.add_flag("--ui", a.ui, "draw the application's panels on top");
+    cmd.add_flag("--explore", a.explore, "with --ui: open the r explorer and run its sweep to the end first");
     addUiScale(cmd, a.uiScale);
     cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
         ->check(CLI::IsMember({"osmesa", "egl"}));

@@ -1,4 +1,4 @@
-// `hermite-lab render SCENE -o OUT.png [--size WxH] [--ui] [--set KEY=VALUE ...] [--backend osmesa|egl]`
+// `hermite-lab render SCENE -o OUT.png [--size WxH] [--ui [--explore]] [--set KEY=VALUE ...] [--backend osmesa|egl]`
 // (docs/cli.md; docs/design.md, Rendering): headless rendering through OSMesa (default) or EGL surfaceless. 2D scenes
 // draw the field view with its legend, 3D scenes the implicit tracer (with slice plane and
 // overlays as the view says); --ui draws the application's panels on top with ImGui, laid out
@@ -17,6 +17,7 @@
 #include "app/commands/commands.h"
 #include "app/commands/output_path.h"
 #include "app/gui/camera_framing.h"
+#include "app/gui/explorer.h"
 #include "app/gui/gui_app.h"
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
@@ -32,6 +33,7 @@
 #include "render/implicit_tracer.h"
 #include "render/legend.h"
 #include "render/render_memory.h"
+#include "scene/radius_sweep.h"
 #include "scene/scene_fit.h"
 #include "scene/view_bounds.h"
 
@@ -157,6 +159,14 @@ ImageRgba8 renderWithPanels(const Scene& scene, const RenderArgs& args) {
   FrameInput in;
   in.width = w;
   in.height = h;
+  if (args.explore) {
+    // The panel's own default radii (a tenth to three times the scene's r), swept to the end
+    // before the first frame so the strip shows every thumbnail and plot point.
+    app.panels.explore = true;
+    RadiusExplorer& explorer = app.explorer();
+    explorer.start(scene, logSpacedRadii(explorer.lower, explorer.upper, explorer.count));
+    explorer.wait();
+  }
   // Auto-sized windows settle after two frames; the fit and the view are done in the first.
   for (int k = 0; k < 3; ++k) {
     target.bind();
@@ -180,6 +190,7 @@ int runRender(const RenderArgs& args) {
   Scene scene = loadCommandScene(args.scene);
   if (size) scene.view.size = *size;
   checkOutputPath(args.output);
+  if (args.explore && !args.ui) throw UsageError("render: --explore needs --ui (the explorer is a panel)");
   checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
   scene = framedOnLoad(std::move(scene));  // patch / holefill scenes without a camera: frame the content
   const ImageRgba8 image = args.ui ? renderWithPanels(scene, args) : renderView(scene, args);

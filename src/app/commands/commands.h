@@ -47,6 +47,7 @@ struct RenderArgs {
   std::string output;              // -o OUT.png (required)
   std::string size;                // --size WxH; empty: the scene's view.size
   bool ui = false;                 // --ui: the application's panels on top
+  bool explore = false;            // --explore (with --ui): the r explorer open, its sweep run to the end
   std::string backend = "osmesa";  // --backend osmesa | egl
   double uiScale = 1.0;            // --ui-scale S: the panels' scale with --ui
 };

@@ -17,6 +17,11 @@ namespace hermite {
 
 namespace {
 
+// The least value a no-data sample is baked with: positive, so never a hit, and far above
+// float's smallest normal (1.2e-38), so trilinear weights (the largest of the eight is ≥ 1/8)
+// never flush it to zero.
+constexpr float kNoDataFloor = 1e-30f;
+
 // Fills lipschitz, centreValue and mayContainZero of a grid whose bounds, count and size are set.
 void fillBrickGrid(const ImplicitField<3>& field, BrickGrid& grid) {
   const int n = grid.brickCount();
@@ -235,9 +240,12 @@ VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const
     } else {
       // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
       // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
+      // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
+      // often exactly 0 (a compact kernel beyond r of every sample).
       field.evaluateValidBatch(X, f, valid);
 #pragma omp parallel for schedule(static)
-      for (Eigen::Index q = 0; q < m; ++q) out[q] = float(valid[std::size_t(q)] ? f(q) : std::abs(f(q)));
+      for (Eigen::Index q = 0; q < m; ++q)
+        out[q] = valid[std::size_t(q)] ? float(f(q)) : std::max(float(std::abs(f(q))), kNoDataFloor);
     }
   }
   }

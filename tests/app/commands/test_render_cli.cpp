@@ -172,6 +172,24 @@ TEST_CASE("render --ui --ui-scale 2: the panel column twice as wide, the view be
   CHECK(darkFraction(680, 990) < 0.05);
 }
 
+TEST_CASE("render --ui --explore: the r explorer strip under the view, its sweep finished") {
+  const ImageRgba8 plain = render(kScene2d + " --size 1280x800 --ui", "ui_plain.png");
+  const ImageRgba8 ui = render(kScene2d + " --size 1280x800 --ui --explore", "ui_explore.png");
+  // The strip (200 px over the 20 px status bar, right of the 330 px panel column) is the dark
+  // panel background with plots and thumbnails; without --explore the light view is there.
+  const auto darkFraction = [](const ImageRgba8& image) {
+    int dark = 0, total = 0;
+    for (int j = 590; j < 770; j += 2)
+      for (int i = 340; i < 1270; i += 2, ++total) {
+        const std::uint8_t* p = image.at(i, j);
+        dark += p[0] < 70 && p[1] < 70 && p[2] < 90 ? 1 : 0;
+      }
+    return double(dark) / total;
+  };
+  CHECK(darkFraction(ui) > 0.5);
+  CHECK(darkFraction(plain) < 0.2);
+}
+
 TEST_CASE("render --backend egl agrees with osmesa") {
   if (skipEgl()) return;
   for (const std::string& s : {kScene2d, kScene3d}) {
@@ -246,6 +264,11 @@ TEST_CASE("render: exit codes") {
     const auto r = runCli("render " + kScene2d + " --ui --ui-scale 9 -o " + outputPath("x.png"));
     CHECK(r.rc == 2);
     CHECK(r.err.find("--ui-scale") != std::string::npos);
+  }
+  SUBCASE("--explore without --ui → 2") {
+    const auto r = runCli("render " + kScene2d + " --explore -o " + outputPath("x.png"));
+    CHECK(r.rc == 2);
+    CHECK(r.err.find("--explore needs --ui") != std::string::npos);
   }
   SUBCASE("unknown backend → 2") {
     CHECK(runCli("render " + kScene2d + " --backend vulkan -o " + outputPath("x.png")).rc == 2);
