@@ -608,6 +608,7 @@ struct ImplicitTracer::Gpu {
   std::unique_ptr<Program> programs[kTraceProgramKinds][2];  // [TraceProgramKind][slice], built on first use
   VertexArray empty;
   Buffer rectVertices;  // the baked trace pass's rectangles: (x, y) pixel corners, 2 triangles each
+  GLsizei rectVertexCount = 0;
   VertexArray rects;
   Texture volume;
   Texture normals;      // baked mode: RGBA8 unit directions per sample (baked_normals.h)
@@ -638,13 +639,55 @@ struct ImplicitTracer::Gpu {
     return *target;
   }
   void uploadModel(const RadialSum<3>& model, const Vec<3>& centre);
-  long long trace(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model, bool exactDouble);
+  long long prepareTrace(const TraceFrame& frame, const VolumeBake& bake);
+  void setTraceState();
+  void traceRows(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model, bool exactDouble, int y0,
+                 int y1);
   void runTilePass(const TraceFrame& frame, const VolumeBake& bake);
   void bindBaked(const Program& p, const TraceFrame& frame, const VolumeBake& bake);
   void bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget);
-  long long drawTracePass(const TraceFrame& frame);
+  long long prepareRects(const TraceFrame& frame);
   ImageRgba8 drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples);
   void scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const;
+};
+
+namespace {
+
+// The caller's framebuffer bindings and viewport, put back when it goes out of scope: a frame
+// traced in bands returns to the caller between them (the window then draws its panels into
+// its own framebuffer, not into the trace target).
+class KeepFramebuffer {
+ public:
+  KeepFramebuffer() {
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &draw_);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &read_);
+    glGetIntegerv(GL_VIEWPORT, viewport_);
+  }
+  ~KeepFramebuffer() {
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, GLuint(draw_));
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, GLuint(read_));
+    glViewport(viewport_[0], viewport_[1], viewport_[2], viewport_[3]);
+  }
+  KeepFramebuffer(const KeepFramebuffer&) = delete;
+  KeepFramebuffer& operator=(const KeepFramebuffer&) = delete;
+
+ private:
+  GLint draw_ = 0, read_ = 0;
+  GLint viewport_[4] = {};
+};
+
+}  // namespace
+
+// A frame traced over several calls: copies of what its passes read (TraceFrame refers to them)
+// and how far the trace pass got.
+struct ImplicitTracer::Frame {
+  Camera camera;
+  TraceSettings settings;
+  std::optional<TraceFrame> frame;
+  TraceResult result;  // sliceRange, exactDouble, tracedPixels and traceMs so far
+  int nextRow = 0;     // GL rows [0, nextRow) are traced
+  double tracedMs = 0;  // wall clock of the bands so far, for the next band's height
+  Frame(const Camera& c, const TraceSettings& s) : camera(c), settings(s) {}
 };
 
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
@@ -705,6 +748,7 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
 
 void ImplicitTracer::upload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples) {
   if (!volume.bake) throw InputError("implicit tracer: upload of an empty volume");
+  frame_.reset();  // a frame in progress traces the old bake
   bakeMs_ = volume.bakeMs;
   const auto t1 = Clock::now();
   const VolumeBake& bake = *volume.bake;
@@ -766,24 +810,41 @@ void ImplicitTracer::Gpu::uploadModel(const RadialSum<3>& model, const Vec<3>& c
   shiftedPoly = shiftPolynomial(model.polynomial(), model.poly(), origin - model.polyOrigin());
 }
 
-// The GPU trace pass: marches every pixel's ray (the bake in baked mode, the model's sum in exact
-// mode) and writes colour, hit data (t and normal), the slice plane's colour and depth to the
-// target. Returns the pixels it ran on.
-long long ImplicitTracer::Gpu::trace(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model,
-                                     bool exactDouble) {
+// The GPU trace pass in two steps. prepareTrace runs the tile pass and sets up which pixels the
+// trace pass runs on (baked mode); traceRows marches the rays of GL rows [y0, y1) (the bake in
+// baked mode, the model's sum in exact mode) and writes colour, hit data (t and normal), the slice
+// plane's colour and depth to the target. A whole frame is one traceRows over every row, without
+// a scissor; the window's settled frames trace bands of rows over several GUI frames, which give
+// the same bytes (each pixel's ray is independent of the others). Returns the pixels traced.
+long long ImplicitTracer::Gpu::prepareTrace(const TraceFrame& frame, const VolumeBake& bake) {
   const TraceSettings& settings = frame.settings;
-  const bool baked = settings.mode == TracerMode::Baked;
+  setTraceState();
+  if (settings.mode != TracerMode::Baked) return (long long)frame.pixels();
+  if (settings.showSurface) runTilePass(frame, bake);
+  return prepareRects(frame);
+}
+
+// The pipeline state of the trace pass: the target with all its buffers, no blending, depth
+// written as the shader computes it.
+void ImplicitTracer::Gpu::setTraceState() {
   target->bind();
   target->setAllBuffers();
   glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
   glDepthMask(GL_TRUE);
+}
+
+void ImplicitTracer::Gpu::traceRows(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model,
+                                    bool exactDouble, int y0, int y1) {
+  const TraceSettings& settings = frame.settings;
+  const bool baked = settings.mode == TracerMode::Baked;
+  setTraceState();
   const int loopBudget =
       !baked && softwareLoopLimit ? exactLoopBudget(paddedCentres, model->centres().cols()) : 1 << 30;
   const TraceProgramKind kind = baked ? kBakedProgram : exactDouble ? kExactDoubleProgram : kExactFloatProgram;
   const Program& p = program(kind, settings.slice.enabled);
-  if (baked && settings.showSurface) runTilePass(frame, bake);
   p.use();
   setTraceUniforms(p, frame, bake);
   if (baked) {
@@ -795,10 +856,21 @@ long long ImplicitTracer::Gpu::trace(const TraceFrame& frame, const VolumeBake& 
   }
   bricks.bind(1);
   p.setUniform("uBricks", 1);
-  const long long traced = drawTracePass(frame);
+  const bool band = y0 > 0 || y1 < frame.height;
+  if (band) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, y0, frame.width, y1 - y0);
+  }
+  if (baked) {
+    rects.bind();
+    if (rectVertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, rectVertexCount);
+  } else {
+    empty.bind();
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+  }
+  if (band) glDisable(GL_SCISSOR_TEST);
   glFinish();
   checkGl("implicit tracer trace pass");
-  return traced;
 }
 
 // The baked mode's tile pass: per tile of kTraceTile² pixels, how far along its rays the trace
@@ -859,16 +931,11 @@ void ImplicitTracer::Gpu::bindExact(const Program& p, const RadialSum<3>& model,
   p.setUniform("uOrigin", toGlm(origin));
 }
 
-// Draws the trace program. Baked mode without a slice plane runs it only on the tiles the tile
-// pass did not prove empty (tile_spans.h) and clears the others to what a miss writes; the slice
-// plane can cover any pixel, so with it (and in exact mode) every pixel runs. Returns the pixels drawn.
-long long ImplicitTracer::Gpu::drawTracePass(const TraceFrame& frame) {
+// The rectangles the baked trace program draws: without a slice plane only the tiles the tile
+// pass did not prove empty (tile_spans.h), the others cleared to what a miss writes; the slice
+// plane can cover any pixel, so with it every pixel runs. Returns the pixels they cover.
+long long ImplicitTracer::Gpu::prepareRects(const TraceFrame& frame) {
   const TraceSettings& settings = frame.settings;
-  if (settings.mode != TracerMode::Baked) {
-    empty.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-    return (long long)frame.pixels();
-  }
   std::vector<PixelRect> rectList{PixelRect{0, 0, frame.width, frame.height}};
   if (settings.showSurface && !settings.slice.enabled && settings.skipEmptyTiles) {
     const std::vector<float> tiles = readTexture<float>(target->tileStart, GL_RED, GL_FLOAT, 1);
@@ -878,8 +945,7 @@ long long ImplicitTracer::Gpu::drawTracePass(const TraceFrame& frame) {
   if (traced < (long long)frame.pixels()) target->clearToMiss(settings.background);
   const std::vector<float> corners = rectTriangles(rectList);
   rectVertices.setData(std::span<const float>(corners));  // same buffer id: the binding stands
-  rects.bind();
-  if (!corners.empty()) glDrawArrays(GL_TRIANGLES, 0, GLsizei(corners.size() / 2));
+  rectVertexCount = GLsizei(corners.size() / 2);
   return traced;
 }
 
@@ -931,21 +997,71 @@ ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const Herm
 // unrefined, the GPU's hits as they are) and the composite with the slice plane; the overlays.
 // With `deferred`, a baked refining frame leaves the refinement to refineDeferred.
 TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& settings, DeferredRefinement* deferred) {
+  beginFrame(camera, settings);
+  traceRows(std::numeric_limits<double>::infinity());
+  return finishFrame(deferred);
+}
+
+void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& settings) {
+  frame_.reset();
   if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
   if (settings.mode == TracerMode::Exact && !radialSum_)
     throw InputError("implicit tracer: exact mode needs an HRBF or RBF-offset model");
-  const TraceFrame frame(camera, settings, bounds_, *bake_, depthRange(camera));
-  TraceTarget& target = gpu_->targetFor(frame.width, frame.height);
-
-  TraceResult result;
+  const KeepFramebuffer keep;
+  auto f = std::make_unique<Frame>(camera, settings);
+  const TraceFrame& frame = f->frame.emplace(f->camera, f->settings, bounds_, *bake_, depthRange(camera));
+  gpu_->targetFor(frame.width, frame.height);
+  TraceResult& result = f->result;
   result.sliceRange = settings.slice.enabled ? frame.sliceRange : 0.0;
   result.sliceIsoSpacing = settings.slice.enabled ? niceIsoSpacing(frame.sliceRange) : 0.0;
-  auto t0 = Clock::now();
+  const auto t0 = Clock::now();
   result.exactDouble = settings.mode == TracerMode::Exact &&
                        (settings.exactPrecision == ExactPrecision::Double ||
                         (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
-  result.tracedPixels = gpu_->trace(frame, *bake_, radialSum_, result.exactDouble);
+  result.tracedPixels = gpu_->prepareTrace(frame, *bake_);
   result.traceMs = msSince(t0);
+  frame_ = std::move(f);
+}
+
+bool ImplicitTracer::frameStarted() const { return frame_ != nullptr; }
+
+// Bands of at least kMinBandRows rows; the first of a frame has kFirstBandRows, later ones as many
+// as the budget left allows at the frame's average time per row so far.
+bool ImplicitTracer::traceRows(double budgetMs) {
+  constexpr int kMinBandRows = 8, kFirstBandRows = 32;
+  if (!frame_) throw InputError("implicit tracer: traceRows without beginFrame");
+  Frame& f = *frame_;
+  const TraceFrame& frame = *f.frame;
+  const KeepFramebuffer keep;
+  const auto t0 = Clock::now();
+  if (!std::isfinite(budgetMs)) {
+    gpu_->traceRows(frame, *bake_, radialSum_, f.result.exactDouble, f.nextRow, frame.height);
+    f.nextRow = frame.height;
+  }
+  while (f.nextRow < frame.height) {
+    const double msPerRow = f.nextRow > 0 ? f.tracedMs / f.nextRow : 0.0;
+    const double left = budgetMs - msSince(t0);
+    const int wanted = msPerRow > 0 ? int(left / msPerRow) : kFirstBandRows;
+    const int rows = std::clamp(wanted, std::min(kMinBandRows, frame.height - f.nextRow), frame.height - f.nextRow);
+    const auto band = Clock::now();
+    gpu_->traceRows(frame, *bake_, radialSum_, f.result.exactDouble, f.nextRow, f.nextRow + rows);
+    f.tracedMs += msSince(band);
+    f.nextRow += rows;
+    if (msSince(t0) + kMinBandRows * f.tracedMs / f.nextRow > budgetMs) break;
+  }
+  f.result.traceMs += msSince(t0);
+  return f.nextRow >= frame.height;
+}
+
+TraceResult ImplicitTracer::finishFrame(DeferredRefinement* deferred) {
+  if (!frame_ || frame_->nextRow < frame_->frame->height)
+    throw InputError("implicit tracer: finishFrame before every row is traced");
+  const std::unique_ptr<Frame> f = std::move(frame_);
+  const TraceFrame& frame = *f->frame;
+  const Camera& camera = f->camera;
+  const TraceSettings& settings = f->settings;
+  TraceTarget& target = *gpu_->target;
+  TraceResult result = std::move(f->result);
 
   std::vector<float> surfaceT = readSurfaceHits(target, result);
   std::vector<int> undecided = undecidedPixels(surfaceT);
@@ -969,7 +1085,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     job.undecided = std::move(undecided);
     keepVisibleSurface(frame, surfaceT, result);
   } else if (refine) {
-    t0 = Clock::now();
+    const auto t0 = Clock::now();
     const HitRefinement hits = refineHits(*field_, bounds_, camera, GpuHits{surfaceT, result.normal, undecided},
                                           refinementOptions(settings, *bake_, nullptr));
     result.ringHits = hits.ringHits;
@@ -982,7 +1098,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
     keepVisibleSurface(frame, surfaceT, result);
   }
 
-  t0 = Clock::now();
+  const auto t0 = Clock::now();
   result.image = gpu_->drawOverlays(frame, hasSamples_ ? &samples_ : nullptr);
   result.overlayMs = msSince(t0);
   return result;
@@ -1005,6 +1121,7 @@ void refineDeferred(DeferredRefinement& job, const CancelToken* cancel) {
 
 TraceResult ImplicitTracer::finishDeferred(DeferredRefinement& job) {
   if (!job.refined || !job.camera) throw InputError("implicit tracer: finishing a refinement that did not run");
+  frame_.reset();  // the target is overwritten
   const TraceFrame frame(*job.camera, job.settings, job.bounds, *job.bake, job.depthRange);
   const TraceTarget& target = gpu_->targetFor(frame.width, frame.height);
   writeTracePass(target, job.color, job.depth);

@@ -172,6 +172,17 @@ class ImplicitTracer {
   // With `deferred` (baked mode with refineExact), the exact refinement is left to
   // refineDeferred: the result is the baked image, and `deferred` gets what refinement needs.
   TraceResult render(const Camera& camera, const TraceSettings& settings, DeferredRefinement* deferred = nullptr);
+  // The same frame over several calls, for a caller that must return within a time budget (the
+  // window's settled view at full size): beginFrame runs the tile pass; each traceRows marches
+  // the rays of the next bands of rows until `budgetMs` of wall clock went by (at least one band
+  // of 8 rows; infinity: every row left) and returns true once every row is traced; finishFrame
+  // then does what render() does after the trace pass and returns the same bytes. render(),
+  // beginFrame(), upload() and finishDeferred() abandon a frame in progress (they reuse its target).
+  void beginFrame(const Camera& camera, const TraceSettings& settings);
+  bool traceRows(double budgetMs);
+  TraceResult finishFrame(DeferredRefinement* deferred = nullptr);
+  // A frame was begun and is neither finished nor abandoned.
+  bool frameStarted() const;
   // The refined image of a job that refineDeferred finished: its colour and depth into the
   // target, the overlays over them, read back. The tracer must hold the upload the job was made
   // from (the samples the overlays draw).
@@ -194,7 +205,9 @@ class ImplicitTracer {
 
  private:
   struct Gpu;
+  struct Frame;
   std::unique_ptr<Gpu> gpu_;
+  std::unique_ptr<Frame> frame_;  // the frame beginFrame started
   const ImplicitField<3>* field_ = nullptr;
   const RadialSum<3>* radialSum_ = nullptr;
   mutable std::optional<bool> exactNeedsDouble_;  // cache of exactNeedsDouble(), reset by upload

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/base/errors.h"
 #include "core/rbf/hrbf.h"
 #include "core/shapes/analytic_shapes.h"
 #include "core/shapes/presets.h"
@@ -516,4 +517,79 @@ TEST_CASE("implicit tracer: deterministic bytes, and EGL agrees with OSMesa") {
   const ImageDiffStats stats = compareImages(osmesa, egl, 2);
   CAPTURE(stats.maxChannelDiff);
   CHECK(stats.fractionOver <= 0.001);
+}
+
+TEST_CASE("implicit tracer: a frame traced in bands of rows has the bytes of a whole render") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(130, 98, Projection::Perspective, {2.6, 3.1, 3.7});
+  for (bool slice : {false, true})
+    for (bool refine : {false, true}) {
+      CAPTURE(slice);
+      CAPTURE(refine);
+      TraceSettings settings;
+      settings.refineExact = refine;
+      settings.showBounds = true;
+      settings.background = {0.2, 0.3, 0.4};
+      settings.slice.enabled = slice;
+      settings.slice.normal = {0.3, 0.2, 1.0};
+      settings.slice.offset = 0.1;
+      const TraceResult whole = tracer.render(camera, settings);
+      tracer.beginFrame(camera, settings);
+      int calls = 1;
+      while (!tracer.traceRows(0.0)) ++calls;  // no budget: one band per call (32 rows, then 8)
+      CHECK(calls == 1 + (98 - 32 + 7) / 8);
+      CHECK(tracer.frameStarted());
+      const TraceResult banded = tracer.finishFrame();
+      CHECK_FALSE(tracer.frameStarted());
+      CHECK(banded.image == whole.image);
+      CHECK(banded.hit == whole.hit);
+      CHECK(banded.depth == whole.depth);
+      CHECK(banded.normal == whole.normal);
+      CHECK(banded.tracedPixels == whole.tracedPixels);
+      CHECK(banded.refinedPixels == whole.refinedPixels);
+    }
+}
+
+TEST_CASE("implicit tracer: a banded frame's deferred refinement matches the whole frame's") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(121, 90, Projection::Perspective, {1.8, 2.2, 2.6});
+  TraceSettings settings;
+  settings.showBounds = true;
+  DeferredRefinement wholeJob, bandedJob;
+  tracer.render(camera, settings, &wholeJob);
+  refineDeferred(wholeJob);
+  const TraceResult whole = tracer.finishDeferred(wholeJob);
+  tracer.beginFrame(camera, settings);
+  while (!tracer.traceRows(0.0)) {
+  }
+  tracer.finishFrame(&bandedJob);
+  refineDeferred(bandedJob);
+  const TraceResult banded = tracer.finishDeferred(bandedJob);
+  CHECK(whole.refinedPixels > 100);
+  CHECK(banded.image == whole.image);
+  CHECK(banded.depth == whole.depth);
+  CHECK(banded.refinedPixels == whole.refinedPixels);
+}
+
+TEST_CASE("implicit tracer: an upload or a render abandons a banded frame") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(64, 48);
+  const TraceSettings settings;
+  tracer.beginFrame(camera, settings);
+  CHECK_FALSE(tracer.traceRows(0.0));
+  tracer.render(camera, settings);
+  CHECK_FALSE(tracer.frameStarted());
+  CHECK_THROWS_AS(tracer.traceRows(0.0), InputError);
+  tracer.beginFrame(camera, settings);
+  TracerUploadOptions upload;
+  upload.bakeResolution = 32;
+  tracer.upload(scene.field, cube(1.5), nullptr, upload);
+  CHECK_FALSE(tracer.frameStarted());
+  CHECK_THROWS_AS(tracer.finishFrame(), InputError);
 }

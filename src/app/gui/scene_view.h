@@ -40,7 +40,8 @@ struct SceneViewResult {
   // of the renderer's own target, GL rows bottom-up, valid until its next render.
   const render::Texture* gpuImage = nullptr;
   // Background renders (SceneViewRenderer::setBackground): nothing to show yet for this fit (its
-  // bake runs); the image on screen stays until one arrives.
+  // bake runs) or for this settled view (its rows are traced over several frames); the image on
+  // screen stays until one arrives.
   bool nothingYet = false;
 };
 
@@ -67,10 +68,12 @@ class SceneViewRenderer {
   // arrives (adoptFinished). Off (the default): render() does all of it before returning.
   void setBackground(bool on) { background_ = on; }
   // Applies finished background work on the GL thread (uploads a bake, draws a refined image);
-  // true when something arrived and the view is worth drawing again. Throws what the work threw.
+  // true when something arrived or a settled view is being traced in bands, and the view is worth
+  // drawing again (render() traces the next bands). Throws what the work threw.
   bool adoptFinished();
-  // Background work for the last render still runs or waits to be adopted.
-  bool pending() const { return background_ && jobs_.busy(); }
+  // Background work for the last render still runs or waits to be adopted, or its settled view
+  // is being traced in bands.
+  bool pending() const { return background_ && (jobs_.busy() || tracing_); }
 
   // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
   double colourRange = 0;
@@ -114,6 +117,7 @@ class SceneViewRenderer {
   std::optional<BakeRequest> baking_;        // the bake submitted last (until it is uploaded)
   std::optional<RefinedView> refining_;      // the view whose refinement was submitted last
   std::optional<RefinedView> refinedView_;   // the view `refined_` shows
+  std::optional<RefinedView> tracing_;       // the settled view being traced in bands (one per frame)
   SceneViewResult refined_;
 };
 

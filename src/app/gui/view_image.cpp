@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -16,6 +17,22 @@ namespace {
 
 // Frames after the last interaction before the view is redrawn at full quality.
 constexpr int kSettleFrames = 3;
+
+// A gesture draws the 3D view at 1/d of the view's size per axis: d = 2 (a quarter of the rays),
+// larger while the last gesture frame's render took more than kGestureViewBudgetMs, so that a
+// frame with its panels stays within about 33 ms on a loaded software rasteriser; smaller again
+// (not below 2) when it took less than a third of that.
+constexpr double kGestureViewBudgetMs = 15.0;
+constexpr int kMaxGestureDivisor = 4;
+
+// `last` is the image on screen; `lastWasGesture` whether it was drawn during a gesture.
+int gestureDivisor(const SceneViewResult& last, bool lastWasGesture, int viewWidth) {
+  if (!lastWasGesture || last.width <= 0) return 2;
+  const int d = std::clamp(int(std::lround(double(viewWidth) / last.width)), 2, kMaxGestureDivisor);
+  if (last.ms > kGestureViewBudgetMs) return std::min(d + 1, kMaxGestureDivisor);
+  if (last.ms < kGestureViewBudgetMs / 3) return std::max(d - 1, 2);
+  return d;
+}
 
 ImTextureID textureId(const render::Texture& t) {
   return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(t.id()));
@@ -54,9 +71,10 @@ void ViewImage::redrawIfStale(GuiContext& ctx) {
   }
   if (!arrived && drawn_ && *drawn_ == now) return;
   renderer_.colourRange = compareRenderer_.colourRange = ctx.colourRange;
-  // A drag draws the 3D view at half resolution (the texture is stretched): ~4× fewer rays.
-  const bool half = quality == ViewQuality::Interactive && ctx.dimension() == 3;
-  const int rw = half ? std::max(1, w / 2) : w, rh = half ? std::max(1, viewH / 2) : viewH;
+  // A drag draws the 3D view at a fraction of the resolution (the texture is stretched).
+  const bool reduced = quality == ViewQuality::Interactive && ctx.dimension() == 3;
+  const int d = reduced ? gestureDivisor(view_, drawn_ && drawn_->quality == ViewQuality::Interactive, w) : 1;
+  const int rw = std::max(1, w / d), rh = std::max(1, viewH / d);
   try {
     // 2D views stay on the GPU (no read-back and re-upload per frame); 3D ones are read back.
     SceneViewResult r = renderer_.render(shown, ctx.scene(), rw, rh, quality, true);
