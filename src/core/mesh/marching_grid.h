@@ -24,6 +24,9 @@ struct MarchingGrid {
   Vec<Dim> h;                          // cell size per axis
   std::array<int, Dim> n{};            // cells per axis
   std::array<std::int64_t, Dim> stride{};  // point-index step per axis (points: n + 1 per axis)
+  // Cells of the whole grid before this one's first, per axis: a slab of a streamed grid
+  // (marching_slab.h) indexes its points locally and places them as the whole grid does.
+  std::array<int, Dim> origin{};
   std::int64_t pointCount = 0;
   Eigen::VectorXd values;              // f at every grid point
   // valid[p] = 0: grid point p has no data (ImplicitField::valid, asked by markUsable where it
@@ -48,7 +51,7 @@ struct MarchingGrid {
   Vec<Dim> point(std::int64_t idx) const {
     const std::array<int, Dim> c = coords(idx);
     Vec<Dim> x;
-    for (int a = 0; a < Dim; ++a) x[a] = lo[a] + h[a] * c[a];
+    for (int a = 0; a < Dim; ++a) x[a] = lo[a] + h[a] * (c[a] + origin[a]);
     return x;
   }
   bool inside(std::int64_t idx) const { return values[idx] < 0; }
@@ -136,15 +139,22 @@ void markUsable(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const Can
   if (!todo.empty()) flush();
 }
 
+// InputError for a resolution outside [1, 4096] or a box that is not finite with min < max.
+template <int Dim>
+void checkMarchingInput(const Box<Dim>& box, int resolution) {
+  if (resolution < 1 || resolution > 4096)
+    throw InputError("marching: resolution must be in [1, 4096], got " + std::to_string(resolution));
+  const Vec<Dim> ext = box.extent();
+  if (!ext.allFinite() || !(ext.minCoeff() > 0) || !box.lo.allFinite())
+    throw InputError("marching: the box must be finite with min < max on every axis");
+}
+
 // Grid layout and f at every grid point (batched by slabs of the last axis to bound memory).
 template <int Dim>
 MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& box, const MarchingOptions& options,
                              MarchingReport* report) {
-  if (options.resolution < 1 || options.resolution > 4096)
-    throw InputError("marching: resolution must be in [1, 4096], got " + std::to_string(options.resolution));
+  checkMarchingInput<Dim>(box, options.resolution);
   const Vec<Dim> ext = box.extent();
-  if (!ext.allFinite() || !(ext.minCoeff() > 0) || !box.lo.allFinite())
-    throw InputError("marching: the box must be finite with min < max on every axis");
   const auto t0 = std::chrono::steady_clock::now();
   MarchingGrid<Dim> g;
   g.lo = box.lo;
@@ -209,12 +219,9 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
   return g;
 }
 
-// Finds the sign-changing edges and places their vertices: linear interpolation, then
-// safeguarded Newton along the edge (bracketed by the end signs, false position when a step
-// leaves the bracket, kept in [τ, 1 − τ]).
+// g.edgeKeys: the sign-changing edges of the whole grid whose ends both have data, sorted.
 template <int Dim>
-void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options,
-                       MarchingReport* report) {
+void findEdges(MarchingGrid<Dim>& g) {
   const int slabs = g.n[Dim - 1] + 1;
   std::vector<std::vector<std::int64_t>> perSlab(static_cast<size_t>(slabs));
 #pragma omp parallel for schedule(dynamic, 1)
@@ -230,7 +237,13 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
   }
   g.edgeKeys.clear();
   for (const auto& v : perSlab) g.edgeKeys.insert(g.edgeKeys.end(), v.begin(), v.end());
+}
 
+// Places the vertices of g.edgeKeys (g.vertices, g.gradients): linear interpolation, then
+// safeguarded Newton along the edge (bracketed by the end signs, false position when a step
+// leaves the bracket, kept in [τ, 1 − τ]). Returns max |f| over the vertices after refinement.
+template <int Dim>
+double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options) {
   constexpr double tau = 1e-3;
   const int V = static_cast<int>(g.edgeKeys.size());
   Eigen::VectorXd t(V), tLo(V), tHi(V), fLo(V), fHi(V);  // parameter along the edge, its bracket and f there
@@ -301,7 +314,16 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
     active.swap(next);
   }
   g.gradients = G;
-  if (report) report->maxAbsF = V > 0 ? f.cwiseAbs().maxCoeff() : 0.0;
+  return V > 0 ? f.cwiseAbs().maxCoeff() : 0.0;
+}
+
+// findEdges, then refineEdgeVertices (report->maxAbsF).
+template <int Dim>
+void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options,
+                       MarchingReport* report) {
+  findEdges(g);
+  const double maxAbsF = refineEdgeVertices(g, field, options);
+  if (report) report->maxAbsF = maxAbsF;
 }
 
 }  // namespace hermite::detail

@@ -682,9 +682,68 @@ bool PuModel<Dim>::coveredByData(const Box<Dim>& yb) const {
   return true;
 }
 
+// f without gradients (smooth blend) by runs of kValueRun consecutive columns of X: callers that
+// care pass neighbouring points next to each other (the mesher's blocks), so a run's bounding box
+// meets few supports. A run looks its supports up once and evaluates each local fit at the run's
+// points inside its support by the fit's vectorised batch loop (nested in this parallel loop, it
+// runs on the calling thread). Per point the sums are the ones evaluate() forms — the same
+// supports in the same order (depth first, as forSupportsAt), Σ wᵢ fᵢ / Σ wᵢ — with each fᵢ
+// rounded as the vectorised loop rounds it, whatever the other columns are.
+constexpr Eigen::Index kValueRun = 64;
+
 template <int Dim>
 void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
   const Eigen::Index n = X.cols();
+  if (!G && options_.blend == PuBlend::Smooth) {
+    f.resize(n);
+    const Eigen::Index runs = (n + kValueRun - 1) / kValueRun;
+    const bool frozen[Dim] = {};
+#pragma omp parallel
+    {
+      Vec<Dim> y[kValueRun];
+      double S[kValueRun], N[kValueRun], w[kValueRun];
+      int members[kValueRun];
+      std::vector<int> leaves;
+      Points<Dim> Xi;
+      Eigen::VectorXd fi;
+#pragma omp for schedule(dynamic, 4)
+      for (Eigen::Index r = 0; r < runs; ++r) {
+        const Eigen::Index begin = r * kValueRun, count = std::min(kValueRun, n - begin);
+        Box<Dim> bb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
+                    Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
+        for (Eigen::Index j = 0; j < count; ++j) {
+          y[j] = identityFrame_ ? Vec<Dim>(X.col(begin + j)) : frame_.applyInverse(X.col(begin + j));
+          bb.lo = bb.lo.cwiseMin(y[j]);
+          bb.hi = bb.hi.cwiseMax(y[j]);
+          S[j] = N[j] = 0;
+        }
+        leaves.clear();
+        forSupportsTouching(bb, [&](int i) { leaves.push_back(i); });
+        for (int i : leaves) {
+          const Leaf& leaf = leaves_[i];
+          int m = 0;
+          for (Eigen::Index j = 0; j < count; ++j) {
+            if (!leaf.support.contains(y[j])) continue;
+            const double wj = bump<Dim>(leaf.support, y[j], frozen, nullptr, nullptr);
+            if (wj == 0.0) continue;
+            w[m] = wj;
+            members[m++] = static_cast<int>(j);
+          }
+          if (m == 0) continue;
+          Xi.resize(Dim, m);
+          for (int k = 0; k < m; ++k) Xi.col(k) = X.col(begin + members[k]);
+          leaf.model.evaluateBatch(Xi, fi);
+          for (int k = 0; k < m; ++k) {
+            S[members[k]] += w[k];
+            N[members[k]] += w[k] * fi[k];
+          }
+        }
+        for (Eigen::Index j = 0; j < count; ++j)
+          f(begin + j) = S[j] > 0 ? N[j] / S[j] : evaluateUncovered(X.col(begin + j), y[j], nullptr, nullptr, nullptr);
+      }
+    }
+    return;
+  }
   f.resize(n);
   if (G) G->resize(Dim, n);
 #pragma omp parallel for schedule(dynamic, 256)
