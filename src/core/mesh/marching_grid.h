@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/base/errors.h"
@@ -64,7 +65,32 @@ struct MarchingGrid {
   }
 };
 
-// f and ∇f at the columns of X in chunks of 2¹⁴ points, polling `cancel` between them.
+// The columns of X in Morton (Z-curve) order of their position quantised to 2¹⁰ steps per axis
+// over X's bounding box: consecutive entries lie close together, so a field that shares work
+// between neighbouring points in a batch (a partition of unity) meets few supports per run.
+template <int Dim>
+std::vector<Eigen::Index> spatialOrder(const Points<Dim>& X) {
+  const Eigen::Index n = X.cols();
+  std::vector<Eigen::Index> order(static_cast<size_t>(n));
+  if (n == 0) return order;
+  const Vec<Dim> lo = X.rowwise().minCoeff(), ext = X.rowwise().maxCoeff() - lo;
+  std::vector<std::pair<std::uint64_t, Eigen::Index>> keys(static_cast<size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    std::uint64_t key = 0;
+    for (int a = 0; a < Dim; ++a) {
+      const double t = ext[a] > 0 ? (X(a, i) - lo[a]) / ext[a] : 0.0;
+      const auto q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 1023.0);
+      for (int bit = 0; bit < 10; ++bit) key |= ((q >> bit) & 1u) << (bit * Dim + a);
+    }
+    keys[static_cast<size_t>(i)] = {key, i};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (Eigen::Index i = 0; i < n; ++i) order[static_cast<size_t>(i)] = keys[static_cast<size_t>(i)].second;
+  return order;
+}
+
+// f and ∇f at the columns of X in chunks of 2¹⁴ points in spatialOrder (each f(i) depends on
+// X.col(i) alone, so the order changes only the speed), polling `cancel` between them.
 template <int Dim>
 void evaluateChunked(const ImplicitField<Dim>& field, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>& G,
                      const CancelToken* cancel) {
@@ -72,14 +98,19 @@ void evaluateChunked(const ImplicitField<Dim>& field, const Points<Dim>& X, Eige
   const Eigen::Index n = X.cols();
   f.resize(n);
   G.resize(Dim, n);
+  const std::vector<Eigen::Index> order = spatialOrder(X);
   Eigen::VectorXd fc;
-  Points<Dim> Gc;
+  Points<Dim> Xc, Gc;
   for (Eigen::Index begin = 0; begin < n; begin += kChunk) {
     throwIfCancelled(cancel);
     const Eigen::Index count = std::min(kChunk, n - begin);
-    field.evaluateBatch(X.middleCols(begin, count), fc, &Gc);
-    f.segment(begin, count) = fc;
-    G.middleCols(begin, count) = Gc;
+    Xc.resize(Dim, count);
+    for (Eigen::Index i = 0; i < count; ++i) Xc.col(i) = X.col(order[static_cast<size_t>(begin + i)]);
+    field.evaluateBatch(Xc, fc, &Gc);
+    for (Eigen::Index i = 0; i < count; ++i) {
+      f[order[static_cast<size_t>(begin + i)]] = fc[i];
+      G.col(order[static_cast<size_t>(begin + i)]) = Gc.col(i);
+    }
   }
 }
 

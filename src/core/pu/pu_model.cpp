@@ -682,65 +682,90 @@ bool PuModel<Dim>::coveredByData(const Box<Dim>& yb) const {
   return true;
 }
 
-// f without gradients (smooth blend) by runs of kValueRun consecutive columns of X: callers that
-// care pass neighbouring points next to each other (the mesher's blocks), so a run's bounding box
-// meets few supports. A run looks its supports up once and evaluates each local fit at the run's
-// points inside its support by the fit's vectorised batch loop (nested in this parallel loop, it
-// runs on the calling thread). Per point the sums are the ones evaluate() forms — the same
-// supports in the same order (depth first, as forSupportsAt), Σ wᵢ fᵢ / Σ wᵢ — with each fᵢ
-// rounded as the vectorised loop rounds it, whatever the other columns are.
-constexpr Eigen::Index kValueRun = 64;
+// f (and ∇f) for the smooth blend by runs of kRun consecutive columns of X: callers that care pass
+// neighbouring points next to each other (the mesher's blocks and vertices), so a run's bounding
+// box meets few supports. A run looks its supports up once and evaluates each local fit at the
+// run's points inside its support by the fit's vectorised batch loop (nested in this parallel
+// loop, it runs on the calling thread). Per point the sums are the ones evaluateValid() forms — the
+// same supports in the same order (depth first, as forSupportsAt), N = Σ wᵢ fᵢ, S = Σ wᵢ and their
+// gradients — with each fᵢ rounded as the vectorised loop rounds it, whatever the other columns.
+template <int Dim>
+struct PuRunScratch {
+  static constexpr Eigen::Index kRun = 64;
+  Vec<Dim> y[kRun], gS[kRun], gN[kRun], gw[kRun];
+  double S[kRun], N[kRun], w[kRun];
+  int members[kRun];
+  std::vector<int> leaves;
+  Points<Dim> Xi, Gi;
+  Eigen::VectorXd fi;
+};
 
 template <int Dim>
 void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
   const Eigen::Index n = X.cols();
-  if (!G && options_.blend == PuBlend::Smooth) {
+  if (options_.blend == PuBlend::Smooth) {
+    using Scratch = PuRunScratch<Dim>;
     f.resize(n);
-    const Eigen::Index runs = (n + kValueRun - 1) / kValueRun;
+    if (G) G->resize(Dim, n);
     const bool frozen[Dim] = {};
+    const double invQ = 1.0 / frame_.q;
+    // One run: the supports touching its bounding box, each local fit at the run's points inside.
+    auto run = [&](Eigen::Index begin, Eigen::Index count, Scratch& sc) {
+      Box<Dim> bb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
+                  Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
+      for (Eigen::Index j = 0; j < count; ++j) {
+        sc.y[j] = identityFrame_ ? Vec<Dim>(X.col(begin + j)) : frame_.applyInverse(X.col(begin + j));
+        bb.lo = bb.lo.cwiseMin(sc.y[j]);
+        bb.hi = bb.hi.cwiseMax(sc.y[j]);
+        sc.S[j] = sc.N[j] = 0;
+        sc.gS[j].setZero();
+        sc.gN[j].setZero();
+      }
+      sc.leaves.clear();
+      forSupportsTouching(bb, [&](int i) { sc.leaves.push_back(i); });
+      for (int i : sc.leaves) {
+        const Leaf& leaf = leaves_[i];
+        int m = 0;
+        for (Eigen::Index j = 0; j < count; ++j) {
+          if (!leaf.support.contains(sc.y[j])) continue;
+          const double wj = bump<Dim>(leaf.support, sc.y[j], frozen, G ? &sc.gw[m] : nullptr, nullptr);
+          if (wj == 0.0) continue;
+          if (G && !identityFrame_) sc.gw[m] = invQ * (frame_.R * sc.gw[m]);
+          sc.w[m] = wj;
+          sc.members[m++] = static_cast<int>(j);
+        }
+        if (m == 0) continue;
+        sc.Xi.resize(Dim, m);
+        for (int k = 0; k < m; ++k) sc.Xi.col(k) = X.col(begin + sc.members[k]);
+        leaf.model.evaluateBatch(sc.Xi, sc.fi, G ? &sc.Gi : nullptr);
+        for (int k = 0; k < m; ++k) {
+          const int j = sc.members[k];
+          sc.S[j] += sc.w[k];
+          sc.N[j] += sc.w[k] * sc.fi[k];
+          if (G) {
+            sc.gS[j] += sc.gw[k];
+            sc.gN[j] += sc.fi[k] * sc.gw[k] + sc.w[k] * sc.Gi.col(k);
+          }
+        }
+      }
+      for (Eigen::Index j = 0; j < count; ++j) {
+        Vec<Dim> g;
+        if (!(sc.S[j] > 0)) {
+          f(begin + j) = evaluateUncovered(X.col(begin + j), sc.y[j], G ? &g : nullptr, nullptr, nullptr);
+        } else {
+          f(begin + j) = sc.N[j] / sc.S[j];
+          if (G) g = (sc.gN[j] - f(begin + j) * sc.gS[j]) / sc.S[j];
+        }
+        if (G) G->col(begin + j) = g;
+      }
+    };
+    const Eigen::Index runs = (n + Scratch::kRun - 1) / Scratch::kRun;
 #pragma omp parallel
     {
-      Vec<Dim> y[kValueRun];
-      double S[kValueRun], N[kValueRun], w[kValueRun];
-      int members[kValueRun];
-      std::vector<int> leaves;
-      Points<Dim> Xi;
-      Eigen::VectorXd fi;
+      Scratch sc;
 #pragma omp for schedule(dynamic, 4)
-      for (Eigen::Index r = 0; r < runs; ++r) {
-        const Eigen::Index begin = r * kValueRun, count = std::min(kValueRun, n - begin);
-        Box<Dim> bb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
-                    Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
-        for (Eigen::Index j = 0; j < count; ++j) {
-          y[j] = identityFrame_ ? Vec<Dim>(X.col(begin + j)) : frame_.applyInverse(X.col(begin + j));
-          bb.lo = bb.lo.cwiseMin(y[j]);
-          bb.hi = bb.hi.cwiseMax(y[j]);
-          S[j] = N[j] = 0;
-        }
-        leaves.clear();
-        forSupportsTouching(bb, [&](int i) { leaves.push_back(i); });
-        for (int i : leaves) {
-          const Leaf& leaf = leaves_[i];
-          int m = 0;
-          for (Eigen::Index j = 0; j < count; ++j) {
-            if (!leaf.support.contains(y[j])) continue;
-            const double wj = bump<Dim>(leaf.support, y[j], frozen, nullptr, nullptr);
-            if (wj == 0.0) continue;
-            w[m] = wj;
-            members[m++] = static_cast<int>(j);
-          }
-          if (m == 0) continue;
-          Xi.resize(Dim, m);
-          for (int k = 0; k < m; ++k) Xi.col(k) = X.col(begin + members[k]);
-          leaf.model.evaluateBatch(Xi, fi);
-          for (int k = 0; k < m; ++k) {
-            S[members[k]] += w[k];
-            N[members[k]] += w[k] * fi[k];
-          }
-        }
-        for (Eigen::Index j = 0; j < count; ++j)
-          f(begin + j) = S[j] > 0 ? N[j] / S[j] : evaluateUncovered(X.col(begin + j), y[j], nullptr, nullptr, nullptr);
-      }
+      for (Eigen::Index r = 0; r < runs; ++r)
+        run(r * Scratch::kRun, std::min(Scratch::kRun, n - r * Scratch::kRun), sc);
     }
     return;
   }
