@@ -236,7 +236,8 @@ std::vector<LayerOutput> marchCells(const detail::MarchingGrid<3>& g, const std:
 #pragma omp parallel for schedule(dynamic, 1)
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::size_t end = std::min(cells.size(), (static_cast<std::size_t>(c) + 1) * kChunk);
-    for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i) marchCube(g, cells[i], out[static_cast<size_t>(c)]);
+    for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i)
+      marchCube(g, cells[i], out[static_cast<size_t>(c)]);
   }
   return out;
 }

@@ -144,10 +144,13 @@ void walkCullOctree(const MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
 template <int Dim>
 std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const CancelToken* cancel) {
   std::vector<char> needed(static_cast<size_t>(g.pointCount), 0);
-  walkCullOctree(
-      g, field, cancel,
-      [&](const CullBlock<Dim>& b, double standIn) { forBlockPoints(g, b, [&](std::int64_t p) { g.values[p] = standIn; }); },
-      [&](const CullBlock<Dim>& b) { forBlockPoints(g, b, [&](std::int64_t p) { needed[static_cast<size_t>(p)] = 1; }); });
+  const auto proven = [&](const CullBlock<Dim>& b, double standIn) {
+    forBlockPoints(g, b, [&](std::int64_t p) { g.values[p] = standIn; });
+  };
+  const auto undecided = [&](const CullBlock<Dim>& b) {
+    forBlockPoints(g, b, [&](std::int64_t p) { needed[static_cast<size_t>(p)] = 1; });
+  };
+  walkCullOctree(g, field, cancel, proven, undecided);
   return needed;
 }
 
@@ -157,7 +160,8 @@ template <int Dim>
 std::vector<CullBlock<Dim>> undecidedBlocks(const MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
                                             const CancelToken* cancel) {
   std::vector<CullBlock<Dim>> out;
-  walkCullOctree(g, field, cancel, [](const CullBlock<Dim>&, double) {}, [&](const CullBlock<Dim>& b) { out.push_back(b); });
+  walkCullOctree(
+      g, field, cancel, [](const CullBlock<Dim>&, double) {}, [&](const CullBlock<Dim>& b) { out.push_back(b); });
   return out;
 }
 
