@@ -13,7 +13,7 @@ with open3d's screened Poisson at depth 8 on the same oriented points, and repor
 
 Usage:
   scripts/realdata_bench.py [--lab build/release/hermite-lab] [--points 200000] [--resolution 256]
-                            [--meshes armadillo,bunny00] [--threads N] [--no-poisson] [--json OUT]
+                            [--meshes armadillo,elephant,bunny00,fandisk] [--threads N] [--no-poisson] [--json OUT]
 Meshes are looked up in /work/cgaldata/data/meshes (CGAL's data set; Debian's libcgal-demo ships
 it as data.tar.gz) unless a path is given. Needs python3 with numpy and open3d (Debian:
 python3-open3d); never a dependency of the product or its tests.
@@ -123,7 +123,7 @@ def main():
     ap.add_argument("--lab", default="build/release/hermite-lab")
     ap.add_argument("--points", type=int, default=200000)
     ap.add_argument("--resolution", type=int, default=256)
-    ap.add_argument("--meshes", default="armadillo,bunny00")
+    ap.add_argument("--meshes", default="armadillo,elephant,bunny00,fandisk")
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--seed", type=int, default=17)
     ap.add_argument("--no-poisson", action="store_true")

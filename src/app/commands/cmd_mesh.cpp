@@ -93,9 +93,10 @@ void checkMeshGrid(const Scene& scene, int resolution) {
   } else {
     box.lo.setZero();
     box.hi.setConstant(1.0);
-    box.hi[0] = 3.0;
+    box.hi[Dim - 1] = 3.0;  // 3D slabs span x and y: the long side along z is the smallest plan
   }
-  checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
+  if constexpr (Dim == 3) checkMemory(marchingSlabPlan(box, resolution), kMarchingRemedy);  // streamed by slabs
+  else checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
 }
 
 }  // namespace

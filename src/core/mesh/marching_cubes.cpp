@@ -1,13 +1,17 @@
-// Marching cubes with per-face asymptotic decider and per-cube polygon chaining (marching.h).
+// Marching cubes with per-face asymptotic decider and per-cube polygon chaining (marching_options.h),
+// streamed through slabs of the grid (marching_slab.h) or, without culling, over the whole grid.
 
 #include "core/mesh/marching_cubes.h"
 
 #include <array>
 #include <chrono>
 #include <cstdint>
+#include <functional>
+#include <stdexcept>
 #include <vector>
 
-#include "core/mesh/marching_grid.h"
+#include "core/mesh/marching_memory.h"
+#include "core/mesh/marching_slab.h"
 
 namespace hermite {
 
@@ -161,22 +165,14 @@ void dropUnusedVertices(TriMesh& mesh) {
     for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = id[static_cast<size_t>(mesh.triangles(k, t))];
 }
 
-}  // namespace
 
-TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
-                      MarchingReport* report) {
-  const auto t0 = std::chrono::steady_clock::now();
-  detail::MarchingGrid<3> g = detail::sampleGrid<3>(field, box, options, report);
-  detail::placeEdgeVertices<3>(g, field, options, report);
-
-  const int layers = g.n[2];
-  std::vector<LayerOutput> out(static_cast<size_t>(layers));
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int k = 0; k < layers; ++k)
-    for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) marchCube(g, i + g.stride[1] * j + g.stride[2] * k, out[static_cast<size_t>(k)]);
-
-  const int V = static_cast<int>(g.edgeKeys.size());
+// The mesh from the edge vertices (3 × V positions and ∇f), the cubes' triangles and their
+// centre vertices, in the order of `out`: centres follow the edge vertices; normals are
+// ∇f / ‖∇f‖ (centres evaluated here), the area-weighted mesh normal where ∇f vanishes. Where the
+// field has no data somewhere (`someInvalid`), edge vertices no triangle uses are dropped.
+TriMesh assembleMesh(const ImplicitField<3>& field, const Points<3>& vertices, const Points<3>& gradients,
+                     const std::vector<LayerOutput>& out, bool someInvalid) {
+  const int V = static_cast<int>(vertices.cols());
   size_t nCentres = 0, nTriangles = 0;
   for (const LayerOutput& o : out) {
     nCentres += o.centres.size();
@@ -184,14 +180,14 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   }
   TriMesh mesh;
   mesh.vertices.resize(3, V + static_cast<Eigen::Index>(nCentres));
-  mesh.vertices.leftCols(V) = g.vertices;
+  mesh.vertices.leftCols(V) = vertices;
   mesh.triangles.resize(3, static_cast<Eigen::Index>(nTriangles));
   int centreBase = V;
   Eigen::Index t = 0;
   for (const LayerOutput& o : out) {
     for (size_t c = 0; c < o.centres.size(); ++c) {
       Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int id : o.centres[c]) x += g.vertices.col(id);
+      for (int id : o.centres[c]) x += vertices.col(id);
       mesh.vertices.col(centreBase + static_cast<int>(c)) = x / static_cast<double>(o.centres[c].size());
     }
     for (const std::array<int, 3>& tri : o.triangles) {
@@ -200,10 +196,8 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
     }
     centreBase += static_cast<int>(o.centres.size());
   }
-
-  // Normals: ∇f / ‖∇f‖ (centres evaluated here), the area-weighted mesh normal where ∇f vanishes.
   mesh.normals.resize(3, mesh.vertexCount());
-  mesh.normals.leftCols(V) = g.gradients;
+  mesh.normals.leftCols(V) = gradients;
   if (nCentres > 0) {
     Eigen::VectorXd f;
     Points<3> G;
@@ -216,7 +210,145 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
     if (len > 1e-300 && std::isfinite(len)) mesh.normals.col(v) /= len;
     else mesh.normals.col(v) = fallback.col(v);
   }
-  if (!g.valid.empty()) dropUnusedVertices(mesh);
+  if (someInvalid) dropUnusedVertices(mesh);
+  return mesh;
+}
+
+// The whole grid at once (MarchingOptions::cull off): f at every point, every cell marched.
+TriMesh marchDense(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
+                   MarchingReport* report) {
+  detail::MarchingGrid<3> g = detail::sampleGrid<3>(field, box, options, report);
+  detail::placeEdgeVertices<3>(g, field, options, report);
+  const int layers = g.n[2];
+  std::vector<LayerOutput> out(static_cast<size_t>(layers));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int k = 0; k < layers; ++k)
+    for (int j = 0; j < g.n[1]; ++j)
+      for (int i = 0; i < g.n[0]; ++i) marchCube(g, i + g.stride[1] * j + g.stride[2] * k, out[static_cast<size_t>(k)]);
+  return assembleMesh(field, g.vertices, g.gradients, out, !g.valid.empty());
+}
+
+// The cubes of the sorted cells, in chunks marched in parallel and kept in order.
+std::vector<LayerOutput> marchCells(const detail::MarchingGrid<3>& g, const std::vector<std::int64_t>& cells) {
+  constexpr std::size_t kChunk = 2048;
+  const std::int64_t chunks = static_cast<std::int64_t>((cells.size() + kChunk - 1) / kChunk);
+  std::vector<LayerOutput> out(static_cast<size_t>(chunks));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (std::int64_t c = 0; c < chunks; ++c) {
+    const std::size_t end = std::min(cells.size(), (static_cast<std::size_t>(c) + 1) * kChunk);
+    for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i)
+      marchCube(g, cells[i], out[static_cast<size_t>(c)]);
+  }
+  return out;
+}
+
+// A slab's triangles while their vertex ids are still local (indices into its edgeKeys): the
+// edges on its top point layer belong to the next slab, which numbers them.
+struct PendingSlab {
+  std::vector<LayerOutput> out;
+  std::vector<std::int64_t> edgeKeys;
+  std::int64_t owned = 0;     // its own edges: those below its top point layer, first in edgeKeys
+  std::int64_t base = 0;      // global id of its first own vertex
+  std::int64_t keyShift = 0;  // a top-layer edge's key here minus its key in the next slab
+};
+
+// Moves the slab's triangles to `done` with global vertex ids; `nextKeys` and `nextBase` are
+// the next slab's edge keys and first id (unused when every edge is the slab's own).
+void resolveSlab(PendingSlab& s, const std::vector<std::int64_t>& nextKeys, std::int64_t nextBase,
+                 std::vector<LayerOutput>& done) {
+  auto global = [&](int v) {
+    if (v < s.owned) return static_cast<int>(s.base + v);
+    const std::int64_t key = s.edgeKeys[static_cast<size_t>(v)] - s.keyShift;
+    const auto it = std::lower_bound(nextKeys.begin(), nextKeys.end(), key);
+    if (it == nextKeys.end() || *it != key) throw std::logic_error("marching: slab seams disagree");
+    return static_cast<int>(nextBase + (it - nextKeys.begin()));
+  };
+  for (LayerOutput& o : s.out) {
+    for (std::array<int, 3>& tri : o.triangles)
+      for (int& v : tri)
+        if (v >= 0) v = global(v);
+    for (std::vector<int>& c : o.centres)
+      for (int& v : c) v = global(v);
+    done.push_back(std::move(o));
+  }
+  s.out.clear();
+}
+
+// Everything one slab contributes, added to the running mesh: its own vertices (positions and
+// ∇f) and, once the next slab numbers the shared top-layer edges, its triangles.
+struct StreamState {
+  std::vector<double> positions, gradients;  // 3 per vertex
+  std::vector<LayerOutput> done;
+  PendingSlab pending;
+  bool havePending = false;
+  std::int64_t evaluated = 0;
+  double evaluateMs = 0, maxAbsF = 0;
+};
+
+void streamSlab(const ImplicitField<3>& field, const Vec<3>& lo, const Vec<3>& h, const std::array<int, 3>& n, int slab,
+                const MarchingOptions& options, StreamState& st) {
+  const int slabs = (n[2] + detail::kSlabCells - 1) / detail::kSlabCells;
+  const int k0 = slab * detail::kSlabCells, layers = std::min(detail::kSlabCells, n[2] - k0);
+  const bool last = slab == slabs - 1;
+  const auto t0 = std::chrono::steady_clock::now();
+  detail::MarchingGrid<3> g = detail::slabGrid(lo, h, n, k0, layers);
+  const std::vector<detail::CullBlock<3>> blocks = detail::undecidedBlocks(g, field, options.cancel);
+  std::function<void(double)> progress;
+  if (options.progress) progress = [&](double f) { options.progress((slab + f) / slabs); };
+  st.evaluated += detail::evaluateSlab(g, field, blocks, options.cancel, progress);
+  st.evaluateMs += msSince(t0);
+  const std::vector<std::int64_t> cells = detail::signChangingCells(g, blocks);
+  if (!field.everywhereValid()) detail::slabValidity(g, field, cells, options.cancel);
+  detail::slabEdges(g, cells);
+  if (st.havePending) resolveSlab(st.pending, g.edgeKeys, st.pending.base + st.pending.owned, st.done);
+  st.maxAbsF = std::max(st.maxAbsF, detail::refineEdgeVertices<3>(g, field, options));
+  // The top point layer's edges are the next slab's (keys from point layer `layers` on).
+  const std::int64_t topKey = 3 * g.stride[2] * layers;
+  const std::int64_t owned =
+      last ? static_cast<std::int64_t>(g.edgeKeys.size())
+           : std::lower_bound(g.edgeKeys.begin(), g.edgeKeys.end(), topKey) - g.edgeKeys.begin();
+  st.positions.insert(st.positions.end(), g.vertices.data(), g.vertices.data() + 3 * owned);
+  st.gradients.insert(st.gradients.end(), g.gradients.data(), g.gradients.data() + 3 * owned);
+  const std::int64_t base = st.havePending ? st.pending.base + st.pending.owned : 0;
+  st.pending = PendingSlab{marchCells(g, cells), std::move(g.edgeKeys), owned, base, topKey};
+  st.havePending = true;
+}
+
+// The grid in slabs of detail::kSlabCells cell layers (marching_slab.h): memory O(cross-section).
+TriMesh marchStreamed(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
+                      MarchingReport* report) {
+  detail::checkMarchingInput<3>(box, options.resolution);
+  checkMemory(marchingSlabPlan(box, options.resolution), kMarchingRemedy);
+  const std::array<int, 3> n = marchingCells<3>(box, options.resolution);
+  Vec<3> h;
+  for (int a = 0; a < 3; ++a) h[a] = box.extent()[a] / n[a];
+  const int slabs = (n[2] + detail::kSlabCells - 1) / detail::kSlabCells;
+  StreamState st;
+  for (int s = 0; s < slabs; ++s) {
+    throwIfCancelled(options.cancel);
+    streamSlab(field, box.lo, h, n, s, options, st);
+  }
+  resolveSlab(st.pending, {}, 0, st.done);
+  if (options.progress) options.progress(1.0);
+  const Eigen::Index V = static_cast<Eigen::Index>(st.positions.size() / 3);
+  const Points<3> vertices = Eigen::Map<const Points<3>>(st.positions.data(), 3, V);
+  const Points<3> gradients = Eigen::Map<const Points<3>>(st.gradients.data(), 3, V);
+  if (report) {
+    report->cells = {n[0], n[1], n[2]};
+    report->gridPoints = (std::int64_t(n[0]) + 1) * (n[1] + 1) * (n[2] + 1);
+    report->evaluatedPoints = st.evaluated;
+    report->evaluateMs = st.evaluateMs;
+    report->maxAbsF = st.maxAbsF;
+  }
+  return assembleMesh(field, vertices, gradients, st.done, !field.everywhereValid());
+}
+
+}  // namespace
+
+TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
+                      MarchingReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  TriMesh mesh = options.cull ? marchStreamed(field, box, options, report) : marchDense(field, box, options, report);
   if (report) report->totalMs = msSince(t0);
   return mesh;
 }

@@ -42,8 +42,8 @@ template <int Dim>
 Box<Dim> cullBlockBox(const MarchingGrid<Dim>& g, const CullBlock<Dim>& b) {
   Box<Dim> box;
   for (int a = 0; a < Dim; ++a) {
-    box.lo[a] = g.lo[a] + g.h[a] * b.lo[a];
-    box.hi[a] = g.lo[a] + g.h[a] * std::min(b.lo[a] + b.size, g.n[a]);
+    box.lo[a] = g.lo[a] + g.h[a] * (b.lo[a] + g.origin[a]);
+    box.hi[a] = g.lo[a] + g.h[a] * (std::min(b.lo[a] + b.size, g.n[a]) + g.origin[a]);
   }
   return box;
 }
@@ -63,10 +63,12 @@ void forBlockPoints(const MarchingGrid<Dim>& g, const CullBlock<Dim>& b, F&& vis
   }
 }
 
-// Fills g.values with same-signed stand-ins at the points of blocks proven sign-constant and
-// returns which points still need f (needed[p] = 1). Blocks tested: centre f in one batch per level.
-template <int Dim>
-std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const CancelToken* cancel) {
+// Walks the octree coarse to fine: proven(b, standIn) for each block proven sign-constant (standIn:
+// a lower bound of |f| there with f's sign), undecided(b) for each finest block that is not.
+// Blocks tested: centre f in one batch per level.
+template <int Dim, class Proven, class Undecided>
+void walkCullOctree(const MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const CancelToken* cancel,
+                    Proven&& proven, Undecided&& undecided) {
   int top = kFinestCells;
   const int longest = *std::max_element(g.n.begin(), g.n.end());
   while (top < longest && top < 64) top *= 2;
@@ -89,8 +91,6 @@ std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& fie
       level.push_back(b);
     }
   }
-  std::vector<char> needed(static_cast<size_t>(g.pointCount), 0);
-  std::vector<char> culled;
   std::vector<CullBlock<Dim>> next;
   Points<Dim> centres;
   Eigen::VectorXd fc, radius;
@@ -110,7 +110,6 @@ std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& fie
       radius[i] = 0.5 * box.extent().norm();
     }
     field.evaluateBatch(centres, fc);
-    culled.assign(static_cast<size_t>(m), 0);
     next.clear();
     for (std::int64_t i = 0; i < m; ++i) {
       const CullBlock<Dim>& b = level[static_cast<size_t>(i)];
@@ -119,9 +118,9 @@ std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& fie
         // The stand-in |f(c)| − L·r is a lower bound of |f| in the block, with its sign.
         const double bound = std::max(std::abs(fc[i]) - margin, 1e-300);
         const double standIn = fc[i] < 0 ? -bound : bound;
-        forBlockPoints(g, b, [&](std::int64_t p) { g.values[p] = standIn; });
+        proven(b, standIn);
       } else if (b.size == kFinestCells) {
-        forBlockPoints(g, b, [&](std::int64_t p) { needed[static_cast<size_t>(p)] = 1; });
+        undecided(b);
       } else {
         const int half = b.size / 2;
         for (int ch = 0; ch < (1 << Dim); ++ch) {
@@ -138,7 +137,32 @@ std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& fie
     }
     level.swap(next);
   }
+}
+
+// Fills g.values with same-signed stand-ins at the points of blocks proven sign-constant and
+// returns which points still need f (needed[p] = 1).
+template <int Dim>
+std::vector<char> cullBlocks(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const CancelToken* cancel) {
+  std::vector<char> needed(static_cast<size_t>(g.pointCount), 0);
+  const auto proven = [&](const CullBlock<Dim>& b, double standIn) {
+    forBlockPoints(g, b, [&](std::int64_t p) { g.values[p] = standIn; });
+  };
+  const auto undecided = [&](const CullBlock<Dim>& b) {
+    forBlockPoints(g, b, [&](std::int64_t p) { needed[static_cast<size_t>(p)] = 1; });
+  };
+  walkCullOctree(g, field, cancel, proven, undecided);
   return needed;
+}
+
+// The finest blocks the octree cannot prove sign-constant (the only ones whose cells can change
+// sign), in the order of the walk.
+template <int Dim>
+std::vector<CullBlock<Dim>> undecidedBlocks(const MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
+                                            const CancelToken* cancel) {
+  std::vector<CullBlock<Dim>> out;
+  walkCullOctree(
+      g, field, cancel, [](const CullBlock<Dim>&, double) {}, [&](const CullBlock<Dim>& b) { out.push_back(b); });
+  return out;
 }
 
 }  // namespace hermite::detail

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/base/errors.h"
@@ -24,6 +25,9 @@ struct MarchingGrid {
   Vec<Dim> h;                          // cell size per axis
   std::array<int, Dim> n{};            // cells per axis
   std::array<std::int64_t, Dim> stride{};  // point-index step per axis (points: n + 1 per axis)
+  // Cells of the whole grid before this one's first, per axis: a slab of a streamed grid
+  // (marching_slab.h) indexes its points locally and places them as the whole grid does.
+  std::array<int, Dim> origin{};
   std::int64_t pointCount = 0;
   Eigen::VectorXd values;              // f at every grid point
   // valid[p] = 0: grid point p has no data (ImplicitField::valid, asked by markUsable where it
@@ -48,7 +52,7 @@ struct MarchingGrid {
   Vec<Dim> point(std::int64_t idx) const {
     const std::array<int, Dim> c = coords(idx);
     Vec<Dim> x;
-    for (int a = 0; a < Dim; ++a) x[a] = lo[a] + h[a] * c[a];
+    for (int a = 0; a < Dim; ++a) x[a] = lo[a] + h[a] * (c[a] + origin[a]);
     return x;
   }
   bool inside(std::int64_t idx) const { return values[idx] < 0; }
@@ -61,7 +65,32 @@ struct MarchingGrid {
   }
 };
 
-// f and ∇f at the columns of X in chunks of 2¹⁴ points, polling `cancel` between them.
+// The columns of X in Morton (Z-curve) order of their position quantised to 2¹⁰ steps per axis
+// over X's bounding box: consecutive entries lie close together, so a field that shares work
+// between neighbouring points in a batch (a partition of unity) meets few supports per run.
+template <int Dim>
+std::vector<Eigen::Index> spatialOrder(const Points<Dim>& X) {
+  const Eigen::Index n = X.cols();
+  std::vector<Eigen::Index> order(static_cast<size_t>(n));
+  if (n == 0) return order;
+  const Vec<Dim> lo = X.rowwise().minCoeff(), ext = X.rowwise().maxCoeff() - lo;
+  std::vector<std::pair<std::uint64_t, Eigen::Index>> keys(static_cast<size_t>(n));
+  for (Eigen::Index i = 0; i < n; ++i) {
+    std::uint64_t key = 0;
+    for (int a = 0; a < Dim; ++a) {
+      const double t = ext[a] > 0 ? (X(a, i) - lo[a]) / ext[a] : 0.0;
+      const auto q = static_cast<std::uint64_t>(std::clamp(t, 0.0, 1.0) * 1023.0);
+      for (int bit = 0; bit < 10; ++bit) key |= ((q >> bit) & 1u) << (bit * Dim + a);
+    }
+    keys[static_cast<size_t>(i)] = {key, i};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (Eigen::Index i = 0; i < n; ++i) order[static_cast<size_t>(i)] = keys[static_cast<size_t>(i)].second;
+  return order;
+}
+
+// f and ∇f at the columns of X in chunks of 2¹⁴ points in spatialOrder (each f(i) depends on
+// X.col(i) alone, so the order changes only the speed), polling `cancel` between them.
 template <int Dim>
 void evaluateChunked(const ImplicitField<Dim>& field, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>& G,
                      const CancelToken* cancel) {
@@ -69,14 +98,19 @@ void evaluateChunked(const ImplicitField<Dim>& field, const Points<Dim>& X, Eige
   const Eigen::Index n = X.cols();
   f.resize(n);
   G.resize(Dim, n);
+  const std::vector<Eigen::Index> order = spatialOrder(X);
   Eigen::VectorXd fc;
-  Points<Dim> Gc;
+  Points<Dim> Xc, Gc;
   for (Eigen::Index begin = 0; begin < n; begin += kChunk) {
     throwIfCancelled(cancel);
     const Eigen::Index count = std::min(kChunk, n - begin);
-    field.evaluateBatch(X.middleCols(begin, count), fc, &Gc);
-    f.segment(begin, count) = fc;
-    G.middleCols(begin, count) = Gc;
+    Xc.resize(Dim, count);
+    for (Eigen::Index i = 0; i < count; ++i) Xc.col(i) = X.col(order[static_cast<size_t>(begin + i)]);
+    field.evaluateBatch(Xc, fc, &Gc);
+    for (Eigen::Index i = 0; i < count; ++i) {
+      f[order[static_cast<size_t>(begin + i)]] = fc[i];
+      G.col(order[static_cast<size_t>(begin + i)]) = Gc.col(i);
+    }
   }
 }
 
@@ -136,15 +170,22 @@ void markUsable(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const Can
   if (!todo.empty()) flush();
 }
 
+// InputError for a resolution outside [1, 4096] or a box that is not finite with min < max.
+template <int Dim>
+void checkMarchingInput(const Box<Dim>& box, int resolution) {
+  if (resolution < 1 || resolution > 4096)
+    throw InputError("marching: resolution must be in [1, 4096], got " + std::to_string(resolution));
+  const Vec<Dim> ext = box.extent();
+  if (!ext.allFinite() || !(ext.minCoeff() > 0) || !box.lo.allFinite())
+    throw InputError("marching: the box must be finite with min < max on every axis");
+}
+
 // Grid layout and f at every grid point (batched by slabs of the last axis to bound memory).
 template <int Dim>
 MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& box, const MarchingOptions& options,
                              MarchingReport* report) {
-  if (options.resolution < 1 || options.resolution > 4096)
-    throw InputError("marching: resolution must be in [1, 4096], got " + std::to_string(options.resolution));
+  checkMarchingInput<Dim>(box, options.resolution);
   const Vec<Dim> ext = box.extent();
-  if (!ext.allFinite() || !(ext.minCoeff() > 0) || !box.lo.allFinite())
-    throw InputError("marching: the box must be finite with min < max on every axis");
   const auto t0 = std::chrono::steady_clock::now();
   MarchingGrid<Dim> g;
   g.lo = box.lo;
@@ -209,12 +250,9 @@ MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& bo
   return g;
 }
 
-// Finds the sign-changing edges and places their vertices: linear interpolation, then
-// safeguarded Newton along the edge (bracketed by the end signs, false position when a step
-// leaves the bracket, kept in [τ, 1 − τ]).
+// g.edgeKeys: the sign-changing edges of the whole grid whose ends both have data, sorted.
 template <int Dim>
-void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options,
-                       MarchingReport* report) {
+void findEdges(MarchingGrid<Dim>& g) {
   const int slabs = g.n[Dim - 1] + 1;
   std::vector<std::vector<std::int64_t>> perSlab(static_cast<size_t>(slabs));
 #pragma omp parallel for schedule(dynamic, 1)
@@ -230,7 +268,13 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
   }
   g.edgeKeys.clear();
   for (const auto& v : perSlab) g.edgeKeys.insert(g.edgeKeys.end(), v.begin(), v.end());
+}
 
+// Places the vertices of g.edgeKeys (g.vertices, g.gradients): linear interpolation, then
+// safeguarded Newton along the edge (bracketed by the end signs, false position when a step
+// leaves the bracket, kept in [τ, 1 − τ]). Returns max |f| over the vertices after refinement.
+template <int Dim>
+double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options) {
   constexpr double tau = 1e-3;
   const int V = static_cast<int>(g.edgeKeys.size());
   Eigen::VectorXd t(V), tLo(V), tHi(V), fLo(V), fHi(V);  // parameter along the edge, its bracket and f there
@@ -301,7 +345,16 @@ void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, co
     active.swap(next);
   }
   g.gradients = G;
-  if (report) report->maxAbsF = V > 0 ? f.cwiseAbs().maxCoeff() : 0.0;
+  return V > 0 ? f.cwiseAbs().maxCoeff() : 0.0;
+}
+
+// findEdges, then refineEdgeVertices (report->maxAbsF).
+template <int Dim>
+void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options,
+                       MarchingReport* report) {
+  findEdges(g);
+  const double maxAbsF = refineEdgeVertices(g, field, options);
+  if (report) report->maxAbsF = maxAbsF;
 }
 
 }  // namespace hermite::detail

@@ -31,6 +31,17 @@ PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution) {
               std::to_string(kMarchingBytesPerPoint) + " bytes each)"};
 }
 
+PlannedAllocation marchingSlabPlan(const Box<3>& box, int resolution) {
+  const std::array<int, 3> n = marchingCells<3>(box, resolution);
+  const int layers = std::min(n[2], kSlabPlanCells) + 1;
+  const std::uint64_t points =
+      saturatingProduct({std::uint64_t(n[0]) + 1, std::uint64_t(n[1]) + 1, std::uint64_t(layers)});
+  return {saturatingProduct({points, kSlabPlanBytesPerPoint}),
+          "marching cubes at resolution " + std::to_string(resolution) + " (slabs of " + std::to_string(n[0] + 1) +
+              " x " + std::to_string(n[1] + 1) + " x " + std::to_string(layers) + " points, " +
+              std::to_string(kSlabPlanBytesPerPoint) + " bytes each)"};
+}
+
 template std::array<int, 2> marchingCells<2>(const Box<2>&, int);
 template std::array<int, 3> marchingCells<3>(const Box<3>&, int);
 template PlannedAllocation marchingGridPlan<2>(const Box<2>&, int);

@@ -23,4 +23,12 @@ std::array<int, Dim> marchingCells(const Box<Dim>& box, int resolution);
 template <int Dim>
 PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution);
 
+// Streamed marching cubes (MarchingOptions::cull, the default) holds one slab of the grid at a
+// time: min(64, cells along z) + 1 point layers of the grid's cross-section, 10 bytes per point
+// (f, whether it is evaluated, whether it has data). "marching cubes at resolution 4096 (slabs of
+// 4097 x 4097 x 65 points, 10 bytes each)".
+inline constexpr int kSlabPlanCells = 64;
+inline constexpr int kSlabPlanBytesPerPoint = 10;
+PlannedAllocation marchingSlabPlan(const Box<3>& box, int resolution);
+
 }  // namespace hermite
