@@ -25,7 +25,7 @@ run: build
 	@./$(BUILD_DIR)/hermite-lab $(ARGS)
 
 test: build
-	@cd $(BUILD_DIR) && ctest --output-on-failure --timeout 900 -j $(JOBS) -LE slow
+	@cd $(BUILD_DIR) && ctest --output-on-failure --timeout 900 -j $(JOBS)
 
 # ASan + UBSan build of core (math, loaders, scene files) and its tests (docs/design.md, Testing).
 test-sanitize: setup
