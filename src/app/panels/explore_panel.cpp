@@ -14,6 +14,7 @@
 #include "app/gui/gui_widgets.h"
 #include "app/gui/log_axis.h"
 #include "io/atomic_file.h"
+#include "render/ui_font.h"
 
 namespace hermite::app {
 
@@ -27,6 +28,10 @@ constexpr ImU32 kAxisTextColour = IM_COL32(190, 190, 190, 255);
 constexpr ImU32 kGridColour = IM_COL32(70, 70, 80, 255);
 // Thumbnails at UI scale 1 (4:3, as the view); scaled with the UI and shrunk to the strip's height.
 constexpr float kThumbW = 128.0f, kThumbH = 96.0f;
+
+// Line widths and dot radii in pixels at UI scale 1, times this: the type's size over its size at
+// scale 1, so strokes grow with the UI scale as the text does.
+float strokeScale() { return ImGui::GetFontSize() / render::kUiFontPixels; }
 
 // One plot's geometry: the whole frame (p0, size) and the data area [a, b] inside it, in pixels.
 struct PlotFrame {
@@ -55,11 +60,16 @@ void drawYAxis(ImDrawList* dl, const PlotFrame& f, const DecadeRange& y) {
 }
 
 // Vertical grid lines and labels at the log axis' ticks; "r" names the axis in the lower-left corner.
+// A label that would overlap the previous one is left out (its grid line stays).
 void drawXAxis(ImDrawList* dl, const PlotFrame& f, const LogAxis& x) {
+  const float gap = ImGui::CalcTextSize(" ").x;
+  float previousEnd = -FLT_MAX;  // right edge of the last label drawn
   for (const AxisTick& t : x.ticks()) {
     dl->AddLine(ImVec2(float(t.pixel), f.a.y), ImVec2(float(t.pixel), f.b.y), kGridColour);
-    dl->AddText(ImVec2(float(t.pixel) - ImGui::CalcTextSize(t.label.c_str()).x / 2, f.b.y + 2), kAxisTextColour,
-                t.label.c_str());
+    const float w = ImGui::CalcTextSize(t.label.c_str()).x, left = float(t.pixel) - w / 2;
+    if (left < previousEnd + gap) continue;
+    dl->AddText(ImVec2(left, f.b.y + 2), kAxisTextColour, t.label.c_str());
+    previousEnd = left + w;
   }
   dl->AddText(ImVec2(f.p0.x + 4, f.b.y + 2), IM_COL32(230, 230, 230, 255), "r:");
 }
@@ -68,11 +78,11 @@ void drawXAxis(ImDrawList* dl, const PlotFrame& f, const LogAxis& x) {
 // right of the line, or left of it where it would leave the plot.
 void drawMarker(ImDrawList* dl, const PlotFrame& f, const LogAxis& x, double r, ImU32 colour, const char* name, int line) {
   const float px = float(x.toPixel(r)), fh = ImGui::GetFontSize();
-  dl->AddLine(ImVec2(px, f.a.y), ImVec2(px, f.b.y), colour, 2.0f);
+  dl->AddLine(ImVec2(px, f.a.y), ImVec2(px, f.b.y), colour, 2.0f * strokeScale());
   char label[64];
   std::snprintf(label, sizeof label, "%s %.3g", name, r);
   const float w = ImGui::CalcTextSize(label).x;
-  const float tx = px + 3 + w <= f.b.x ? px + 3 : px - 3 - w;
+  const float tx = px + 3 + w <= f.b.x ? px + 3 : std::max(f.a.x, px - 3 - w);  // never over the y labels
   dl->AddText(ImVec2(tx, f.a.y + 1 + line * fh), colour, label);
 }
 
@@ -89,9 +99,10 @@ void drawSeries(ImDrawList* dl, const std::vector<RadiusSweepRow>& rows, Value v
       continue;
     }
     const ImVec2 q(float(x.toPixel(r.radius)), toY(v));
-    if (havePrev) dl->AddLine(prev, q, kSeriesColour, 1.5f);
-    if (!r.rejection().empty()) dl->AddCircle(q, 3.5f, kRejectedColour, 0, 1.5f);
-    else dl->AddCircleFilled(q, 3.0f, kSeriesColour);
+    const float s = strokeScale();
+    if (havePrev) dl->AddLine(prev, q, kSeriesColour, 1.5f * s);
+    if (!r.rejection().empty()) dl->AddCircle(q, 3.5f * s, kRejectedColour, 0, 1.5f * s);
+    else dl->AddCircleFilled(q, 3.0f * s, kSeriesColour);
     prev = q;
     havePrev = true;
   }
@@ -159,9 +170,9 @@ void drawPlotLegend() {
     const float fh = ImGui::GetFontSize();
     ImDrawList* dl = ImGui::GetWindowDrawList();
     const ImVec2 c(p.x + fh / 2, p.y + fh / 2 + 1);
-    if (ring) dl->AddCircle(c, fh * 0.3f, colour, 0, 1.5f);
+    if (ring) dl->AddCircle(c, fh * 0.3f, colour, 0, 1.5f * strokeScale());
     else if (colour == kSeriesColour) dl->AddCircleFilled(c, fh * 0.25f, colour);
-    else dl->AddLine(ImVec2(c.x, p.y + 1), ImVec2(c.x, p.y + fh), colour, 2.0f);
+    else dl->AddLine(ImVec2(c.x, p.y + 1), ImVec2(c.x, p.y + fh), colour, 2.0f * strokeScale());
     ImGui::Dummy(ImVec2(fh, fh));
     ImGui::SameLine(0, 4);
     ImGui::TextUnformatted(text);
