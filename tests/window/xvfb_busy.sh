@@ -107,9 +107,9 @@ echo "bounds box toggled: version $VERSION -> $VERSION2, fits $FITS -> $FITS2"
 [ "$VERSION2" != "$VERSION" ] || fail "the click on the bounds box did not change the document"
 [ "$FITS2" = "$FITS" ] || fail "a view toggle submitted a fit"
 
-# Reported, not yet asserted: the frames that upload a bake and trace the settled view at full
-# size still run on the GUI thread (about 50 ms unloaded at 1024 × 768, several hundred under a
-# build's load: docs/performance.md), so a key arriving just then waits that long.
+# Reported, not yet asserted: the GUI thread still uploads each bake whole and traces the settled
+# view in bands of about 12 ms a frame (docs/performance.md), so under a build's load a frame can
+# take hundreds of milliseconds and a key arriving then waits that long.
 read -r SLOW GAP <<< "$(q slowest "$START")"
 echo "after the first fit: slowest frame $SLOW ms, largest gap between frames $GAP ms"
 
