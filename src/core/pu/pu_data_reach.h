@@ -41,6 +41,9 @@ class PuDataReach {
   bool reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const;
   // rᵢ of the sample at position j of tree.order(), frame units.
   double radiusAt(int j) const { return radius_[static_cast<std::size_t>(j)]; }
+  // The largest rᵢ of tree node id's samples: 0 for a node without samples, including nodes
+  // added to the tree after this reach was built (PuTree::splitEmptyLeaves adds only empty ones).
+  double nodeRadius(std::size_t id) const { return id < nodeRadius_.size() ? nodeRadius_[id] : 0.0; }
   // Largest rᵢ over all samples (0 when empty).
   double maxRadius() const { return nodeRadius_.empty() ? 0.0 : nodeRadius_.front(); }
 

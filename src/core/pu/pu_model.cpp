@@ -342,21 +342,11 @@ double boxDistance(const Box<Dim>& a, const Box<Dim>& b) {
   return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec<Dim>::Zero()).norm();
 }
 
-// Largest rᵢ of each tree node's samples (0 for a node without samples).
-template <int Dim>
-std::vector<double> largestReachPerNode(const PuTree<Dim>& tree, const PuDataReach<Dim>& reach) {
-  const auto& nodes = tree.nodes();
-  std::vector<double> nodeR(nodes.size(), 0.0);
-  for (std::size_t id = 0; id < nodes.size(); ++id)
-    for (int j = nodes[id].begin; j < nodes[id].end; ++j) nodeR[id] = std::max(nodeR[id], reach.radiusAt(j));
-  return nodeR;
-}
-
 // Whether some sample pᵢ reaching the box b (‖b − pᵢ‖ ≤ rᵢ) passes accept(j), j its position in
-// tree.order(): a walk of the tree that skips nodes whose largest reach (nodeR) cannot meet b.
+// tree.order(): a walk of the tree that skips nodes whose largest reach cannot meet b.
 template <int Dim, class Accept>
 bool someSampleReaches(const PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
-                       const std::vector<double>& nodeR, const Box<Dim>& b, const Accept& accept) {
+                       const Box<Dim>& b, const Accept& accept) {
   const auto& nodes = tree.nodes();
   int stack[64 * PuTree<Dim>::kChildren];
   int top = 0;
@@ -364,7 +354,8 @@ bool someSampleReaches(const PuTree<Dim>& tree, const Points<Dim>& frameY, const
   while (top > 0) {
     const int id = stack[--top];
     const auto& nd = nodes[static_cast<std::size_t>(id)];
-    if (nd.begin == nd.end || boxDistance<Dim>(nd.box, b) > nodeR[static_cast<std::size_t>(id)]) continue;
+    if (nd.begin == nd.end || boxDistance<Dim>(nd.box, b) > reach.nodeRadius(static_cast<std::size_t>(id)))
+      continue;
     if (nd.firstChild >= 0) {
       for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
       continue;
@@ -384,12 +375,11 @@ template <int Dim>
 void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
                      std::vector<char>& blended) {
   if (reach.empty()) return;
-  const std::vector<double> nodeR = largestReachPerNode(tree, reach);
   const int n = tree.leafCount();
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     if (blended[static_cast<std::size_t>(i)]) continue;
-    if (someSampleReaches(tree, frameY, reach, nodeR, tree.leafBox(i), [](int) { return true; }))
+    if (someSampleReaches(tree, frameY, reach, tree.leafBox(i), [](int) { return true; }))
       blended[static_cast<std::size_t>(i)] = kCover;
   }
 }
@@ -404,7 +394,6 @@ constexpr double kCoverEdge = 2.0;
 template <int Dim>
 std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>& frameY,
                                       const PuDataReach<Dim>& reach, const std::vector<char>& nodeBlended) {
-  const std::vector<double> nodeR = largestReachPerNode(tree, reach);
   const int n = tree.leafCount();
   std::vector<char> split(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 64)
@@ -413,7 +402,7 @@ std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>
     if (tree.leafSampleCount(i) > 0 || (node < nodeBlended.size() && nodeBlended[node])) continue;
     const Box<Dim>& b = tree.leafBox(i);
     const double edge = b.extent().maxCoeff();
-    const bool coarse = someSampleReaches(tree, frameY, reach, nodeR, b,
+    const bool coarse = someSampleReaches(tree, frameY, reach, b,
                                           [&](int j) { return edge > kCoverEdge * reach.radiusAt(j); });
     split[static_cast<std::size_t>(i)] = coarse ? 1 : 0;
   }

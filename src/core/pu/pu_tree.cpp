@@ -8,6 +8,22 @@
 
 namespace hermite {
 
+namespace {
+
+// Child ch of a box split at c: bit k of ch picks the upper half along axis k.
+template <int Dim>
+Box<Dim> childBox(const Box<Dim>& box, const Vec<Dim>& c, int ch) {
+  Box<Dim> child = box;
+  for (int k = 0; k < Dim; ++k) {
+    const bool upper = (ch >> k) & 1;
+    child.lo(k) = upper ? c(k) : box.lo(k);
+    child.hi(k) = upper ? box.hi(k) : c(k);
+  }
+  return child;
+}
+
+}  // namespace
+
 std::string_view puBlendName(PuBlend b) { return nameIn<PuBlend>(kPuBlendNames, b); }
 
 PuBlend parsePuBlend(std::string_view s) {
@@ -62,11 +78,7 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
     nodes_[id].firstChild = first;
     for (int ch = 0; ch < kChildren; ++ch) {
       Node child;
-      for (int k = 0; k < Dim; ++k) {
-        const bool upper = (ch >> k) & 1;
-        child.box.lo(k) = upper ? c(k) : nd.box.lo(k);
-        child.box.hi(k) = upper ? nd.box.hi(k) : c(k);
-      }
+      child.box = childBox(nd.box, c, ch);
       child.begin = offsets[ch];
       child.end = offsets[ch] + counts[ch];
       child.depth = nd.depth + 1;
@@ -133,11 +145,7 @@ void PuTree<Dim>::splitEmptyLeaves(const std::vector<int>& leafIds, int maxDepth
     nodes_[static_cast<std::size_t>(id)].leaf = -1;
     for (int ch = 0; ch < kChildren; ++ch) {
       Node child;
-      for (int k = 0; k < Dim; ++k) {
-        const bool upper = (ch >> k) & 1;
-        child.box.lo(k) = upper ? c(k) : nd.box.lo(k);
-        child.box.hi(k) = upper ? nd.box.hi(k) : c(k);
-      }
+      child.box = childBox(nd.box, c, ch);
       child.begin = child.end = nd.begin;
       child.depth = nd.depth + 1;
       nodes_.push_back(child);
