@@ -27,14 +27,15 @@ run: build
 test: build
 	@cd $(BUILD_DIR) && ctest --output-on-failure --timeout 900 -j $(JOBS)
 
-# ASan + UBSan build of core (math, loaders, scene files) and its tests (docs/design.md, Testing).
+# ASan + UBSan build of core (math, loaders, scene files) and its tests, without the label slow
+# (docs/design.md, Testing).
 test-sanitize: setup
 	@mkdir -p build
 	@cmake -S . -B $(ASAN_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DHERMITE_SANITIZE=ON \
 	  -DHERMITE_NATIVE=OFF $(CMAKE_FLAGS) > $(ASAN_DIR).configure.log 2>&1 || { cat $(ASAN_DIR).configure.log; exit 1; }
 	@cmake --build $(ASAN_DIR) -j $(JOBS) --target hermite_core_tests
 	@cd $(ASAN_DIR) && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-	  ctest --output-on-failure --timeout 900 -j $(JOBS) -L core
+	  ctest --output-on-failure --timeout 900 -j $(JOBS) -L core -LE slow
 
 bench: build
 	@./$(BUILD_DIR)/hermite-lab bench $(ARGS)
