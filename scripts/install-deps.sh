@@ -6,7 +6,7 @@ set -eu
 
 PACKAGES="
   build-essential cmake ninja-build pkg-config python3
-  libeigen3-dev libopenblas-dev liblapacke-dev
+  libeigen3-dev libopenblas-dev libopenblas-pthread-dev liblapacke-dev
   nlohmann-json3-dev libcli11-dev doctest-dev libnanoflann-dev libstb-dev
   libglfw3-dev libimgui-dev libglm-dev libosmesa6-dev libegl-dev libgl-dev python3-glad
   libegl-mesa0 libgl1-mesa-dri fonts-dejavu-core

@@ -62,6 +62,23 @@ const HermiteSamples<3>& bunnyFull() {
   return samples;
 }
 
+// The number of vertices in the embedded bunny: its non-blank lines, counted without parsing (the
+// preset table needs the count in every process; bunnyFull() parses only when the bunny is used).
+int bunnyVertexCount() {
+  const std::string_view text = embeddedBunnyXyzn();
+  int lines = 0;
+  bool blank = true;
+  for (const char c : text) {
+    if (c == '\n') {
+      lines += blank ? 0 : 1;
+      blank = true;
+    } else if (c != ' ' && c != '\r' && c != '\t') {
+      blank = false;
+    }
+  }
+  return lines + (blank ? 0 : 1);
+}
+
 // Farthest-point sampling from column 0, ties to the lowest index: the first k of a larger
 // sample are the sample of size k. O(N·count).
 std::vector<Eigen::Index> farthestPointOrder(const Points<3>& P, int count) {
@@ -381,7 +398,7 @@ std::vector<TorusGeometry> presetTori(std::string_view name) {
 
 const std::vector<PresetInfo>& allPresets() {
   static const std::vector<PresetInfo> presets = [] {
-    const int bunnyCount = bunnyFull().size();
+    const int bunnyCount = bunnyVertexCount();
     return std::vector<PresetInfo>{
         {"sphere6", 3, 6, {6}, "the unit sphere sampled at ±x, ±y, ±z", 6, 6},
         {"sphere", 3, 100, {100}, "unit sphere, Fibonacci (golden spiral) points", 4, kMaxGenerated},
