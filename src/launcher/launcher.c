@@ -1,5 +1,6 @@
 /* hermite-lab: sets the environment that libgomp and OpenBLAS read while they load, then runs
- * the program itself (hermite-lab-main, next to this file) in its place.
+ * the program itself in its place: hermite-lab-cli (next to this file) for the commands that draw
+ * nothing, hermite-lab-main for everything else.
  *
  * The program used to set these variables in main() and re-execute itself, loading its thirty
  * shared libraries twice: about one process start-up per command (docs/performance.md, Fit speed
@@ -25,8 +26,17 @@ static const char* intelCoreType(void) {
   return __builtin_cpu_is("intel") ? openblasCoreTypeFromFlags() : 0;
 }
 
-/* The program's path: this executable's directory + "/hermite-lab-main". */
-static int programPath(char* out, size_t size) {
+/* The commands that draw nothing: hermite-lab-cli runs them without loading the display's
+ * libraries (GLFW, EGL, X11: a dozen fewer shared libraries to map and relocate per process). */
+static int headlessCommand(const char* first) {
+  static const char* const names[] = {"fit", "eval", "mesh", "holefill", "patch-table"};
+  for (size_t i = 0; first && i < sizeof names / sizeof names[0]; ++i)
+    if (strcmp(first, names[i]) == 0) return 1;
+  return 0;
+}
+
+/* The path of `program` next to this executable. */
+static int programPath(const char* program, char* out, size_t size) {
   char self[PATH_MAX];
   const ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
   if (n <= 0) return 0;
@@ -34,21 +44,23 @@ static int programPath(char* out, size_t size) {
   char* slash = strrchr(self, '/');
   if (slash == 0) return 0;
   *slash = '\0';
-  return snprintf(out, size, "%s/hermite-lab-main", self) < (int)size;
+  return snprintf(out, size, "%s/%s", self, program) < (int)size;
 }
 
 int main(int argc, char** argv) {
-  (void)argc;
   setenv("OMP_WAIT_POLICY", "PASSIVE", 0);
   setenv("OPENBLAS_THREAD_TIMEOUT", "16", 0);
   const char* core = intelCoreType();
   if (core) setenv("OPENBLAS_CORETYPE", core, 0);
   setenv("HERMITE_REEXECUTED", "1", 1);
   char program[PATH_MAX];
-  if (!programPath(program, sizeof program)) {
+  if (!programPath("hermite-lab-main", program, sizeof program)) {
     fprintf(stderr, "hermite-lab: cannot find this executable's folder (/proc/self/exe)\n");
     return 4;
   }
+  char headless[PATH_MAX];
+  if (argc > 1 && headlessCommand(argv[1]) && programPath("hermite-lab-cli", headless, sizeof headless))
+    execv(headless, argv); /* returns only on failure: the full program runs these commands too */
   execv(program, argv);
   fprintf(stderr, "hermite-lab: cannot run %s: %s\n", program, strerror(errno));
   return 4;

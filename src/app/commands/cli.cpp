@@ -6,6 +6,7 @@
 #include <exception>
 #include <filesystem>
 #include <iostream>
+#include <malloc.h>
 #include <new>
 #include <optional>
 #include <string>
@@ -17,6 +18,7 @@
 #include "app/commands/error_report.h"
 #include "app/commands/fatal_exit.h"
 #include "app/commands/output.h"
+#include "core/base/blas_setup.h"
 #include "core/base/edit_distance.h"
 #include "core/base/errors.h"
 #include "core/base/memory_check.h"
@@ -131,7 +133,17 @@ std::optional<int> topLevel(const std::string& first) {
   return std::nullopt;
 }
 
-int dispatch(int argc, char** argv) {
+// The display command `name` of `display`, or a usage error when this is the headless program
+// (run directly instead of through the hermite-lab launcher).
+template <class Command>
+Command displayCommand(Command command, const char* name) {
+  if (command == nullptr)
+    throw UsageError(std::string("'") + name + "' needs the full program: run it as hermite-lab " + name +
+                     " (this executable runs fit, eval, mesh, holefill and patch-table only)");
+  return command;
+}
+
+int dispatch(int argc, char** argv, const DisplayCommands& display) {
   const std::string first = argc > 1 ? argv[1] : "";
   if (const std::optional<int> rc = topLevel(first)) return *rc;
   int threads = 0;
@@ -172,7 +184,7 @@ int dispatch(int argc, char** argv) {
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);
-    return runRender(a);
+    return displayCommand(display.render, "render")(a);
   }
   if (first == "sweep") {
     SweepArgs a;
@@ -189,7 +201,7 @@ int dispatch(int argc, char** argv) {
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);
-    return runSweep(a);
+    return displayCommand(display.sweep, "sweep")(a);
   }
   if (first == "mesh") {
     MeshArgs a;
@@ -240,7 +252,7 @@ int dispatch(int argc, char** argv) {
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);
-    return runBench(a);
+    return displayCommand(display.bench, "bench")(a);
   }
   // No subcommand: the program's main job on SCENE (or the demo scene).
   SceneArgs a;
@@ -251,17 +263,17 @@ int dispatch(int argc, char** argv) {
   addThreads(cmd, threads);
   if (int rc = parse(cmd, argc, argv); rc >= 0) return rc;
   if (threads > 0) setThreadCount(threads);
-  return runDefault(a, uiScale);
+  return displayCommand(display.window, "the window")(a, uiScale);
 }
 
 }  // namespace
 
-int runCli(int argc, char** argv) {
+int runCli(int argc, char** argv, const DisplayCommands& display) {
   installFatalHandlers();
   setAvailableMemorySource(querySystemMemory);
   noteJsonRequested(argc, argv);
   try {
-    const int rc = dispatch(argc, argv);
+    const int rc = dispatch(argc, argv, display);
     finishStdout();
     return rc;
   } catch (const InputError& e) {
@@ -277,6 +289,17 @@ int runCli(int argc, char** argv) {
   } catch (const std::exception& e) {
     return reportError(4, "internal error", e.what());
   }
+}
+
+int runProgram(int argc, char** argv, const DisplayCommands& display) {
+  reexecWithTunedBlas(argv);
+  // Keep large freed blocks in the heap instead of returning them to the kernel: the GUI and the
+  // fits allocate the same multi-megabyte buffers again and again (tessellations, grids, kernel
+  // matrices), and with glibc's defaults each one is a fresh mmap whose first touch page-faults
+  // (docs/performance.md).
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  return runCli(argc, argv, display);
 }
 
 }  // namespace hermite::app

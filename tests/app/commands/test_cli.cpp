@@ -401,3 +401,38 @@ TEST_CASE("a partition-of-unity scene fits, reports its boxes, transforms and ev
   CHECK(r.rc == 1);
   CHECK(r.err.find("fit.partition.enabled") != std::string::npos);
 }
+
+TEST_CASE("headless commands run without the display's libraries; the others in the full program") {
+  namespace fs = std::filesystem;
+  const std::string scene = std::string(HERMITE_FIXTURES) + "/scenes/minimal.json";
+  const std::string probes = writeTemp("headless_probes.txt", "0 0 0\n");
+  const std::string mesh = (fs::temp_directory_path() / "hermite_headless_mesh.ply").string();
+  // LD_DEBUG=libs makes the dynamic loader name every library it initialises on stderr.
+  const auto loaded = [](const std::string& args) {
+    const std::string err = (fs::temp_directory_path() / "hermite_headless_ld.txt").string();
+    const int status = std::system(("LD_DEBUG=libs " + std::string(HERMITE_EXE) + " " + args + " > /dev/null 2> " + err).c_str());
+    return std::make_pair(WIFEXITED(status) ? WEXITSTATUS(status) : -1, hermite::testing::readAll(err));
+  };
+  for (const std::string& args : {"fit " + scene + " --json", "eval " + scene + " --at " + probes,
+                                  "mesh " + scene + " -o " + mesh + " --resolution 16", std::string("patch-table --help"),
+                                  std::string("holefill --help")}) {
+    CAPTURE(args);
+    const auto [rc, log] = loaded(args);
+    CHECK(rc == 0);
+    CHECK(log.find("calling init:") != std::string::npos);  // the loader's log is there
+    for (const char* display : {"libglfw", "libEGL", "libX11", "libGL"}) CHECK(log.find(display) == std::string::npos);
+  }
+  // The same check sees the display's libraries in the full program.
+  const auto [rc, log] = loaded("render --help");
+  CHECK(rc == 0);
+  CHECK(log.find("libglfw") != std::string::npos);
+  fs::remove(mesh);
+
+  // Run directly, the headless program names the command it cannot run and the one that can.
+  const fs::path headless = fs::path(HERMITE_EXE).parent_path() / "hermite-lab-cli";
+  const int status = std::system((headless.string() + " render " + scene + " -o x.png > /dev/null 2> " +
+                                  (fs::temp_directory_path() / "hermite_headless_err.txt").string()).c_str());
+  CHECK(WEXITSTATUS(status) == 2);
+  CHECK(hermite::testing::readAll((fs::temp_directory_path() / "hermite_headless_err.txt").string())
+            .find("run it as hermite-lab render") != std::string::npos);
+}
