@@ -58,7 +58,7 @@ constexpr double kInnerReach = 0.5;
 
 template <int Dim>
 PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY, double factor,
-                              const Points<Dim>* frameNormals, double edgeShift) {
+                              const Points<Dim>* frameNormals, double edgeShift, const CancelToken* cancel) {
   if (!(factor > 0) || !std::isfinite(factor)) throw InputError("partition: data_reach must be a finite number > 0");
   if (!(edgeShift >= 0) || !std::isfinite(edgeShift))
     throw InputError("partition: the edge shift must be a finite number >= 0");
@@ -83,9 +83,11 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
     std::vector<int> cand;
     std::vector<double> dist;
 #pragma omp for schedule(dynamic, 16)
-    for (int i = 0; i < leaves; ++i)
-      if (tree.leafSampleCount(i) > 0) leafSpacings<Dim>(tree, frameY, i, k, radius_, cand, dist);
+    for (int i = 0; i < leaves; ++i)  // no throw inside the parallel loop: cancelled leaves are skipped
+      if (tree.leafSampleCount(i) > 0 && !(cancel && cancel->cancelled()))
+        leafSpacings<Dim>(tree, frameY, i, k, radius_, cand, dist);
   }
+  throwIfCancelled(cancel);
   if (n > 0) {
     std::vector<double> sorted = radius_;
     std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.end());

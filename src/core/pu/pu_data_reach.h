@@ -31,9 +31,11 @@ class PuDataReach {
   PuDataReach() = default;  // reaches everywhere (no samples recorded)
   // The reach of the samples `frameY` (Dim × N, the tree's points) with factor c > 0. With
   // `frameNormals` (Dim × N, non-zero, frame coordinates) and edgeShift z > 0 the edge test
-  // applies too; without them (or β = 0) the reach alone decides.
+  // applies too; without them (or β = 0) the reach alone decides. `cancel` is polled per leaf
+  // (Cancelled after the loop).
   PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY, double factor,
-              const Points<Dim>* frameNormals = nullptr, double edgeShift = 0.0);
+              const Points<Dim>* frameNormals = nullptr, double edgeShift = 0.0,
+              const CancelToken* cancel = nullptr);
 
   bool empty() const { return radius_.empty(); }
   // Whether y (frame coordinates) has data: some sample reaches it and it is not past the edge

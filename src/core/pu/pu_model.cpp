@@ -419,12 +419,14 @@ std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>
 // cover boxes, blendReachCover).
 template <int Dim>
 PuDataReach<Dim> refineCover(PuTree<Dim>& tree, const Points<Dim>& frameY, PuDataReach<Dim> reach,
-                             const std::function<PuDataReach<Dim>()>& rebuild, std::vector<char>& blended) {
+                             const std::function<PuDataReach<Dim>()>& rebuild, std::vector<char>& blended,
+                             const CancelToken* cancel) {
   std::vector<char> nodeBlended(tree.nodes().size(), 0);  // node ids survive splits; new nodes are not blended
   for (int i = 0; i < tree.leafCount(); ++i)
     nodeBlended[static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)])] = blended[static_cast<std::size_t>(i)];
   bool changed = false;
   for (int pass = 0; pass < 32; ++pass) {
+    throwIfCancelled(cancel);
     const std::vector<int> coarse = oversizedCoverLeaves<Dim>(tree, frameY, reach, nodeBlended);
     const int before = tree.leafCount();
     if (!coarse.empty()) tree.splitEmptyLeaves(coarse);
@@ -957,6 +959,7 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   treeOptions.maxSupportSamples = limits.max;
   treeOptions.overlap = options.overlap;
   treeOptions.splitEmpty = options.blend == PuBlend::Hard;
+  treeOptions.cancel = options.local.cancel;
   PuTree<Dim> tree(frameY, treeOptions);
   PuDataReach<Dim> dataReach;
   std::vector<char> blended = blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
@@ -966,15 +969,17 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
     if (!identity) frameN = frame.R.transpose() * samples.normals;
     const auto reachOf = [&] {
       return PuDataReach<Dim>(tree, frameY, options.dataReach, identity ? &samples.normals : &frameN,
-                              options.edgeShift);
+                              options.edgeShift, options.local.cancel);
     };
-    dataReach = refineCover<Dim>(tree, frameY, reachOf(), reachOf, blended);
+    dataReach = refineCover<Dim>(tree, frameY, reachOf(), reachOf, blended, options.local.cancel);
   }
+  throwIfCancelled(options.local.cancel);
   const double treeMs = msSince(t0);
   const auto leafCount = static_cast<std::size_t>(tree.leafCount());
   std::vector<typename PuModel<Dim>::Leaf> leaves(leafCount);
   std::vector<FitReport> reports(leafCount);
   blendReachCover<Dim>(tree, frameY, dataReach, blended);
+  throwIfCancelled(options.local.cancel);
   for (std::size_t i = 0; i < leafCount; ++i) leaves[i].blended = blended[i] != 0;
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;

@@ -86,6 +86,10 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
     }
     return first;
   };
+  int splits = 0;
+  const auto poll = [&] {
+    if (++splits % 256 == 0) throwIfCancelled(options.cancel);
+  };
   // Pass 1: the `fit.partition` rules (docs/scene-format.md).
   std::vector<int> stack{0};
   while (!stack.empty()) {
@@ -96,6 +100,7 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
     const bool tooMany = count > options.maxPointsPerBox;
     const bool tooBig = options.boxSize > 0 && nd.box.extent().maxCoeff() > options.boxSize;
     if (count == 0 || !(tooMany || tooBig) || nd.depth >= options.maxDepth) continue;
+    poll();
     const int first = splitNode(id);
     for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
   }
@@ -109,6 +114,7 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
       stack.pop_back();
       if (nodes_[id].depth >= options.maxDepth) continue;
       if (!options.splitEmpty && nodes_[id].begin == nodes_[id].end) continue;
+      poll();  // before the count, which is most of this pass's work
       if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
       const int first = splitNode(id);
       for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "core/base/cancel_token.h"
 #include "core/base/enum_names.h"
 #include "core/base/geometry.h"
 
@@ -36,6 +37,8 @@ struct PuTreeOptions {
   // Whether the support rule splits empty boxes too: the hard blend fits every box; the smooth
   // blend fits only boxes holding samples, so splitting empty ones would only add boxes.
   bool splitEmpty = true;
+  // Polled every few hundred splits (Cancelled); a million samples take seconds to subdivide.
+  const CancelToken* cancel = nullptr;
 };
 
 template <int Dim>
