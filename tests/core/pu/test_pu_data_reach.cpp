@@ -159,8 +159,10 @@ TEST_CASE("pu data reach: a sparse row of samples reaches at most twice the medi
 }
 
 TEST_CASE("pu data reach: with the edge test an open surface ends about half a reach past its last samples") {
-  // A hemisphere (z ≥ 0) of 4 000 samples: without the edge test the zero set runs on below the
-  // rim until the reach nearly ends (0.8 of the largest reach); with it (z = 5) within half of one.
+  // A hemisphere (z ≥ 0) of 4 000 samples. With the zero-set reach as wide as the data reach
+  // (vertexReach = dataReach): without the edge test the zero set runs on below the rim until the
+  // reach nearly ends (0.8 of the largest reach); with it (z = 5) within half of one. With the
+  // default zero-set reach (2 spacings, no edge test) within 2/3 of one.
   const HermiteSamples<3> sphere = testing::goldenSphere(8000);
   std::vector<int> keep;
   for (int i = 0; i < sphere.size(); ++i)
@@ -171,6 +173,7 @@ TEST_CASE("pu data reach: with the edge test an open surface ends about half a r
   PuOptions o;
   o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
   o.edgeShift = 5;
+  o.vertexReach = o.dataReach;
   MarchingOptions mo;
   mo.resolution = 96;
   const Box<3> bounds = grownBox(s.points, 0.25);
@@ -193,6 +196,15 @@ TEST_CASE("pu data reach: with the edge test an open surface ends about half a r
                                                        << " without");
   CHECK(with <= 0.55);
   CHECK(without >= 0.7);  // the test is what ends it
+  PuOptions defaults = o;
+  defaults.edgeShift = 0;
+  defaults.vertexReach = PuOptions{}.vertexReach;
+  const PuModel<3> narrow = fitPu<3>(s, defaults);
+  const double zeroSetReach = farthest(narrow, marchingCubes(narrow, bounds, mo));
+  // Edge vertices within (β/c)·rᵢ; a centre vertex (a polygon's mean) within a cell diagonal more.
+  const double cellDiagonal = std::sqrt(3.0) * bounds.extent().maxCoeff() / mo.resolution;
+  MESSAGE("default zero-set reach: " << zeroSetReach << " reaches");
+  CHECK(zeroSetReach <= defaults.vertexReach / defaults.dataReach + cellDiagonal / narrow.dataReach().maxRadius());
 }
 
 TEST_CASE("pu data reach: a box with sharp edges and corners gives one watertight component") {
@@ -294,13 +306,15 @@ TEST_CASE("pu data reach: a dense sample whose reach is thinner than a grid cell
   CHECK(worst < 5e-3);  // edge vertices on the zero set, centre vertices within a flat polygon
 }
 
-TEST_CASE("pu data reach: a wedge with a sharp 30 degree edge gives one closed component near its surface") {
-  // A prism over the triangle (−1, 0), (1, 0), (−1, tan 30°·2), z in [−0.5, 0.5]: one acute and
-  // two right-angled sharp edges. Near a sharp edge one face's local fit continues past the edge;
+TEST_CASE("pu data reach: a wedge with a sharp 45 degree edge gives one closed component near its surface") {
+  // A prism over the triangle (−1, 0), (1, 0), (−1, 2), z in [−0.5, 0.5]: two 45° and four
+  // right-angled sharp edges. Near a sharp edge one face's local fit continues past the edge;
   // where it dips below zero a few spacings off the other face (fandisk at 200 000 samples), the
-  // zero-set reach (PuOptions::vertexReach) keeps that pocket out of the mesh.
+  // zero-set reach (PuOptions::vertexReach) keeps that pocket out of the mesh. (At 30° the part of
+  // the wedge thinner than a 96³ cell breaks into separate fragments on the surface, before and
+  // after the zero-set reach: the grid's limit, not a sheet.)
   TriMesh wedge;
-  const double top = 2.0 / std::sqrt(3.0);  // 2·tan 30°
+  const double top = 2.0;  // 2·tan 45°
   wedge.vertices.resize(3, 6);
   const double xy[3][2] = {{-1, 0}, {1, 0}, {-1, top}};
   for (int i = 0; i < 6; ++i) wedge.vertices.col(i) = Vec<3>(xy[i % 3][0], xy[i % 3][1], i < 3 ? -0.5 : 0.5);
