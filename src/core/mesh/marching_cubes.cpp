@@ -121,12 +121,12 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
       return g.vertexOn(idx, axis);
     };
     int ids[12];
-    bool withData = true;
+    bool withData = false;
     for (int i = 0; i < n; ++i) {
       ids[i] = globalVertex(loop[i]);
-      withData = withData && g.isVertexValid(ids[i]);
+      withData = withData || g.isVertexValid(ids[i]);
     }
-    if (!withData) continue;  // a vertex without data: the surface is open here
+    if (!withData) continue;  // no vertex with data: the surface is open here
     if (n == 3) {
       out.triangles.push_back({ids[0], ids[1], ids[2]});
       continue;

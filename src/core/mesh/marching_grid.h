@@ -42,7 +42,8 @@ struct MarchingGrid {
   Points<Dim> gradients; // ∇f at the final positions
   // vertexValid[v] = 0: vertex v, a point of the zero set, has no data
   // (ImplicitField::validOnZeroSet); empty when the field is valid everywhere. A polygon
-  // (segment) with such a vertex is left out; the edge is shared, so every cell around it agrees.
+  // (segment) whose vertices all have no data is left out; each is decided once, so the contour
+  // stays manifold.
   std::vector<char> vertexValid;
 
   std::array<int, Dim> coords(std::int64_t idx) const {

@@ -21,8 +21,8 @@
 //
 // No data (ImplicitField::validNear with the cell diagonal as margin, validOnZeroSet at the
 // vertices): a cube (square) with a corner where the field has no data makes no geometry, a grid
-// edge with such an end gets no vertex, and a polygon (segment) with a vertex the field does not
-// accept on its zero set is left out; the contour is open there.
+// edge with such an end gets no vertex, and a polygon (segment) none of whose vertices the field
+// accepts on its zero set is left out; the contour is open there.
 
 #include <array>
 #include <functional>
