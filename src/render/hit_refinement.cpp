@@ -39,9 +39,10 @@ struct Refiner {
   int p0 = 0, p1 = 0;  // the band: pixels p0 … p1 − 1 (whole rows)
 
   Ray pixelRay(int p) const { return camera.pixelRay(p % camera.width(), p / camera.width()); }
-  // A root counts only where the field has data (a flat-masked field, a partition of unity's
-  // edge): elsewhere its f ≈ 0 is noise, which the bake stores as outside too.
-  bool hasData(const Vec<3>& x) const { return field.everywhereValid() || field.valid(x); }
+  // A root counts only where the field has data on its zero set (validOnZeroSet, as the mesher's
+  // vertices; a flat-masked field, a partition of unity's edge): elsewhere its f ≈ 0 is noise,
+  // which the bake stores as outside too.
+  bool hasData(const Vec<3>& x) const { return field.everywhereValid() || field.validOnZeroSet(x); }
   std::vector<PixelRay> seedHits();
   std::vector<PixelRay> newton(std::vector<PixelRay> active);
   int searchWindows(const std::vector<SearchWindow>& windows);

@@ -20,6 +20,11 @@ class AffineComposedField final : public ImplicitField<Dim> {
   double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override;
   void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override;
   bool valid(const Vec<Dim>& x) const override { return field_->valid(Ainv_ * (x - b_)); }
+  // A world margin is at most ‖A⁻¹‖₂ times it in the inner field's coordinates.
+  bool validNear(const Vec<Dim>& x, double margin) const override {
+    return field_->validNear(Ainv_ * (x - b_), margin * inverseNorm_);
+  }
+  bool validOnZeroSet(const Vec<Dim>& x) const override { return field_->validOnZeroSet(Ainv_ * (x - b_)); }
   bool everywhereValid() const override { return field_->everywhereValid(); }
   // L_f over the box's preimage (its bounding box) times ‖A⁻¹‖₂ (‖∇g‖ ≤ ‖A⁻ᵀ‖‖∇f‖).
   double lipschitzBound(const Box<Dim>& box) const override;

@@ -16,12 +16,22 @@ void ImplicitField<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f,
 }
 
 template <int Dim>
-void ImplicitField<Dim>::validBatch(const Points<Dim>& X, std::vector<char>& out) const {
+void ImplicitField<Dim>::validBatch(const Points<Dim>& X, std::vector<char>& out, double margin) const {
   const Eigen::Index n = X.cols();
   out.assign(static_cast<std::size_t>(n), 1);
   if (everywhereValid()) return;
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = valid(X.col(i)) ? 1 : 0;
+  for (Eigen::Index i = 0; i < n; ++i)
+    out[static_cast<std::size_t>(i)] = (margin > 0 ? validNear(X.col(i), margin) : valid(X.col(i))) ? 1 : 0;
+}
+
+template <int Dim>
+void ImplicitField<Dim>::validOnZeroSetBatch(const Points<Dim>& X, std::vector<char>& out) const {
+  const Eigen::Index n = X.cols();
+  out.assign(static_cast<std::size_t>(n), 1);
+  if (everywhereValid()) return;
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index i = 0; i < n; ++i) out[static_cast<std::size_t>(i)] = validOnZeroSet(X.col(i)) ? 1 : 0;
 }
 
 template <int Dim>

@@ -44,8 +44,23 @@ class ImplicitField {
     (void)x;
     return true;
   }
-  // valid() at the columns of X (Dim × N) into out (N entries, 1 = valid), in parallel.
-  void validBatch(const Points<Dim>& X, std::vector<char>& out) const;
+  // valid() for a consumer that samples f on a grid whose cells have diagonal `margin` (world
+  // units, ≥ 0) and makes geometry in a cell only where all its corners are valid: a field whose
+  // data reach can be thinner than a cell widens it by up to `margin` there, so every corner of a
+  // cell the zero set crosses near the data is valid (docs/maths.md, "No data"). valid(x) by default.
+  virtual bool validNear(const Vec<Dim>& x, double margin) const {
+    (void)margin;
+    return valid(x);
+  }
+  // Whether a point x of the zero set (a contour vertex) rests on data: may be stricter than
+  // valid(), since the surface runs through its samples, so an open surface ends nearer its last
+  // samples than the field's data reach (docs/maths.md, "No data"). valid(x) by default.
+  virtual bool validOnZeroSet(const Vec<Dim>& x) const { return valid(x); }
+  // valid() (margin 0) or validNear(·, margin) at the columns of X (Dim × N) into out (N entries,
+  // 1 = valid), in parallel.
+  void validBatch(const Points<Dim>& X, std::vector<char>& out, double margin = 0.0) const;
+  // validOnZeroSet() at the columns of X (Dim × N) into out (N entries, 1 = valid), in parallel.
+  void validOnZeroSetBatch(const Points<Dim>& X, std::vector<char>& out) const;
   // f and valid() at the columns of X in one pass where the field can share the work (the
   // partition of unity finds its supports once); by default evaluateBatch then validBatch.
   virtual void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const;

@@ -4,7 +4,12 @@ namespace hermite {
 
 template <int Dim>
 bool FlatMaskedField<Dim>::valid(const Vec<Dim>& x) const {
-  if (!inner_.valid(x)) return false;
+  return validNear(x, 0.0);
+}
+
+template <int Dim>
+bool FlatMaskedField<Dim>::validNear(const Vec<Dim>& x, double margin) const {
+  if (!(margin > 0 ? inner_.validNear(x, margin) : inner_.valid(x))) return false;
   Vec<Dim> g;
   const double f = inner_.evaluate(x, &g);
   return !scale_.flat(f, g.norm());

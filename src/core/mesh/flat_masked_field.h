@@ -27,6 +27,8 @@ class FlatMaskedField final : public ImplicitField<Dim> {
     inner_.evaluateBatch(X, f, G);
   }
   bool valid(const Vec<Dim>& x) const override;
+  bool validNear(const Vec<Dim>& x, double margin) const override;
+  bool validOnZeroSet(const Vec<Dim>& x) const override { return inner_.validOnZeroSet(x) && valid(x); }
   void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const override;
   bool everywhereValid() const override { return false; }
   double lipschitzBound(const Box<Dim>& box) const override { return inner_.lipschitzBound(box); }

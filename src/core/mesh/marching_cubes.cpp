@@ -121,7 +121,12 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
       return g.vertexOn(idx, axis);
     };
     int ids[12];
-    for (int i = 0; i < n; ++i) ids[i] = globalVertex(loop[i]);
+    bool withData = false;
+    for (int i = 0; i < n; ++i) {
+      ids[i] = globalVertex(loop[i]);
+      withData = withData || g.isVertexValid(ids[i]);
+    }
+    if (!withData) continue;  // no vertex with data: the surface is open here
     if (n == 3) {
       out.triangles.push_back({ids[0], ids[1], ids[2]});
       continue;
@@ -302,6 +307,7 @@ void streamSlab(const ImplicitField<3>& field, const Vec<3>& lo, const Vec<3>& h
   detail::slabEdges(g, cells);
   if (st.havePending) resolveSlab(st.pending, g.edgeKeys, st.pending.base + st.pending.owned, st.done);
   st.maxAbsF = std::max(st.maxAbsF, detail::refineEdgeVertices<3>(g, field, options));
+  detail::markVertexValidity<3>(g, field, options.cancel);
   // The top point layer's edges are the next slab's (keys from point layer `layers` on).
   const std::int64_t topKey = 3 * g.stride[2] * layers;
   const std::int64_t owned =

@@ -40,6 +40,11 @@ struct MarchingGrid {
   std::vector<std::int64_t> edgeKeys;
   Points<Dim> vertices;  // Dim × edgeKeys.size(), refined positions
   Points<Dim> gradients; // ∇f at the final positions
+  // vertexValid[v] = 0: vertex v, a point of the zero set, has no data
+  // (ImplicitField::validOnZeroSet); empty when the field is valid everywhere. A polygon
+  // (segment) whose vertices all have no data is left out; each is decided once, so the contour
+  // stays manifold.
+  std::vector<char> vertexValid;
 
   std::array<int, Dim> coords(std::int64_t idx) const {
     std::array<int, Dim> c{};
@@ -57,6 +62,7 @@ struct MarchingGrid {
   }
   bool inside(std::int64_t idx) const { return values[idx] < 0; }
   bool isValid(std::int64_t idx) const { return valid.empty() || valid[static_cast<size_t>(idx)]; }
+  bool isVertexValid(int v) const { return vertexValid.empty() || vertexValid[static_cast<size_t>(v)]; }
   // The contour vertex on the edge from point idx along axis, or -1.
   int vertexOn(std::int64_t idx, int axis) const {
     const std::int64_t key = idx * Dim + axis;
@@ -158,7 +164,7 @@ void markUsable(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const Can
     throwIfCancelled(cancel);
     X.resize(Dim, static_cast<Eigen::Index>(todo.size()));
     for (size_t i = 0; i < todo.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = g.point(todo[i]);
-    field.validBatch(X, ok);
+    field.validBatch(X, ok, g.h.norm());
     for (size_t i = 0; i < todo.size(); ++i) g.valid[static_cast<size_t>(todo[i])] = ok[i];
     todo.clear();
   };
@@ -348,13 +354,23 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
   return V > 0 ? f.cwiseAbs().maxCoeff() : 0.0;
 }
 
-// findEdges, then refineEdgeVertices (report->maxAbsF).
+// g.vertexValid for a field that may have no data: validOnZeroSet at the refined vertices.
+template <int Dim>
+void markVertexValidity(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const CancelToken* cancel) {
+  g.vertexValid.clear();
+  if (field.everywhereValid()) return;
+  throwIfCancelled(cancel);
+  field.validOnZeroSetBatch(g.vertices, g.vertexValid);
+}
+
+// findEdges, then refineEdgeVertices (report->maxAbsF) and markVertexValidity.
 template <int Dim>
 void placeEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field, const MarchingOptions& options,
                        MarchingReport* report) {
   findEdges(g);
   const double maxAbsF = refineEdgeVertices(g, field, options);
   if (report) report->maxAbsF = maxAbsF;
+  markVertexValidity(g, field, options.cancel);
 }
 
 }  // namespace hermite::detail

@@ -19,8 +19,10 @@
 // step leaves it) and kept within [τ, 1 − τ] of the edge (τ = 1e-3), so the mesh's combinatorics
 // stay those of the grid and no triangle degenerates; normals are ∇f / ‖∇f‖ at the final positions.
 //
-// No data (ImplicitField::valid): a cube (square) with a corner where the field has no data makes
-// no geometry, and a grid edge with such an end gets no vertex; the contour is open there.
+// No data (ImplicitField::validNear with the cell diagonal as margin, validOnZeroSet at the
+// vertices): a cube (square) with a corner where the field has no data makes no geometry, a grid
+// edge with such an end gets no vertex, and a polygon (segment) none of whose vertices the field
+// accepts on its zero set is left out; the contour is open there.
 
 #include <array>
 #include <functional>

@@ -128,7 +128,7 @@ inline void slabValidity(MarchingGrid<3>& g, const ImplicitField<3>& field, cons
     const std::size_t count = std::min(kChunk, todo.size() - begin);
     X.resize(3, static_cast<Eigen::Index>(count));
     for (std::size_t i = 0; i < count; ++i) X.col(static_cast<Eigen::Index>(i)) = g.point(todo[begin + i]);
-    field.validBatch(X, ok);
+    field.validBatch(X, ok, g.h.norm());
     for (std::size_t i = 0; i < count; ++i) g.valid[static_cast<size_t>(todo[begin + i])] = ok[i];
   }
 }

@@ -35,6 +35,7 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
           isA[n++] = g.inside(c[k]);
         }
       auto link = [&](int a, int b) {
+        if (!g.isVertexValid(a) && !g.isVertexValid(b)) return;  // no vertex with data: open here
         next[static_cast<size_t>(a)] = b;
         prev[static_cast<size_t>(b)] = a;
       };

@@ -62,6 +62,7 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
   if (!(factor > 0) || !std::isfinite(factor)) throw InputError("partition: data_reach must be a finite number > 0");
   if (!(edgeShift >= 0) || !std::isfinite(edgeShift))
     throw InputError("partition: the edge shift must be a finite number >= 0");
+  factor_ = factor;
   const auto& order = tree.order();
   const int n = static_cast<int>(order.size());
   points_.resize(Dim, n);
@@ -103,8 +104,11 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
 }
 
 template <int Dim>
-bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const {
+bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y, double margin, double scale) const {
   if (radius_.empty()) return true;
+  // ρ(r) = max(σr, r/c + δ) grows with r, so a node's bound is ρ of its largest radius.
+  const double invC = 1.0 / factor_;
+  const auto widened = [&](double r) { return margin > 0 ? std::max(scale * r, r * invC + margin) : scale * r; };
   const bool edgeTest = normals_.cols() > 0;
   // Over the reaching samples i: their count, Σ vᵢ and Σ vᵢvᵢᵀ with vᵢ = pᵢ − y, and the nearest.
   int count = 0, nearest = -1;
@@ -118,14 +122,14 @@ bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const
   while (top > 0) {
     const int id = stack[--top];
     const auto& nd = nodes[static_cast<std::size_t>(id)];
-    const double r = nodeRadius_[static_cast<std::size_t>(id)];
+    const double r = widened(nodeRadius_[static_cast<std::size_t>(id)]);
     if (nd.begin == nd.end || nd.box.distanceTo(y) > r) continue;
     if (nd.firstChild >= 0) {
       for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
       continue;
     }
     for (int j = nd.begin; j < nd.end; ++j) {
-      const double rj = radius_[static_cast<std::size_t>(j)];
+      const double rj = widened(radius_[static_cast<std::size_t>(j)]);
       const Vec<Dim> v = points_.col(j) - y;
       const double sq = v.squaredNorm();
       if (sq > rj * rj) continue;
@@ -140,7 +144,7 @@ bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const
     }
   }
   if (count == 0) return false;
-  const double inner = kInnerReach * radius_[static_cast<std::size_t>(nearest)];
+  const double inner = kInnerReach * widened(radius_[static_cast<std::size_t>(nearest)]);
   if (nearestSq <= inner * inner) return true;
   // The tangential mean offset s = P·m (m = Σv/count, P = I − nnᵀ) against the samples' standard
   // deviation σ along it: |s| ≤ z·σ with σ² = ŝᵀ(M/count)ŝ − |s|² (M = Σvvᵀ, ŝ = s/|s|; Ps = s

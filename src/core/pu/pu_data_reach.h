@@ -39,8 +39,14 @@ class PuDataReach {
 
   bool empty() const { return radius_.empty(); }
   // Whether y (frame coordinates) has data: some sample reaches it and it is not past the edge
-  // of the data; true when empty().
-  bool reaches(const PuTree<Dim>& tree, const Vec<Dim>& y) const;
+  // of the data; true when empty(). With margin δ > 0 (a grid's cell diagonal, frame units) the
+  // reach of sample i is ρᵢ = max(rᵢ, rᵢ/c + δ): a zero set passing within the capped spacing
+  // rᵢ/c of pᵢ has every corner of each grid cell it crosses there within ρᵢ of pᵢ, whatever the
+  // ratio of the spacing to the grid step (docs/maths.md, "No data").
+  // With scale σ (0 < σ ≤ 1) every reach rᵢ is σ·rᵢ first (the zero-set reach, σ = β/c).
+  bool reaches(const PuTree<Dim>& tree, const Vec<Dim>& y, double margin = 0.0, double scale = 1.0) const;
+  // c of rᵢ = c·dₖ.
+  double factor() const { return factor_; }
   // rᵢ of the sample at position j of tree.order(), frame units.
   double radiusAt(int j) const { return radius_[static_cast<std::size_t>(j)]; }
   // The largest rᵢ of tree node id's samples: 0 for a node without samples, including nodes
@@ -55,6 +61,7 @@ class PuDataReach {
   std::vector<double> radius_;      // N, in tree order
   std::vector<double> nodeRadius_;  // per tree node: the largest radius of its samples (0 if none)
   double edgeShift_ = 0.0;          // z of the edge test
+  double factor_ = 1.0;             // c: rᵢ / c is the sample's capped spacing
 };
 
 extern template class PuDataReach<2>;

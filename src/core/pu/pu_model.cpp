@@ -367,10 +367,13 @@ bool someSampleReaches(const PuTree<Dim>& tree, const Points<Dim>& frameY, const
   return false;
 }
 
-// The data reach doubled is covered by blended boxes (docs/maths.md, "No data"): an empty leaf
-// whose box comes within 2·rᵢ of a sample pᵢ is blended too. So S > 0 — f has a value, not the
-// no-data jump — wherever the data reach holds and one reach further: the mesher's one-step
-// widening of the data (grid steps up to about the reach) never meets the jump.
+// The data reach is covered by blended boxes (docs/maths.md, "No data"): an empty leaf whose box
+// comes within rᵢ of a sample pᵢ is blended too, so S > 0 — f has a value, not the no-data jump —
+// wherever valid() can hold. Not 2·rᵢ: the mesher's widened reach dₖ + δ (PuDataReach::reaches,
+// δ a cell diagonal) exceeds rᵢ only on grids coarser than the spacing, and there the supports
+// of the data boxes and their blended neighbours, about a box past the data, already give S > 0
+// (meshes close up to δ ≈ 7·dₖ: 20 000 sphere samples at 16³); a doubled cover would blend and
+// fit a band of empty boxes twice as thick around every surface, for every fit.
 template <int Dim>
 void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
                      std::vector<char>& blended) {
@@ -718,6 +721,11 @@ double PuModel<Dim>::evaluateUncovered(const Vec<Dim>& x, const Vec<Dim>& y, Vec
 
 template <int Dim>
 bool PuModel<Dim>::valid(const Vec<Dim>& x) const {
+  return validNear(x, 0.0);
+}
+
+template <int Dim>
+bool PuModel<Dim>::validNear(const Vec<Dim>& x, double margin) const {
   if (options_.blend == PuBlend::Hard) return true;
   const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
   const bool frozen[Dim] = {};
@@ -725,7 +733,16 @@ bool PuModel<Dim>::valid(const Vec<Dim>& x) const {
   forSupportsAt(y, [&](int i) {
     if (!reached && bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0) reached = true;
   });
-  return (reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended)) && dataReach_.reaches(tree_, y);
+  return (reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended)) &&
+         dataReach_.reaches(tree_, y, margin / frame_.q);
+}
+
+template <int Dim>
+bool PuModel<Dim>::validOnZeroSet(const Vec<Dim>& x) const {
+  if (options_.blend == PuBlend::Hard || dataReach_.empty()) return valid(x);
+  const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
+  const double scale = std::min(1.0, options_.vertexReach / dataReach_.factor());
+  return dataReach_.reaches(tree_, y, 0.0, scale) && valid(x);
 }
 
 template <int Dim>
@@ -944,6 +961,8 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   if (samples.size() < 1) throw InputError("partition: no samples");
   if (!(options.overlap >= 1)) throw InputError("partition: overlap must be >= 1");
   if (!(options.growth > 1)) throw InputError("partition: growth must be > 1");
+  if (!(options.vertexReach > 0) || !std::isfinite(options.vertexReach))
+    throw InputError("partition: the zero-set reach must be a finite number > 0");
   const int n = samples.size();
   const bool identity = isIdentity(frame);
   Points<Dim> Y;

@@ -53,6 +53,12 @@ struct PuOptions {
   // meets the tip within the reach, and at grid steps near the spacing that opened holes there
   // (20 000 samples of the creature of test_pu_data_reach.cpp at 96³, even at z = 10).
   double edgeShift = 0.0;
+  // β of the zero-set reach (pu_data_reach.h): a contour vertex has data only within β·dₖ
+  // (capped) of a sample, where a grid point needs c·dₖ (`dataReach`). The zero set of data
+  // sampled uniformly at random passes within β·dₖ of a sample except with probability about
+  // e^(−k·β²) per point (k = 2·Dim neighbours in the disc of radius dₖ): 2 leaves no hole in a
+  // million vertices, and an open surface ends 2 spacings past its last samples, not c.
+  double vertexReach = 2.0;
 };
 
 // What the fit reports besides the model (`fit --json` "partition").
@@ -98,6 +104,12 @@ class PuModel : public ImplicitField<Dim> {
   // Some blended support reaches x (its box, with overlap 1) and so does a sample (dataReach());
   // always for the hard blend.
   bool valid(const Vec<Dim>& x) const override;
+  // valid() with each sample's reach rᵢ widened to max(rᵢ, rᵢ/c + margin/q) for a grid of cell
+  // diagonal `margin` (PuDataReach::reaches); a blended support must still reach x (f has a value).
+  bool validNear(const Vec<Dim>& x, double margin) const override;
+  // valid() with each sample's reach narrowed to PuOptions::vertexReach capped spacings
+  // (PuDataReach::reaches): an open surface ends about that far past its last samples.
+  bool validOnZeroSet(const Vec<Dim>& x) const override;
   bool everywhereValid() const override { return options_.blend == PuBlend::Hard; }
   void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const override;
   // f where there is no data: the root box's diagonal in world units (positive: "outside").

@@ -82,9 +82,10 @@ void CpuTracer::advance(RayState& s, double value) const {
   ++s.steps;
   auto hitAt = [&](double t) {
     // A zero where the field has no data, on either side of the root (the jump of f to its
-    // no-data value at the edge of the data), is no surface: the ray shows the background.
+    // no-data value at the edge of the data), or a root the field does not accept on its zero set
+    // (validOnZeroSet, as the mesher's vertices), is no surface: the ray shows the background.
     const double before = s.phase == RayState::Bisect ? s.bracket.lo() : s.t;
-    if (!field_.everywhereValid() && !(field_.valid(s.ray.at(t)) && field_.valid(s.ray.at(before)))) {
+    if (!field_.everywhereValid() && !(field_.validOnZeroSet(s.ray.at(t)) && field_.valid(s.ray.at(before)))) {
       s.phase = RayState::Miss;
       return;
     }

@@ -7,9 +7,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 #include "core/mesh/marching_cubes.h"
+#include "core/mesh/triangle_distance.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/pu/pu_model.h"
 #include "support/mesh_samples.h"
@@ -157,8 +159,10 @@ TEST_CASE("pu data reach: a sparse row of samples reaches at most twice the medi
 }
 
 TEST_CASE("pu data reach: with the edge test an open surface ends about half a reach past its last samples") {
-  // A hemisphere (z ≥ 0) of 4 000 samples: without the edge test the zero set runs on below the
-  // rim until the reach nearly ends (0.8 of the largest reach); with it (z = 5) within half of one.
+  // A hemisphere (z ≥ 0) of 4 000 samples. With the zero-set reach as wide as the data reach
+  // (vertexReach = dataReach): without the edge test the zero set runs on below the rim until the
+  // reach nearly ends (0.8 of the largest reach); with it (z = 5) within half of one. With the
+  // default zero-set reach (2 spacings, no edge test) within 2/3 of one.
   const HermiteSamples<3> sphere = testing::goldenSphere(8000);
   std::vector<int> keep;
   for (int i = 0; i < sphere.size(); ++i)
@@ -169,6 +173,7 @@ TEST_CASE("pu data reach: with the edge test an open surface ends about half a r
   PuOptions o;
   o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
   o.edgeShift = 5;
+  o.vertexReach = o.dataReach;
   MarchingOptions mo;
   mo.resolution = 96;
   const Box<3> bounds = grownBox(s.points, 0.25);
@@ -191,6 +196,15 @@ TEST_CASE("pu data reach: with the edge test an open surface ends about half a r
                                                        << " without");
   CHECK(with <= 0.55);
   CHECK(without >= 0.7);  // the test is what ends it
+  PuOptions defaults = o;
+  defaults.edgeShift = 0;
+  defaults.vertexReach = PuOptions{}.vertexReach;
+  const PuModel<3> narrow = fitPu<3>(s, defaults);
+  const double zeroSetReach = farthest(narrow, marchingCubes(narrow, bounds, mo));
+  // Edge vertices within (β/c)·rᵢ; a centre vertex (a polygon's mean) within a cell diagonal more.
+  const double cellDiagonal = std::sqrt(3.0) * bounds.extent().maxCoeff() / mo.resolution;
+  MESSAGE("default zero-set reach: " << zeroSetReach << " reaches");
+  CHECK(zeroSetReach <= defaults.vertexReach / defaults.dataReach + cellDiagonal / narrow.dataReach().maxRadius());
 }
 
 TEST_CASE("pu data reach: a box with sharp edges and corners gives one watertight component") {
@@ -227,4 +241,105 @@ TEST_CASE("pu data reach: a box with sharp edges and corners gives one watertigh
   MESSAGE("box: " << mesh.triangleCount() << " triangles, farthest vertex " << 100 * worst / diagonal
                   << " % of the diagonal");
   CHECK(worst <= 0.01 * diagonal);  // the rounding of the edges at a 96³ grid
+}
+
+namespace {
+
+// The field of a PU model whose mesher margin is switched off (validNear = valid): the rule
+// before the widening, to show that a test's grid is coarse enough to need it.
+class WithoutMargin final : public ImplicitField<3> {
+ public:
+  explicit WithoutMargin(const PuModel<3>& pu) : pu_(pu) {}
+  double evaluate(const Vec<3>& x, Vec<3>* g, Mat<3>* H) const override { return pu_.evaluate(x, g, H); }
+  void evaluateBatch(const Points<3>& X, Eigen::VectorXd& f, Points<3>* G) const override {
+    pu_.evaluateBatch(X, f, G);
+  }
+  bool valid(const Vec<3>& x) const override { return pu_.valid(x); }
+  bool validNear(const Vec<3>& x, double) const override { return pu_.valid(x); }
+  bool validOnZeroSet(const Vec<3>& x) const override { return pu_.validOnZeroSet(x); }
+  bool everywhereValid() const override { return false; }
+  double lipschitzBound(const Box<3>& b) const override { return pu_.lipschitzBound(b); }
+
+ private:
+  const PuModel<3>& pu_;
+};
+
+// Distance from x to the closed triangle mesh m (its faces).
+double meshDistance(const TriMesh& m, const Vec<3>& x) {
+  double d = std::numeric_limits<double>::infinity();
+  for (int t = 0; t < m.triangleCount(); ++t)
+    d = std::min(d, pointTriangleDistance(x, m.vertices.col(m.triangles(0, t)), m.vertices.col(m.triangles(1, t)),
+                                          m.vertices.col(m.triangles(2, t))));
+  return d;
+}
+
+}  // namespace
+
+TEST_CASE("pu data reach: a dense sample whose reach is thinner than a grid cell still meshes closed") {
+  // 10 000 samples of the unit sphere at 24³ over [-1.3, 1.3]³: the median reach rᵢ is below a
+  // cell diagonal, so corners of cells the sphere crosses lie beyond every reach (the 1 000 000
+  // armadillo samples at 256³ in small). The mesher widens each reach to dₖ + δ (δ the cell
+  // diagonal): closed, one component, on the sphere.
+  const HermiteSamples<3> s = testing::goldenSphere(10000);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  const PuModel<3> pu = fitPu<3>(s, o);
+  MarchingOptions mo;
+  mo.resolution = 24;
+  const Box<3> bounds{Vec<3>::Constant(-1.3), Vec<3>::Constant(1.3)};
+  const double cellDiagonal = std::sqrt(3.0) * 2.6 / mo.resolution;
+  std::vector<double> radii(static_cast<std::size_t>(s.size()));
+  for (int j = 0; j < s.size(); ++j) radii[static_cast<std::size_t>(j)] = pu.dataReach().radiusAt(j);
+  std::nth_element(radii.begin(), radii.begin() + s.size() / 2, radii.end());
+  const double medianReach = radii[static_cast<std::size_t>(s.size() / 2)];
+  MESSAGE("median reach " << medianReach << ", cell diagonal " << cellDiagonal);
+  REQUIRE(medianReach < cellDiagonal);
+  const TriMesh without = marchingCubes(WithoutMargin(pu), bounds, mo);
+  CHECK(checkMesh(without).boundaryEdges > 0);  // the reach alone leaves holes at this grid
+  const TriMesh mesh = marchingCubes(pu, bounds, mo);
+  const MeshCheck check = checkMesh(mesh);
+  CHECK(check.components == 1);
+  CHECK(check.closedManifold());
+  CHECK(check.eulerCharacteristic == 2);
+  double worst = 0;
+  for (int v = 0; v < mesh.vertexCount(); ++v) worst = std::max(worst, std::abs(mesh.vertices.col(v).norm() - 1.0));
+  CHECK(worst < 5e-3);  // edge vertices on the zero set, centre vertices within a flat polygon
+}
+
+TEST_CASE("pu data reach: a wedge with a sharp 45 degree edge gives one closed component near its surface") {
+  // A prism over the triangle (−1, 0), (1, 0), (−1, 2), z in [−0.5, 0.5]: two 45° and four
+  // right-angled sharp edges. Near a sharp edge one face's local fit continues past the edge;
+  // where it dips below zero a few spacings off the other face (fandisk at 200 000 samples), the
+  // zero-set reach (PuOptions::vertexReach) keeps that pocket out of the mesh. (At 30° the part of
+  // the wedge thinner than a 96³ cell breaks into separate fragments on the surface, before and
+  // after the zero-set reach: the grid's limit, not a sheet.)
+  TriMesh wedge;
+  const double top = 2.0;  // 2·tan 45°
+  wedge.vertices.resize(3, 6);
+  const double xy[3][2] = {{-1, 0}, {1, 0}, {-1, top}};
+  for (int i = 0; i < 6; ++i) wedge.vertices.col(i) = Vec<3>(xy[i % 3][0], xy[i % 3][1], i < 3 ? -0.5 : 0.5);
+  wedge.triangles.resize(3, 8);
+  wedge.triangles << 0, 3, 0, 0, 1, 1, 2, 2,  //
+      2, 4, 1, 4, 2, 5, 0, 3,                 //
+      1, 5, 4, 3, 5, 4, 3, 5;
+  if (signedVolume(wedge) < 0) wedge.triangles.row(1).swap(wedge.triangles.row(2));
+  REQUIRE(checkMesh(wedge).closedManifold());
+  REQUIRE(signedVolume(wedge) > 0);
+  const HermiteSamples<3> s = testing::sampleMesh(wedge, 15000, 17);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  const PuModel<3> pu = fitPu<3>(s, o);
+  MarchingOptions mo;
+  mo.resolution = 96;
+  const TriMesh mesh = marchingCubes(pu, grownBox(s.points, 0.1), mo);
+  const MeshCheck check = checkMesh(mesh);
+  CHECK(check.components == 1);
+  CHECK(check.closedManifold());
+  CHECK(check.eulerCharacteristic == 2);
+  double worst = 0;
+  for (int v = 0; v < mesh.vertexCount(); ++v) worst = std::max(worst, meshDistance(wedge, mesh.vertices.col(v)));
+  const double diagonal = Vec<3>(2, top, 1).norm();
+  MESSAGE("wedge: " << mesh.triangleCount() << " triangles, farthest vertex " << 100 * worst / diagonal
+                    << " % of the diagonal");
+  CHECK(worst <= 0.01 * diagonal);  // the rounding of the acute edge at a 96³ grid
 }

@@ -210,4 +210,11 @@ TEST_CASE("pu no data: an open scan (a sphere cap) stays open and grows nothing 
                                   << ", off the sphere near the data " << offSphere);
   CHECK(farthest <= 2.5 * edge);   // no sheet towards the bounds
   CHECK(offSphere < 2e-3);         // and on the sphere where there is data
+  // The zero-set reach: an edge vertex lies within β·dₖ = (β/c)·rᵢ of a sample; a centre vertex
+  // (the mean of a polygon's) within a cell diagonal of one.
+  const PuOptions& o = pu.options();
+  const double cellDiagonal = grownBox(s, 0.3).extent().maxCoeff() / mo.resolution * std::sqrt(3.0);
+  MESSAGE("zero-set reach " << o.vertexReach / o.dataReach * pu.dataReach().maxRadius() << ", cell diagonal "
+                            << cellDiagonal);
+  CHECK(farthest <= o.vertexReach / o.dataReach * pu.dataReach().maxRadius() + cellDiagonal);
 }
