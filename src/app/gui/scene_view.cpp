@@ -3,11 +3,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "core/base/ms_since.h"
-#include "core/points/hermite_samples.h"
-
 #include "app/gui/view_colours.h"
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
+#include "core/points/hermite_samples.h"
 #include "core/trace/shading.h"
 #include "render/gl/offscreen.h"
 #include "scene/view_bounds.h"
