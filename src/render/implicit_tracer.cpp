@@ -23,6 +23,7 @@
 #include "render/hit_refinement.h"
 #include "render/kernel_shader_defines.h"
 #include "render/overlay.h"
+#include "render/staged_volume_upload.h"
 #include "render/tile_spans.h"
 
 namespace hermite::render {
@@ -690,6 +691,15 @@ struct ImplicitTracer::Frame {
   Frame(const Camera& c, const TraceSettings& s) : camera(c), settings(s) {}
 };
 
+// An upload in progress: its textures and what the tracer takes with them.
+struct ImplicitTracer::Staged {
+  StagedVolumeUpload upload;
+  const ImplicitField<3>* field = nullptr;
+  HermiteSamples<3> samples;
+  bool hasSamples = false;
+  explicit Staged(TracerVolume v) : upload(std::move(v)) {}
+};
+
 ImplicitTracer::ImplicitTracer() : gpu_(std::make_unique<Gpu>()) {
   gpu_->program(kBakedProgram, false);
   gpu_->rects.setVertexBuffer(0, gpu_->rectVertices, 0, 2 * sizeof(float));
@@ -747,43 +757,61 @@ void ImplicitTracer::upload(const ImplicitField<3>& field, const Box<3>& bounds,
 }
 
 void ImplicitTracer::upload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples) {
-  if (!volume.bake) throw InputError("implicit tracer: upload of an empty volume");
-  frame_.reset();  // a frame in progress traces the old bake
-  bakeMs_ = volume.bakeMs;
-  const auto t1 = Clock::now();
-  const VolumeBake& bake = *volume.bake;
-  const int R = bake.resolution;
-  gpu_->volume = Texture::create3D(GL_R32F, R, R, R);
-  gpu_->volume.upload3D(GL_RED, GL_FLOAT, bake.values.data());
-  gpu_->volume.setFilter(GL_LINEAR, GL_LINEAR);
-  gpu_->volume.setWrap(GL_CLAMP_TO_EDGE);
-  gpu_->normals = Texture::create3D(GL_RGBA8, R, R, R);
-  gpu_->normals.upload3D(GL_RGBA, GL_UNSIGNED_BYTE, volume.normalTexels.data());
-  gpu_->normals.setFilter(GL_LINEAR, GL_LINEAR);
-  gpu_->normals.setWrap(GL_CLAMP_TO_EDGE);
-  const Eigen::Array3i count = bake.bricks.count;
-  gpu_->bricks = Texture::create3D(GL_RGBA32F, count.x(), count.y(), count.z());
-  gpu_->bricks.upload3D(GL_RGBA, GL_FLOAT, volume.brickTexels.data());
-  gpu_->bricks.setFilter(GL_NEAREST, GL_NEAREST);
-  const Eigen::Array3i& bc = volume.bakedBrickCount;
-  gpu_->bakedBricks = Texture::create3D(GL_RGBA32F, bc.x(), bc.y(), bc.z());
-  gpu_->bakedBricks.upload3D(GL_RGBA, GL_FLOAT, volume.bakedBrickTexels.data());
-  gpu_->bakedBricks.setFilter(GL_NEAREST, GL_NEAREST);
-  gpu_->bakedBrickCount = bc;
-  gpu_->bakedBrickSize = volume.bakedBrickSize;
-
-  field_ = &field;
-  radialSum_ = field.asRadialSum();
-  bounds_ = bake.bounds;
-  exactNeedsDouble_.reset();
-  if (radialSum_) gpu_->uploadModel(*radialSum_, bounds_.center());
-  hasSamples_ = samples != nullptr && samples->size() > 0;
-  if (hasSamples_) samples_ = *samples;
-  gpu_->sampleSpacing = hasSamples_ ? meanSampleSpacing<3>(samples_.points) : 0.0;
-  bake_ = std::move(volume.bake);
+  const auto t0 = Clock::now();
+  beginUpload(std::move(volume), field, samples);
+  continueUpload(std::numeric_limits<double>::infinity());
   glFinish();
   checkGl("implicit tracer upload");
-  uploadMs_ = msSince(t1);
+  uploadMs_ = msSince(t0);
+}
+
+void ImplicitTracer::beginUpload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples) {
+  staged_.reset();
+  auto staged = std::make_unique<Staged>(std::move(volume));
+  staged->field = &field;
+  staged->hasSamples = samples != nullptr && samples->size() > 0;
+  if (staged->hasSamples) staged->samples = *samples;
+  staged_ = std::move(staged);
+}
+
+bool ImplicitTracer::continueUpload(double budgetMs) {
+  if (!staged_) return true;
+  try {
+    if (!staged_->upload.copy(budgetMs)) return false;
+  } catch (...) {
+    staged_.reset();  // the previous upload stays
+    throw;
+  }
+  adoptStaged();
+  return true;
+}
+
+// The finished upload becomes the tracer's: its textures, field, model and samples.
+void ImplicitTracer::adoptStaged() {
+  const std::unique_ptr<Staged> staged = std::move(staged_);
+  frame_.reset();  // a frame in progress traces the old bake
+  TracerVolume& volume = staged->upload.volume();
+  VolumeTextures& t = staged->upload.textures();
+  bakeMs_ = volume.bakeMs;
+  uploadMs_ = staged->upload.copyMs();
+  gpu_->volume = std::move(t.volume);
+  gpu_->normals = std::move(t.normals);
+  gpu_->bricks = std::move(t.bricks);
+  gpu_->bakedBricks = std::move(t.bakedBricks);
+  gpu_->bakedBrickCount = volume.bakedBrickCount;
+  gpu_->bakedBrickSize = volume.bakedBrickSize;
+  field_ = staged->field;
+  radialSum_ = field_->asRadialSum();
+  bounds_ = volume.bake->bounds;
+  exactNeedsDouble_.reset();
+  if (radialSum_) gpu_->uploadModel(*radialSum_, bounds_.center());
+  hasSamples_ = staged->hasSamples;
+  if (hasSamples_) samples_ = std::move(staged->samples);
+  gpu_->sampleSpacing = !hasSamples_               ? 0.0
+                        : volume.sampleSpacing >= 0 ? volume.sampleSpacing
+                                                    : meanSampleSpacing<3>(samples_.points);
+  bake_ = std::move(volume.bake);
+  checkGl("implicit tracer upload");
 }
 
 // Uploads a RadialSum's centres (relative to `centre`, which keeps float sums accurate) with α
@@ -1025,10 +1053,11 @@ void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& setti
 
 bool ImplicitTracer::frameStarted() const { return frame_ != nullptr; }
 
-// Bands of at least kMinBandRows rows; the first of a frame has kFirstBandRows, later ones as many
+// Bands of at least kMinBandRows rows; the first of a frame has kFirstBandRows (its time per row sizes
+// the next), later ones as many
 // as the budget left allows at the frame's average time per row so far.
 bool ImplicitTracer::traceRows(double budgetMs) {
-  constexpr int kMinBandRows = 8, kFirstBandRows = 32;
+  constexpr int kMinBandRows = 8, kFirstBandRows = 16;
   if (!frame_) throw InputError("implicit tracer: traceRows without beginFrame");
   Frame& f = *frame_;
   const TraceFrame& frame = *f.frame;

@@ -118,6 +118,9 @@ struct TracerVolume {
   Vec<3> bakedBrickSize = Vec<3>::Zero();  // world units
   std::vector<std::uint8_t> normalTexels;  // RGBA8 per sample (baked_normals.h)
   double bakeMs = 0;                       // wall clock of all of the above
+  // Mean nearest-neighbour distance of the overlay samples (the marks scale with it), when the
+  // caller computed it off the GL thread; < 0: the upload computes it.
+  double sampleSpacing = -1;
 };
 
 // Bakes `field` over `bounds` (core/trace/volume_bake.h) and makes the textures' texels. Polls
@@ -166,6 +169,14 @@ class ImplicitTracer {
               const TracerUploadOptions& options = {});
   // The GL half of an upload: `volume` (prepareTracerVolume of `field`) to the GPU.
   void upload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples = nullptr);
+  // The same over several calls (the window's frames; staged_volume_upload.h): beginUpload
+  // creates the new textures, each continueUpload copies slabs of them until `budgetMs` went by
+  // and returns true once the tracer has switched to them. Until then the tracer draws the
+  // previous upload, which must stay alive, and `field` must outlive the tracer or the next
+  // upload. upload() and beginUpload() abandon an upload in progress.
+  void beginUpload(TracerVolume volume, const ImplicitField<3>& field, const HermiteSamples<3>* samples = nullptr);
+  bool continueUpload(double budgetMs);
+  bool uploading() const { return staged_ != nullptr; }
 
   // Draws into an own offscreen target of the camera's size and reads it back. Throws
   // InputError for exact mode without a RadialSum model, or before upload().
@@ -206,8 +217,11 @@ class ImplicitTracer {
  private:
   struct Gpu;
   struct Frame;
+  struct Staged;
   std::unique_ptr<Gpu> gpu_;
-  std::unique_ptr<Frame> frame_;  // the frame beginFrame started
+  std::unique_ptr<Frame> frame_;    // the frame beginFrame started
+  std::unique_ptr<Staged> staged_;  // the upload beginUpload started
+  void adoptStaged();
   const ImplicitField<3>* field_ = nullptr;
   const RadialSum<3>* radialSum_ = nullptr;
   mutable std::optional<bool> exactNeedsDouble_;  // cache of exactNeedsDouble(), reset by upload

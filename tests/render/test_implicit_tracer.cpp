@@ -18,6 +18,7 @@
 #include "core/trace/volume_bake.h"
 #include "io/png_file.h"
 #include "render/implicit_tracer.h"
+#include "render/staged_volume_upload.h"
 #include "support/render_test_support.h"
 
 using namespace hermite;
@@ -538,8 +539,8 @@ TEST_CASE("implicit tracer: a frame traced in bands of rows has the bytes of a w
       const TraceResult whole = tracer.render(camera, settings);
       tracer.beginFrame(camera, settings);
       int calls = 1;
-      while (!tracer.traceRows(0.0)) ++calls;  // no budget: one band per call (32 rows, then 8)
-      CHECK(calls == 1 + (98 - 32 + 7) / 8);
+      while (!tracer.traceRows(0.0)) ++calls;  // no budget: one band per call (16 rows, then 8)
+      CHECK(calls == 1 + (98 - 16 + 7) / 8);
       CHECK(tracer.frameStarted());
       const TraceResult banded = tracer.finishFrame();
       CHECK_FALSE(tracer.frameStarted());
@@ -592,4 +593,35 @@ TEST_CASE("implicit tracer: an upload or a render abandons a banded frame") {
   tracer.upload(scene.field, cube(1.5), nullptr, upload);
   CHECK_FALSE(tracer.frameStarted());
   CHECK_THROWS_AS(tracer.finishFrame(), InputError);
+}
+
+TEST_CASE("implicit tracer: a bake uploaded in slabs draws the previous bake until complete, then a whole upload's bytes") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;  // the previous upload: the scattered spheres at 96³
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(96, 72, Projection::Perspective, {2.6, 3.1, 3.7});
+  TraceSettings settings;
+  settings.showBounds = true;
+  const TraceResult before = tracer.render(camera, settings);
+  const SphereField other(Vec<3>(0.2, -0.1, 0.1), 0.7);
+  TracerUploadOptions options;
+  options.bakeResolution = 40;  // 5 slabs of 8 z-slices, then the brick textures
+  ImplicitTracer whole;
+  whole.upload(other, cube(1.5), nullptr, options);
+  const TraceResult expected = whole.render(camera, settings);
+  REQUIRE_FALSE(expected.image == before.image);
+
+  tracer.beginUpload(prepareTracerVolume(other, cube(1.5), options), other);
+  CHECK(tracer.uploading());
+  int calls = 0;
+  while (!tracer.continueUpload(0.0)) {  // no budget: one step per call
+    ++calls;
+    CHECK(tracer.render(camera, settings).image == before.image);
+  }
+  CHECK(calls == 40 / StagedVolumeUpload::kSlabSlices);
+  CHECK_FALSE(tracer.uploading());
+  const TraceResult after = tracer.render(camera, settings);
+  CHECK(after.image == expected.image);
+  CHECK(after.depth == expected.depth);
+  CHECK(tracer.bake().resolution == 40);
 }

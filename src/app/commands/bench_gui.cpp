@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <memory>
 #include <thread>
 #include <vector>
 
+#include "app/gui/frame_log.h"
 #include "app/gui/gui_app.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
@@ -117,21 +119,48 @@ struct PacedApp {
   FrameInput in;
   std::chrono::steady_clock::time_point lastFrame = std::chrono::steady_clock::now();
   std::vector<double> frameMs;
+  FramePhases worstPhases;
+  double worstPresentMs = 0;
+  std::unique_ptr<FrameLog> log;  // HERMITE_GUI_LOG, as in the window: every frame with its steps
+  std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 
   PacedApp(const Scene& scene, int width, int height)
       : context(offscreenContext("osmesa", width, height)), target(width, height, false), app(Document(scene), {}) {
     in.width = width;
     in.height = height;
+    if (const char* path = std::getenv("HERMITE_GUI_LOG"); path && *path) log = std::make_unique<FrameLog>(path);
   }
   void frame() {
     std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
     lastFrame = std::chrono::steady_clock::now();
     target.bind();
     app.frame(in);
+    const auto presented = std::chrono::steady_clock::now();
     context->present();
     frameMs.push_back(msSince(lastFrame));
+    if (frameMs.back() >= *std::max_element(frameMs.begin(), frameMs.end())) {
+      worstPhases = app.lastPhases();
+      worstPresentMs = msSince(presented);
+    }
+    if (log) {
+      FrameLog::Frame f;
+      f.time = std::chrono::duration<double>(lastFrame - start).count();
+      f.ms = frameMs.back();
+      f.fits = app.fitSubmissions();
+      f.version = app.document().version();
+      f.fitRunning = app.worker().busy();
+      f.viewPending = app.viewPending();
+      f.selected = app.selectedSample();
+      f.phases = app.lastPhases();
+      log->frame(f);
+    }
   }
   bool settled() { return app.viewIsCurrent() && !app.worker().busy(); }
+  void clearTimes() {
+    frameMs.clear();
+    worstPhases = {};
+    worstPresentMs = 0;
+  }
   // Frames until settled (at most `limitSeconds`); throws when it never settles. The settled
   // quality starts a few frames after the last interaction, and its bake and refinement then
   // arrive from the view worker: the frames before it count, and so do those until it is on screen.
@@ -154,6 +183,8 @@ struct PacedApp {
     r.samples = samples;
     r.width = in.width;
     r.height = in.height;
+    r.worstPhases = worstPhases;
+    r.worstPresentMs = worstPresentMs;
     return r;
   }
 };
@@ -173,7 +204,7 @@ Scene toriScene(int samples, bool partition) {
 BusyFramesResult benchFramesDuringDenseFit(int samples, int width, int height) {
   PacedApp p(toriScene(50, false), width, height);
   p.settle(60);
-  p.frameMs.clear();
+  p.clearTimes();
   const auto t0 = std::chrono::steady_clock::now();
   p.app.document().apply(toriScene(samples, false), "count");
   p.settle(3600);
@@ -195,7 +226,7 @@ BusyFramesResult benchFramesDuringSettledRender(int samples, int width, int heig
     p.frame();
   }
   p.in.mouseDown[0] = false;
-  p.frameMs.clear();
+  p.clearTimes();
   const auto t0 = std::chrono::steady_clock::now();
   p.settle(600);
   return p.result(samples, msSince(t0));

@@ -5,6 +5,8 @@
 // the frame that shows the view refitted to the new position ("within one 60 Hz frame": frames
 // = 1 and at most 16.7 ms). Frames keep to 60 per second as under vsync.
 
+#include "app/gui/frame_phases.h"
+
 namespace hermite::app {
 
 struct DragLatencyResult {
@@ -32,6 +34,8 @@ struct BusyFramesResult {
   double totalMs = 0;   // from the start of the work to the settled view
   int samples = 0;
   int width = 0, height = 0;
+  FramePhases worstPhases;  // where the slowest frame's time went
+  double worstPresentMs = 0;  // its present (glFinish on the offscreen context)
 };
 
 // A dense HRBF fit of the bunny preset with `samples` points submitted from a settled 50-point

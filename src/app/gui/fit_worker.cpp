@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <type_traits>
 
 #include "app/gui/drag_refit.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/points/hermite_samples.h"
 #include "scene/degenerate_check.h"
 
 namespace hermite::app {
@@ -77,6 +79,24 @@ int FitOutcome::dataCount() const {
   int n = 0;
   visitImplicit([&](const auto& f) { n = f.data.size(); });
   return n;
+}
+
+double FitOutcome::sampleSpacing() const {
+  if (!sampleSpacing_) {
+    sampleSpacing_ = 0.0;
+    visitImplicit([&](const auto& f) {
+      sampleSpacing_ = meanSampleSpacing<std::decay_t<decltype(f)>::kDim>(f.samples.points);
+    });
+  }
+  return *sampleSpacing_;
+}
+
+const FitResiduals& FitOutcome::residuals() const {
+  if (!residuals_) {
+    residuals_ = FitResiduals{};
+    if (ok()) visitImplicit([&](const auto& f) { residuals_ = fitResiduals(f); });
+  }
+  return *residuals_;
 }
 
 const std::vector<std::string>& FitOutcome::warnings() const {
@@ -186,6 +206,12 @@ void FitWorker::loop() {
     result.version = job.version;
     result.main = dragRefit_->fit(job.scene, [this](double) { return !abandon_; }, &cancel_);
     if (job.compare && !result.main->cancelled) result.compare = fitOutcome(*job.compare, {}, &cancel_);
+    // What the panels show of the fits, here rather than on the GUI thread (FitOutcome).
+    for (const auto* fit : {result.main.get(), result.compare.get()})
+      if (fit && fit->ok()) {
+        fit->sampleSpacing();
+        fit->residuals();
+      }
 
     lock.lock();
     running_ = false;

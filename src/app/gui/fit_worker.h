@@ -59,6 +59,16 @@ struct FitOutcome {
   // Samples the implicit fit interpolates (SceneFit::data), 0 for other results.
   int dataCount() const;
   const std::vector<std::string>& warnings() const;  // the fit's warnings (empty on error)
+  // What panels show of an implicit fit in every frame, computed on first use and kept: the fit
+  // worker asks before it hands a fit over (FitWorker::loop), so that the GUI thread does not
+  // walk the samples (or evaluate a dense model at each of them: seconds at 5 000 samples) per
+  // frame. meanSampleSpacing of the samples (before the transform), 0 for other results; the
+  // residuals at the samples (fitResiduals), zero for other results. Not for concurrent first use.
+  double sampleSpacing() const;
+  const FitResiduals& residuals() const;
+
+  mutable std::optional<double> sampleSpacing_;
+  mutable std::optional<FitResiduals> residuals_;
 };
 
 // The fitted model as `fit --coefficients` prints it (docs/cli.md).

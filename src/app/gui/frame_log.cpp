@@ -31,9 +31,12 @@ void FrameLog::frame(const Frame& f) {
   writeInts(file_, f.keysPressed);
   std::fputs(", \"buttons\": ", file_);
   writeInts(file_, f.buttonsPressed);
-  std::fprintf(file_, ", \"fits\": %d, \"version\": %llu, \"fit_running\": %s, \"view_pending\": %s}\n", f.fits,
-               static_cast<unsigned long long>(f.version), f.fitRunning ? "true" : "false",
-               f.viewPending ? "true" : "false");
+  std::fprintf(file_, ", \"fits\": %d, \"version\": %llu, \"fit_running\": %s, \"view_pending\": %s, \"selected\": %d, \"phases\": {",
+               f.fits, static_cast<unsigned long long>(f.version), f.fitRunning ? "true" : "false",
+               f.viewPending ? "true" : "false", f.selected);
+  for (std::size_t k = 0; k < kFramePhaseNames.size(); ++k)
+    std::fprintf(file_, "%s\"%s\": %.2f", k ? ", " : "", kFramePhaseNames[k].data(), f.phases.ms[k]);
+  std::fputs("}}\n", file_);
   std::fflush(file_);
 }
 

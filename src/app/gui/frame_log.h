@@ -2,7 +2,7 @@
 // The window's frame log (HERMITE_GUI_LOG=FILE, docs/cli.md): one JSON object per line and
 // frame with what the Xvfb tests time and check from outside the process — the frame's duration,
 // how long its oldest input event waited for it, the keys and mouse buttons that went down, the
-// fits submitted so far, the document's version, whether a fit or work for the view runs — and,
+// fits submitted so far, the document's version, whether a fit or work for the view runs, the ms of each step of the frame (frame_phases.h) — and,
 // whenever the named widgets move, their rectangles (how the tests find a checkbox to click).
 
 #include <array>
@@ -11,6 +11,8 @@
 #include <map>
 #include <string>
 #include <vector>
+
+#include "app/gui/frame_phases.h"
 
 namespace hermite::app {
 
@@ -25,6 +27,8 @@ class FrameLog {
     int fits = 0;                     // fits submitted so far
     std::uint64_t version = 0;        // the document's version
     bool fitRunning = false, viewPending = false;
+    int selected = -1;                // the selected sample (−1: none)
+    FramePhases phases;               // GuiApp::frame's steps (without the buffer swap)
   };
   using Widgets = std::map<std::string, std::array<float, 4>>;
 

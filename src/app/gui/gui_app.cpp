@@ -84,23 +84,32 @@ std::optional<std::array<float, 4>> GuiApp::widgetRect(const std::string& name) 
 }
 
 void GuiApp::frame(const FrameInput& in) {
+  FramePhaseTimer timer(phases_);
   ImGui::SetCurrentContext(imgui_);
   applyUiScale();
   layoutView(ctx_, in.width, in.height);
   feedImGui(in);
   ImGui::NewFrame();
+  timer.mark(FramePhase::Input);
   ctx_.fits.adoptFinished(ctx_.status);
+  timer.mark(FramePhase::AdoptFit);
   if (!in.droppedFiles.empty()) openFile(ctx_, in.droppedFiles.front());
   handleShortcuts(in);
   handleViewInput(in);
+  timer.mark(FramePhase::Input);
   if (!ctx_.panels.hideUi && !ctx_.panels.presenter) drawPanels();
+  timer.mark(FramePhase::Panels);
   ctx_.fits.submitIfStale(ctx_.scene(), ctx_.document.version(), ctx_.document.versions().fitInputs(), ctx_.compare,
                           ctx_.options.synchronousFits);
+  timer.mark(FramePhase::Submit);
   ctx_.fits.adoptFinished(ctx_.status);  // synchronous fits (and fast ones) show in this very frame
+  timer.mark(FramePhase::AdoptFit);
   ctx_.image.redrawIfStale(ctx_);
   ctx_.image.draw(ctx_);
+  timer.mark(FramePhase::View);
   drawLoadedPoints(ctx_);
   drawOverlays();
+  timer.mark(FramePhase::Overlays);
   ImGui::Render();
   glyphMisses_ += render::countFallbackGlyphs(*ImGui::GetDrawData());
 
@@ -108,6 +117,7 @@ void GuiApp::frame(const FrameInput& in) {
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
   glViewport(0, 0, in.width, in.height);
   renderFrame();
+  timer.mark(FramePhase::Render);
   if (ctx_.screenshot) {
     takeScreenshot(in);
     glBindFramebuffer(GL_FRAMEBUFFER, GLuint(framebuffer));
@@ -121,6 +131,7 @@ void GuiApp::frame(const FrameInput& in) {
 // boxes, the gizmo; then the help window and the status bar.
 void GuiApp::drawOverlays() {
   samples_.drawSelection();
+  recordSampleMarks();
   patch_.drawHandles();
   holeFill_.drawLabels();
   if (ctx_.showPartitionBoxes) drawPartitionBoxes(ctx_);
@@ -131,6 +142,25 @@ void GuiApp::drawOverlays() {
   if (ctx_.panels.help) drawHelpOverlay(ctx_);
   if (ctx_.panels.messages) drawMessageLog(ctx_);
   if (!ctx_.panels.hideUi && !ctx_.panels.presenter) drawStatusBar(ctx_);
+}
+
+// The screen positions of a small cloud's samples, as 6-pixel widget rectangles
+// "view.sample.K" (window pixels): how the window tests click a sample.
+void GuiApp::recordSampleMarks() {
+  constexpr int kMarkedSamples = 16;
+  const FitOutcome* fit = ctx_.currentFit();
+  const int n = fit ? fit->dataCount() : 0;
+  if (n > kMarkedSamples) return;
+  for (int k = 0; k < n; ++k) {
+    const std::string name = "view.sample." + std::to_string(k);
+    const std::optional<Vec<2>> p = samples_.samplePosition(k);
+    if (!p) {
+      ctx_.widgets.erase(name);
+      continue;
+    }
+    const float x = float(p->x() + ctx_.view.x), y = float(p->y() + ctx_.view.y);
+    ctx_.widgets[name] = {x - 3, y - 3, x + 3, y + 3};
+  }
 }
 
 void GuiApp::drawPanels() {

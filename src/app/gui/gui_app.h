@@ -17,6 +17,7 @@
 #include <optional>
 #include <string>
 
+#include "app/gui/frame_phases.h"
 #include "app/gui/gui_context.h"
 #include "app/gui/gui_input.h"
 #include "app/panels/compare_panel.h"
@@ -100,6 +101,8 @@ class GuiApp {
   int glyphMisses() const { return glyphMisses_; }
   // The presenter mode's caption for what is on screen now (presenter_caption.h).
   std::string presenterCaption() const;
+  // Where the last frame's time went (frame_phases.h); the present / buffer swap is not in it.
+  const FramePhases& lastPhases() const { return phases_; }
 
  private:
   void handleShortcuts(const FrameInput& in);
@@ -107,6 +110,7 @@ class GuiApp {
   void pressInView(const FrameInput& in, const Vec<2>& mouse);  // a button went down over the view
   void drawPanels();
   void drawOverlays();
+  void recordSampleMarks();
   void renderFrame();
   void takeScreenshot(const FrameInput& in);
   void handleScaleKeys(const FrameInput& in);
@@ -118,6 +122,7 @@ class GuiApp {
   std::unique_ptr<render::ImGuiRenderer> imguiRenderer_;
   render::UiFonts fonts_;
   int glyphMisses_ = 0;
+  FramePhases phases_;
   // Tools in the view.
   CameraTool camera_{ctx_};
   SampleTool samples_{ctx_};

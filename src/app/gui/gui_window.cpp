@@ -7,9 +7,13 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
+#include <string>
+#include <thread>
 
 #include "app/commands/commands.h"
 #include "app/gui/camera_framing.h"
@@ -141,6 +145,10 @@ int runDefault(const SceneArgs& args, double uiScale) {
   GuiApp app(Document(scene, documentPath), options);
   std::unique_ptr<FrameLog> log;
   if (const char* logPath = std::getenv("HERMITE_GUI_LOG"); logPath && *logPath) log = std::make_unique<FrameLog>(logPath);
+  // A test hook (docs/cli.md): every frame takes at least this long, so that input arrives
+  // during slow frames (tests/window/xvfb_click.sh).
+  const char* delay = std::getenv("HERMITE_GUI_FRAME_DELAY_MS");
+  const double frameDelayMs = delay && *delay ? std::max(0.0, std::atof(delay)) : 0.0;
   FrameInput previous;
   double last = glfwGetTime();
   std::string title = documentTitle(app.document());
@@ -161,11 +169,14 @@ int runDefault(const SceneArgs& args, double uiScale) {
     in.deltaSeconds = now - last;
     last = now;
     app.frame(in);
+    if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frameDelayMs));
     context->present();
     if (log) {
       FrameLog::Frame f = logFrame(app, in, previous, now, input.queue.oldestTakenTime());
       f.fitRunning = app.worker().busy();
       f.viewPending = app.viewPending();
+      f.phases = app.lastPhases();
+      f.selected = app.selectedSample();
       log->frame(f);
       log->widgets(app.widgetRects());
     }

@@ -5,6 +5,8 @@
 
 #include "app/gui/view_colours.h"
 #include "core/base/errors.h"
+#include "core/base/ms_since.h"
+#include "core/points/hermite_samples.h"
 #include "core/trace/shading.h"
 #include "render/gl/offscreen.h"
 #include "scene/view_bounds.h"
@@ -15,7 +17,12 @@ namespace {
 
 // Wall clock per GUI frame for the trace pass of a settled 3D view (bands of rows): with the rest
 // of a frame (ImGui, the view image, about 6–10 ms at 1280 × 800 on llvmpipe) it stays under 33 ms.
+// The budget covers all the view's GL work of a frame: the slabs of an arriving bake's upload
+// and the arrival of a refined image come first, the bands get what they left.
 constexpr double kTraceBudgetMs = 12.0;
+// Wall clock per GUI frame for copying an arrived bake's slabs to the GPU (a 128³ bake is 16 MB
+// of texels: 23–32 ms in one piece on a loaded llvmpipe).
+constexpr double kUploadBudgetMs = 6.0;
 
 }  // namespace
 
@@ -209,11 +216,17 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   } else {
     // At full size the trace pass alone can take several frames' time on a software rasteriser:
     // it runs in bands of rows, kTraceBudgetMs per frame, and the image on screen stays meanwhile.
-    if (!(tracing_ == view) || !tracer_->frameStarted()) {
+    // The tile pass, the last band and the read-backs of finishFrame each take a frame's share
+    // at full size: whichever used half the budget leaves the next step to the next frame.
+    const auto t0 = std::chrono::steady_clock::now();
+    const double budget = std::max(kTraceBudgetMs - frameSpentMs_, 1.0);
+    const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
+    if (begin) {
       tracer_->beginFrame(camera, s);
       tracing_ = view;
     }
-    if (!tracer_->traceRows(kTraceBudgetMs)) {
+    if ((begin && msSince(t0) > budget / 2) || !tracer_->traceRows(std::max(budget - msSince(t0), 1.0)) ||
+        msSince(t0) > budget / 2) {
       out.nothingYet = true;
       return;
     }
@@ -244,15 +257,12 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
         uo.bakeResolution = resolution;
         auto volume =
             std::make_shared<render::TracerVolume>(render::prepareTracerVolume(f.field(), bounds, uo, &cancel));
+        volume->sampleSpacing = meanSampleSpacing<3>(f.data.points);  // here, not on the GL thread
         return [this, fit, volume, boundsKey, resolution] {
           const SceneFit<3>& g = *fit->as<SceneFit<3>>();
-          tracer_->upload(std::move(*volume), g.field(), &g.data);
-          field_ = fit;
-          bakeResolution_ = resolution;
-          bakedBounds_ = boundsKey;
-          if (baking_ && baking_->fit == fit.get() && baking_->resolution == resolution) baking_.reset();
-          refinedView_.reset();
-          tracing_.reset();  // the upload abandoned it
+          // Copied over the next frames (continueUpload); the tracer draws the bake it has until then.
+          tracer_->beginUpload(std::move(*volume), g.field(), &g.data);
+          uploading_ = Uploading{fit, boundsKey, resolution};
         };
       },
       letRunningFinish);
@@ -280,9 +290,34 @@ void SceneViewRenderer::requestRefinement(std::shared_ptr<render::DeferredRefine
 
 bool SceneViewRenderer::adoptFinished() {
   if (!background_) return false;
-  ViewJobRunner::Apply apply = jobs_.takeFinished();
-  if (!apply) return tracing_.has_value();
-  apply();
+  const auto t0 = std::chrono::steady_clock::now();
+  frameSpentMs_ = 0;
+  bool arrived = false;
+  if (ViewJobRunner::Apply apply = jobs_.takeFinished()) {
+    apply();
+    arrived = !uploading_;  // a refined image; a bake is worth drawing once it is on the GPU
+  }
+  if (uploading_) arrived = continueUpload(kUploadBudgetMs) || arrived;
+  frameSpentMs_ = msSince(t0);
+  return arrived || tracing_.has_value();
+}
+
+// The next slabs of the bake being uploaded; once all are on the GPU the tracer draws it.
+bool SceneViewRenderer::continueUpload(double budgetMs) {
+  try {
+    if (!tracer_->continueUpload(budgetMs)) return false;
+  } catch (...) {
+    uploading_.reset();
+    throw;
+  }
+  const Uploading u = std::move(*uploading_);
+  uploading_.reset();
+  field_ = u.fit;
+  bakeResolution_ = u.resolution;
+  bakedBounds_ = u.boundsKey;
+  if (baking_ && baking_->fit == u.fit.get() && baking_->resolution == u.resolution) baking_.reset();
+  refinedView_.reset();
+  tracing_.reset();  // the switch abandoned it
   return true;
 }
 

@@ -73,7 +73,7 @@ class SceneViewRenderer {
   bool adoptFinished();
   // Background work for the last render still runs or waits to be adopted, or its settled view
   // is being traced in bands.
-  bool pending() const { return background_ && (jobs_.busy() || tracing_); }
+  bool pending() const { return background_ && (jobs_.busy() || tracing_ || uploading_); }
 
   // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
   double colourRange = 0;
@@ -96,6 +96,7 @@ class SceneViewRenderer {
   void requestBake(const std::shared_ptr<const FitOutcome>& fit, const Box<3>& bounds,
                    const std::vector<double>& boundsKey, int resolution);
   void requestRefinement(std::shared_ptr<render::DeferredRefinement> job, const std::shared_ptr<const FitOutcome>& fit);
+  bool continueUpload(double budgetMs);
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
 
@@ -118,6 +119,14 @@ class SceneViewRenderer {
   std::optional<RefinedView> refining_;      // the view whose refinement was submitted last
   std::optional<RefinedView> refinedView_;   // the view `refined_` shows
   std::optional<RefinedView> tracing_;       // the settled view being traced in bands (one per frame)
+  // A finished bake whose textures are copied to the GPU over several frames.
+  struct Uploading {
+    std::shared_ptr<const FitOutcome> fit;  // kept alive: the tracer will reference its field
+    std::vector<double> boundsKey;
+    int resolution = 0;
+  };
+  std::optional<Uploading> uploading_;
+  double frameSpentMs_ = 0;  // wall clock of this frame's adoptFinished, taken from the trace budget
   SceneViewResult refined_;
 };
 

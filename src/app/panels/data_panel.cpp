@@ -174,7 +174,7 @@ void DataPanel::drawSummary() {
   double spacing = fresh ? loaded->spacing : 0;
   if (f) f->visitImplicit([&](const auto& fit) {
     n = fit.samples.size();
-    spacing = meanSampleSpacing<std::decay_t<decltype(fit)>::kDim>(fit.samples.points);
+    spacing = f->sampleSpacing();
   });
   if (n > 0) ImGui::Text("%d samples (%dD), mean spacing %.4g%s", n, dim, spacing, fresh ? ", fitting..." : "");
   else ImGui::TextDisabled("samples: fitting...");

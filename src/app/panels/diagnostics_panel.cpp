@@ -51,8 +51,7 @@ void patchRows(GuiContext& ctx, const PatchDisplay& v) {
 // Solver, size, condition, residuals and the view's trace mode of an implicit fit.
 void implicitFitRows(GuiContext& ctx, const FitOutcome& f, const FitReport& r) {
   if (!beginRows()) return;
-  FitResiduals res;
-  f.visitImplicit([&](const auto& fit) { res = fitResiduals(fit); });
+  const FitResiduals& res = f.residuals();  // computed by the fit worker
   row("solver", "%s", r.solver.c_str());
   row("unknowns", "%d (%d samples)", r.nUnknowns, r.nSamples);
   if (ctx.options.showTimings) row("fit", "%.2f ms", r.fitMs);

@@ -36,11 +36,7 @@ void nudgeRadius(GuiContext& ctx, const FitSpec& fit) {
 // disabled for scale-free kernels. A 50-pixel drag changes r by a factor of about 7, not 40.
 void drawRadius(GuiContext& ctx, const FitSpec& fit) {
   const Kernel kernel{fit.kernel, fit.radius};
-  double spacing = 0;
-  if (ctx.fits.shown())
-    ctx.fits.shown()->visitImplicit([&](const auto& f) {
-      spacing = meanSampleSpacing<std::decay_t<decltype(f)>::kDim>(f.samples.points);
-    });
+  const double spacing = ctx.fits.shown() ? ctx.fits.shown()->sampleSpacing() : 0.0;
   ImGui::BeginDisabled(!kernel.usesRadius());
   double r = fit.radius;
   const double rMin = spacing > 0 ? std::min(0.1 * spacing, r) : 1e-4;

@@ -26,7 +26,7 @@ std::string implicitCaption(const Scene& s, const FitOutcome* fit) {
   if (fit)
     fit->visitImplicit([&](const auto& fitted) {
       samples = int(fitted.samples.points.cols());
-      spacing = meanSampleSpacing<std::decay_t<decltype(fitted)>::kDim>(fitted.samples.points);
+      spacing = fit->sampleSpacing();
     });
   if (Kernel{f.kernel, f.radius}.usesRadius()) {
     text += " \xC2\xB7 r = " + number("%.3g", f.radius);
