@@ -40,7 +40,7 @@ constexpr const char* kUsage =
     "  hermite-lab eval SCENE --at FILE [--set KEY=VALUE ...]\n"
     "  hermite-lab render SCENE -o OUT.png [--size WxH] [--ui [--explore]] [--ui-scale S] [--backend osmesa|egl] [--set KEY=VALUE ...]\n"
     "  hermite-lab sweep SCENE --radii A:B:K -o DIR [--overwrite] [--size WxH] [--set KEY=VALUE ...]\n"
-    "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
+    "  hermite-lab mesh SCENE -o OUT.{glb,gltf,ply,obj} [--resolution N] [--chord-tolerance F] [--set KEY=VALUE ...]  (2D: OUT.{obj,svg})\n"
     "  hermite-lab holefill IN -o OUT [--json] [--rings N] [--implicit rbf-offset|hrbf] [--allow-open]\n"
     "  hermite-lab patch-table [--samples N] [--splits 1x1,2x1,2x2,3x3] [--domain U0,U1,V0,V1] [--json]\n"
     "  hermite-lab bench [--json] [--only NAME]\n"
@@ -210,6 +210,10 @@ int dispatch(int argc, char** argv, const DisplayCommands& display) {
     cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (2D: .obj polylines or .svg)")->required();
     cmd.add_option("--resolution", a.resolution, "cells along the longest side of view.bounds (default 64)")
         ->check(CLI::Range(1, 4096));
+    cmd.add_option("--chord-tolerance", a.chordTolerance,
+                   "3D: split edges whose chord strays more than this many grid cells from the zero set, the new "
+                   "vertices projected onto it (default 0: off)")
+        ->check(CLI::Range(0.0, 1.0));
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
     if (threads > 0) setThreadCount(threads);

@@ -2,7 +2,9 @@
 // the fitted field's zero set over `view.bounds` by marching cubes (3D) or marching squares (2D:
 // closed polylines as OBJ `l` elements or SVG paths). One summary line on stdout.
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <string>
 
@@ -14,6 +16,7 @@
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
 #include "core/base/memory_check.h"
+#include "core/mesh/chord_refinement.h"
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_squares.h"
@@ -110,7 +113,7 @@ const char* degenerateText(bool degenerate, bool closedManifold) {
   return closedManifold ? "closed manifold" : "open (the surface leaves view.bounds)";
 }
 
-std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution) {
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance) {
   const Scene& scene = fit.scene;
   const int dim = scene.dimension();
   const std::string ext = dim == 3 ? requireExtension("mesh", output, {"glb", "gltf", "ply", "obj"})
@@ -122,18 +125,32 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
   char line[512];
   if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) {
     const Box<3> bounds = viewBounds<3>(scene.view, f3->data.points);
-    const TriMesh mesh = marchingCubes(f3->field(), bounds, options, &report);
+    TriMesh mesh = marchingCubes(f3->field(), bounds, options, &report);
+    ChordRefinementReport chords;
+    if (chordTolerance > 0) {
+      ChordRefinementOptions co;
+      co.tolerance = chordTolerance * bounds.extent().maxCoeff() / resolution;  // cells → world units
+      mesh = refineChords(mesh, f3->field(), co, &chords);
+    }
     saveMesh(output, mesh);
     const MeshCheck c = checkMesh(mesh);
     // A degenerate field's flat regions are "no data": what is left is not closed over them.
     const bool degenerate = f3->degenerateField && f3->degenerateField->degenerate;
     std::snprintf(line, sizeof line,
                   "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
-                  "%.1f ms (field %.1f ms) -> ",
+                  "%.1f ms (field %.1f ms)",
                   mesh.vertexCount(), mesh.triangleCount(),
                   degenerateText(degenerate, mesh.triangleCount() > 0 && c.closedManifold()),
                   c.eulerCharacteristic,
-                  cellsText(report, 3).c_str(), report.maxAbsF, report.totalMs, report.evaluateMs);
+                  cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF), report.totalMs + chords.ms,
+                  report.evaluateMs);
+    if (chordTolerance > 0) {
+      // The total above includes the chord refinement; its own share, after it.
+      const std::size_t used = std::strlen(line);
+      std::snprintf(line + used, sizeof line - used, "; %d edges split by chord refinement (%d left whole), %.1f ms",
+                    chords.splitEdges, chords.unsplitEdges, chords.ms);
+    }
+    std::strncat(line, " -> ", sizeof line - std::strlen(line) - 1);
   } else if (const SceneFit<2>* f2 = fit.as<SceneFit<2>>()) {
     const Box<2> bounds = viewBounds<2>(scene.view, f2->data.points);
     const std::vector<Polyline2d> lines = marchingSquares(f2->field(), bounds, options, &report);
@@ -166,7 +183,7 @@ int runMesh(const MeshArgs& args) {
   {
     const TerminalProgress progress("fitting and meshing " + scene.sourceName);
     fit = fitOutcomeOrThrow(scene);
-    summary = exportZeroSet(*fit, args.output, args.resolution);
+    summary = exportZeroSet(*fit, args.output, args.resolution, args.chordTolerance);
   }
   writeStdout(summary + "\n");
   // A degenerate field's flat regions are left out of the mesh (no data); say why it is open.

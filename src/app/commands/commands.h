@@ -70,13 +70,14 @@ struct MeshArgs {
   SceneArgs scene;
   std::string output;   // -o OUT.{glb,gltf,ply,obj} (3D) or OUT.{obj,svg} (2D), required
   int resolution = 64;  // --resolution N: cells along the longest side of view.bounds
+  double chordTolerance = 0;  // --chord-tolerance F: split edges whose chord strays > F cells (0: off)
 };
 int runMesh(const MeshArgs& args);
 // Meshes a fitted implicit's zero set over view.bounds (marching cubes / squares) into `output`
 // (.glb .gltf .ply .obj; 2D .obj .svg); returns the one-line summary `mesh` prints. Also the GUI's
-// Export button.
+// Export button. chordTolerance > 0 (3D): chord refinement (chord_refinement.h), in grid cells.
 struct FitOutcome;
-std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution);
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance = 0);
 
 struct HoleFillArgs {
   std::string input;                   // a triangle mesh (mesh_io.h formats)

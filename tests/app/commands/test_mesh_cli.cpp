@@ -197,3 +197,23 @@ TEST_CASE("holefill: errors name the file and map to exit codes") {
   r = runCli("holefill " + garbage + " -o /nonexistent-dir/y.obj");
   CHECK(r.rc == 4);
 }
+
+TEST_CASE("mesh --chord-tolerance: more triangles, still closed, the split edges in the summary; out of range exits 2") {
+  const std::string scene = writeTemp("mesh_torus_chords.json", kTorusScene);
+  const std::string plain = tempPath("torus_plain.ply"), refined = tempPath("torus_chords.ply");
+  const auto a = runCli("mesh " + scene + " -o " + plain + " --resolution 24");
+  const auto b = runCli("mesh " + scene + " -o " + refined + " --resolution 24 --chord-tolerance 0.02");
+  REQUIRE(a.rc == 0);
+  REQUIRE(b.rc == 0);
+  CHECK(a.out.find("chord refinement") == std::string::npos);
+  CHECK(b.out.find("edges split by chord refinement") != std::string::npos);
+  CHECK(b.out.find("closed manifold") != std::string::npos);
+  const hermite::TriMesh m0 = hermite::loadMesh(plain), m1 = hermite::loadMesh(refined);
+  const hermite::MeshCheck c = hermite::checkMesh(m1);
+  CHECK(c.closedManifold());
+  CHECK(c.eulerCharacteristic == 0);
+  // Each split edge adds one vertex and two triangles (closed mesh).
+  CHECK(m1.vertexCount() > m0.vertexCount());
+  CHECK(m1.triangleCount() - m0.triangleCount() == 2 * (m1.vertexCount() - m0.vertexCount()));
+  CHECK(runCli("mesh " + scene + " -o " + refined + " --chord-tolerance 2").rc == 2);
+}
