@@ -291,18 +291,30 @@ double orientationDisagreement(const Points<Dim>& points, const Points<Dim>& nor
                                const NormalEstimationOptions& options) {
   const int n = static_cast<int>(points.cols());
   if (n < 2) return 0;
-  const NeighbourGraph g = neighbourGraph<Dim>(points, std::min(std::max(options.neighbours, Dim), n));
+  const int k = std::min(std::max(options.neighbours, Dim), n);
+  // At most 50 000 evenly strided points query their neighbours (the tree holds all): a loader
+  // runs this on every file with normals, and the fraction needs no more.
+  const int stride = std::max(1, n / 50000);
+  CloudAdaptor<Dim> cloud{points};
+  KdTree<Dim> tree(Dim, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   long edges = 0, flips = 0;  // edges along a sheet, and those whose normals point opposite ways
-#pragma omp parallel for reduction(+ : edges, flips) schedule(dynamic, 1024)
-  for (int i = 0; i < n; ++i) {
-    if (normals.col(i).isZero(0)) continue;
-    for (int j = 0; j < g.k; ++j) {
-      const int o = static_cast<int>(g.of(i)[j]);
-      if (o == i || normals.col(o).isZero(0)) continue;
-      const EdgeRule r = edgeRule<Dim>(points, normals, i, o, options);
-      if (r.kind != EdgeKind::Along) continue;  // creases and gaps: noise makes their rules unsure
-      ++edges;
-      flips += r.flip;
+#pragma omp parallel reduction(+ : edges, flips)
+  {
+    std::vector<std::uint32_t> idx(static_cast<std::size_t>(k));
+    std::vector<double> d2(static_cast<std::size_t>(k));
+#pragma omp for schedule(dynamic, 256)
+    for (int i = 0; i < n; i += stride) {
+      if (normals.col(i).isZero(0)) continue;
+      const Vec<Dim> p = points.col(i);
+      const std::size_t found = tree.knnSearch(p.data(), static_cast<std::size_t>(k), idx.data(), d2.data());
+      for (std::size_t j = 0; j < found; ++j) {
+        const int o = static_cast<int>(idx[j]);
+        if (o == i || normals.col(o).isZero(0)) continue;
+        const EdgeRule r = edgeRule<Dim>(points, normals, i, o, options);
+        if (r.kind != EdgeKind::Along) continue;  // creases and gaps: noise makes their rules unsure
+        ++edges;
+        flips += r.flip;
+      }
     }
   }
   return edges == 0 ? 0.0 : double(flips) / double(edges);
