@@ -101,15 +101,15 @@ std::string columnNames(int dim, bool withNormals) {
 
 // Estimates the zero columns of `normals` (all of them for a file without normals) by PCA and
 // orients them consistently with the given ones (normal_estimation.h), with a warning saying how
-// many; `why` says why they are missing ("3 columns"; empty: zero in the file).
+// many; `why` says why they are missing ("3 columns"; empty: zero in the file). Returns how many.
 template <int Dim>
-void fillMissingNormals(const Points<Dim>& points, Points<Dim>& normals, const std::string& path,
-                        const std::string& why, std::vector<std::string>& warnings) {
+int fillMissingNormals(const Points<Dim>& points, Points<Dim>& normals, const std::string& path,
+                       const std::string& why, std::vector<std::string>& warnings) {
   if (points.cols() < 2 && normals.isZero(0))
     throw InputError(path + ": has no normals and a single point; normals cannot be estimated");
   const NormalEstimationOptions estimation;
   const int estimated = completeNormals<Dim>(points, normals, estimation);
-  if (estimated == 0) return;
+  if (estimated == 0) return 0;
   const std::string what = !why.empty() ? "has no normals (" + why + ")"
                                         : std::to_string(estimated) + " of " + std::to_string(points.cols()) +
                                               " normals are zero";
@@ -121,10 +121,49 @@ void fillMissingNormals(const Points<Dim>& points, Points<Dim>& normals, const s
                      (estimated == points.cols() ? ", outward at each part's extreme point"
                                                  : ", consistently with the given normals") +
                      "; check their direction (flip if inside out)");
+  return estimated;
+}
+
+std::string percent(double fraction) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2g %%", 100 * fraction);
+  return text;
+}
+
+// Re-orients the normals a file gives when they are not consistently oriented (GivenNormals in
+// the header); `estimated` says how many fillMissingNormals estimated (all of them: nothing was
+// given, and the estimate is oriented already).
+template <int Dim>
+void orientGivenNormals(const Points<Dim>& points, Points<Dim>& normals, int estimated, const std::string& path,
+                        const PointFileOptions& options, std::vector<std::string>& warnings) {
+  const Eigen::Index n = points.cols();
+  if (options.orient == GivenNormals::Never || estimated == n || n < 2) return;
+  if (options.orient == GivenNormals::Auto && n < 50) return;  // a hand-made file: its normals are meant
+  const double disagreement = options.orient == GivenNormals::Auto ? orientationDisagreement<Dim>(points, normals) : 1.0;
+  if (disagreement <= 0.005) return;
+  Points<Dim> oriented = normals;
+  const int changed = orientNormalLines<Dim>(points, oriented);
+  const std::string pairs = percent(disagreement) + " of the neighbour pairs along the surface point opposite ways";
+  const std::string turned = std::to_string(changed) + " of " + std::to_string(n);
+  if (options.orient == GivenNormals::Auto && 20 * static_cast<Eigen::Index>(changed) < n) {
+    warnings.push_back(path + ": " + pairs + "; the normals are kept as given (re-orienting them would turn only " +
+                       turned + ": scattered, not a region inside out); set data.orient_normals to true to "
+                       "re-orient them anyway");
+    return;
+  }
+  if (changed == 0) return;
+  normals = oriented;
+  warnings.push_back(path + ": " + (options.orient == GivenNormals::Auto
+                                        ? "normals are not consistently oriented (" + pairs + "): "
+                                        : std::string()) +
+                     "re-oriented " + turned + " normals (their lines kept) by propagation over a minimum spanning "
+                     "tree, outward at each part's extreme point; set data.orient_normals to false to keep them as "
+                     "given");
 }
 
 template <int Dim>
-HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
+HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
+                                 const PointFileOptions& options) {
   constexpr int kColumns = 2 * Dim;
   // Dim × N column-major: coordinates of consecutive samples are consecutive.
   std::vector<double> points, normals;
@@ -160,8 +199,10 @@ HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path,
   const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
   if (columns == Dim) normals.assign(points.size(), 0.0);  // every normal missing: estimated below
   Points<Dim> N = Eigen::Map<const Points<Dim>>(normals.data(), Dim, count);
-  fillMissingNormals<Dim>(Eigen::Map<const Points<Dim>>(points.data(), Dim, count), N, path,
-                          columns == Dim ? std::to_string(Dim) + " columns" : std::string(), warnings);
+  const Eigen::Map<const Points<Dim>> P(points.data(), Dim, count);
+  const int estimated =
+      fillMissingNormals<Dim>(P, N, path, columns == Dim ? std::to_string(Dim) + " columns" : std::string(), warnings);
+  orientGivenNormals<Dim>(P, N, estimated, path, options, warnings);
   normals.assign(N.data(), N.data() + N.size());
 
   HermiteSamples<Dim> samples;
@@ -173,14 +214,15 @@ HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path,
 }
 
 template <int Dim>
-HermiteSamples<Dim> loadSamples(const std::string& path, std::vector<std::string>& warnings) {
+HermiteSamples<Dim> loadSamples(const std::string& path, std::vector<std::string>& warnings,
+                                const PointFileOptions& options) {
   const int fileDim = pointFileDimension(path);
   if (fileDim != Dim)
     throw InputError(path + ": a " + std::to_string(fileDim) + "D point file (" + lowercaseExtension(path) +
                      (lowercaseExtension(path) == ".xyz" ? fileDim == 2 ? " with 2 or 4 numbers per line" : "" : "") +
                      ") cannot be used in a " + std::to_string(Dim) + "D scene; use " +
                      (Dim == 2 ? ".xyn (x y nx ny)" : ".xyz, .pwn or .xyzn (x y z nx ny nz)"));
-  return parseSamples<Dim>(readWholeFile(path), path, warnings);
+  return parseSamples<Dim>(readWholeFile(path), path, warnings, options);
 }
 
 template <int Dim>
@@ -228,7 +270,8 @@ void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
 
 // The vertices and vertex normals of a mesh or point-set file (.ply, .obj, .gltf, .glb, .off),
 // faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF.
-HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings) {
+HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings,
+                                      const PointFileOptions& options) {
   TriMesh mesh = loadMeshFile(path);
   if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
   HermiteSamples<3> samples;
@@ -244,8 +287,10 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
     samples.normals = Points<3>::Zero(3, mesh.vertexCount());
   }
   samples.points = std::move(mesh.vertices);
-  fillMissingNormals<3>(samples.points, samples.normals, path,
-                        mesh.triangleCount() > 0 ? std::string() : std::string("positions only"), warnings);
+  const int estimated = fillMissingNormals<3>(samples.points, samples.normals, path,
+                                              mesh.triangleCount() > 0 ? std::string() : std::string("positions only"),
+                                              warnings);
+  orientGivenNormals<3>(samples.points, samples.normals, estimated, path, options, warnings);
   validateSamples(samples, warnings, path);
   return samples;
 }
@@ -286,24 +331,28 @@ int pointFileDimension(const std::string& path) {
                    ".gltf, .glb, .off with vertex normals)");
 }
 
-HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings) {
-  return loadSamples<2>(path, warnings);
+HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings,
+                                  const PointFileOptions& options) {
+  return loadSamples<2>(path, warnings, options);
 }
 
-HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings) {
-  if (isMeshFileExtension(path)) return readMeshFileSamples(path, warnings);
-  return loadSamples<3>(path, warnings);
+HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings,
+                                  const PointFileOptions& options) {
+  if (isMeshFileExtension(path)) return readMeshFileSamples(path, warnings, options);
+  return loadSamples<3>(path, warnings, options);
 }
 
 Points<2> loadProbePoints2d(const std::string& path) { return parseProbes<2>(readWholeFile(path), path); }
 Points<3> loadProbePoints3d(const std::string& path) { return parseProbes<3>(readWholeFile(path), path); }
 
-HermiteSamples<2> parsePointText2d(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
-  return parseSamples<2>(text, path, warnings);
+HermiteSamples<2> parsePointText2d(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
+                                   const PointFileOptions& options) {
+  return parseSamples<2>(text, path, warnings, options);
 }
 
-HermiteSamples<3> parsePointText3d(std::string_view text, const std::string& path, std::vector<std::string>& warnings) {
-  return parseSamples<3>(text, path, warnings);
+HermiteSamples<3> parsePointText3d(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
+                                   const PointFileOptions& options) {
+  return parseSamples<3>(text, path, warnings, options);
 }
 
 Points<3> parseProbeText3d(std::string_view text, const std::string& path) { return parseProbes<3>(text, path); }

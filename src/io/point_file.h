@@ -10,6 +10,8 @@
 // Missing normals (Dim columns) and zero normals (all or some) are estimated by PCA and oriented
 // consistently with the given ones (completeNormals, normal_estimation.h), with a warning that
 // says how many.
+// Given normals that are not consistently oriented (PointFileOptions, GivenNormals) are
+// re-oriented by the same propagation (orientNormalLines), lines kept, with a warning.
 // Blank lines and lines starting with '#' are skipped. A malformed line is an InputError
 // "FILE:LINE: ..." saying what was expected.
 
@@ -21,14 +23,31 @@
 
 namespace hermite {
 
+// What happens to the normals a file gives (docs/scene-format.md, data.orient_normals):
+//   Auto    for files of 50 samples or more (smaller ones are hand-made, their normals meant),
+//           when more than 0.5 % of the neighbour pairs along a sheet point opposite ways
+//           (orientationDisagreement), the signs are re-chosen by propagation; the result is
+//           taken when it turns at least 5 % of them (a region inside out, CGAL's cube.pwn),
+//           else the file's signs stay (scattered noise, which propagation would not improve);
+//           either way a warning says so;
+//   Always  re-chosen by propagation (warning when any sign changes);
+//   Never   kept as given.
+enum class GivenNormals { Auto, Always, Never };
+
+struct PointFileOptions {
+  GivenNormals orient = GivenNormals::Auto;
+};
+
 // Dimension of a point file: 2 for .xyn and for a .xyz whose first data line has 2 or 4 numbers
 // (the file is read for that), 3 otherwise; InputError for an unknown extension, listing the
 // supported ones.
 int pointFileDimension(const std::string& path);
 
 // Loads and validates (validateSamples) a point file; warnings are appended.
-HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings);
-HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings);
+HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings,
+                                  const PointFileOptions& options = {});
+HermiteSamples<3> loadPointFile3d(const std::string& path, std::vector<std::string>& warnings,
+                                  const PointFileOptions& options = {});
 
 // Reads probe points for `eval --at FILE`: Dim numbers per line (extra columns are an error).
 Points<2> loadProbePoints2d(const std::string& path);
@@ -36,8 +55,10 @@ Points<3> loadProbePoints3d(const std::string& path);
 
 // The text formats (.xyz / .pwn / .xyzn, .xyn, probe files) parsed from memory; `path` names
 // the text in messages. The loaders above read the file and call these.
-HermiteSamples<2> parsePointText2d(std::string_view text, const std::string& path, std::vector<std::string>& warnings);
-HermiteSamples<3> parsePointText3d(std::string_view text, const std::string& path, std::vector<std::string>& warnings);
+HermiteSamples<2> parsePointText2d(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
+                                   const PointFileOptions& options = {});
+HermiteSamples<3> parsePointText3d(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
+                                   const PointFileOptions& options = {});
 Points<3> parseProbeText3d(std::string_view text, const std::string& path);
 
 // Writes samples as .xyzn / .xyn (temporary + rename).

@@ -29,6 +29,20 @@ constexpr SceneKey<DataSpec> kDataKeys[] = {
        d.resolvedFile = r.resolvePath(d.file);
      },
      [](const DataSpec& d, int) -> Written { return d.preset.empty() && !d.file.empty() ? json(d.file) : Written(); }},
+    // "auto" (re-orient when inconsistent), true (always), false (never): io/point_file.h.
+    {"orient_normals",
+     [](const Reader& r, const json& x, const std::string& p, DataSpec& d, int) {
+       if (x.is_boolean())
+         d.orientNormals = x.get<bool>() ? GivenNormals::Always : GivenNormals::Never;
+       else if (x.is_string() && x.get<std::string>() == "auto")
+         d.orientNormals = GivenNormals::Auto;
+       else
+         r.fail(p, "must be \"auto\", true or false (got " + describeJson(x) + ")");
+     },
+     [](const DataSpec& d, int) -> Written {
+       if (d.file.empty() || d.orientNormals == GivenNormals::Auto) return Written();
+       return json(d.orientNormals == GivenNormals::Always);
+     }},
     {"points", [](const Reader& r, const json& x, const std::string& p, DataSpec& d, int dim) { d.points = r.vectors(x, p, dim); },
      [](const DataSpec& d, int) -> Written { return d.isInline() ? json(d.points) : Written(); }},
     {"normals", [](const Reader& r, const json& x, const std::string& p, DataSpec& d, int dim) { d.normals = r.vectors(x, p, dim); },
@@ -55,6 +69,8 @@ void checkSources(const Reader& r, const json& v) {
     r.fail("data", "give exactly one data source, found " + found + " (expected one of " + forms + ")");
   }
   if (Reader::find(v, "count") && !preset) r.fail("data.count", "only allowed together with data.preset");
+  if (Reader::find(v, "orient_normals") && !file)
+    r.fail("data.orient_normals", "only allowed together with data.file (it says what happens to a file's normals)");
   if (preset || file) return;
   if (!points) r.fail("data.points", "missing: inline data needs both data.points and data.normals");
   if (!normals) r.fail("data.normals", "missing: inline data needs both data.points and data.normals");

@@ -18,6 +18,7 @@
 #include "core/rbf/polynomial.h"
 #include "core/trace/camera.h"
 #include "core/base/enum_names.h"
+#include "io/point_file.h"
 #include "scene/hole_fill_stages.h"
 #include "scene/patch_document.h"
 
@@ -54,6 +55,7 @@ struct DataSpec {
   std::string resolvedFile;       // file resolved against the scene file's directory
   std::vector<std::vector<double>> points;   // inline data, each of the scene's dimension
   std::vector<std::vector<double>> normals;  // inline data, same count as points
+  GivenNormals orientNormals = GivenNormals::Auto;  // data.orient_normals: a file's normals re-oriented?
   bool isInline() const { return preset.empty() && file.empty(); }
   bool operator==(const DataSpec&) const = default;
 };

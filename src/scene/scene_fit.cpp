@@ -17,11 +17,11 @@ namespace hermite {
 namespace {
 
 template <int Dim>
-HermiteSamples<Dim> loadFile(const std::string& path, std::vector<std::string>& warnings) {
+HermiteSamples<Dim> loadFile(const std::string& path, std::vector<std::string>& warnings, const PointFileOptions& options) {
   if constexpr (Dim == 2)
-    return loadPointFile2d(path, warnings);
+    return loadPointFile2d(path, warnings, options);
   else
-    return loadPointFile3d(path, warnings);
+    return loadPointFile3d(path, warnings, options);
 }
 
 template <int Dim>
@@ -254,7 +254,7 @@ HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& w
       throw InputError(scene.sourceName + ": data.file: '" + d.file + "' holds " +
                        std::to_string(pointFileDimension(d.resolvedFile)) + "D points, the scene's mode '" +
                        std::string(sceneModeName(scene.mode)) + "' needs " + std::to_string(Dim) + "D");
-    return loadFile<Dim>(d.resolvedFile, warnings);
+    return loadFile<Dim>(d.resolvedFile, warnings, PointFileOptions{d.orientNormals});
   }
   HermiteSamples<Dim> s;
   const int n = static_cast<int>(d.points.size());

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/mesh_samples.h"
 #include "support/temp_dir.h"
 #include "support/test_data.h"
 #include "core/base/errors.h"
@@ -244,8 +245,11 @@ TEST_CASE("io_points: save and load round-trip every bit") {
   const std::string path = (dir.path / "out.xyzn").string();
   hermite::savePointFile(path, s);
   CHECK(dir.entries() == std::vector<std::string>{"out.xyzn"});
+  // Random normals at random points describe no surface: the orientation check is off, the
+  // file format alone is under test.
+  const hermite::PointFileOptions asGiven{hermite::GivenNormals::Never};
   std::vector<std::string> warnings;
-  const auto back = hermite::loadPointFile3d(path, warnings);
+  const auto back = hermite::loadPointFile3d(path, warnings, asGiven);
   CHECK(warnings.empty());
   CHECK(back.points == s.points);
   // Re-normalising a unit normal may move it by an ulp, not more.
@@ -332,4 +336,55 @@ TEST_CASE("io_points: zero normals, all or some, are estimated and oriented with
   REQUIRE(two.size() == 2);
   CHECK(two.normals.col(1).norm() == doctest::Approx(1.0));
   CHECK(warnings.size() == 1);
+}
+
+// CGAL's cube.pwn gives normal lines with arbitrary signs, half its faces inward: the loader
+// re-orients them (lines kept) with a warning; data.orient_normals false keeps them as given.
+TEST_CASE("io_points: unoriented given normals are re-oriented with a warning, unless switched off") {
+  TempDir dir;
+  const HermiteSamples<3> box = hermite::testing::sampleMesh(
+      hermite::testing::boxMesh(Vec<3>(-0.5, -0.37, -0.37), Vec<3>(0.5, 0.37, 0.37)), 20000, 3);
+  std::mt19937 rng(8);
+  hermite::Points<3> given = box.normals;
+  std::string text;
+  for (int i = 0; i < box.size(); ++i) {
+    if (rng() & 1) given.col(i) *= -1;
+    const Vec<3> p = box.points.col(i), n = given.col(i);
+    char line[200];
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
+    text += line;
+  }
+  const std::string path = dir.write("cube.pwn", text);
+  std::vector<std::string> warnings;
+  const auto fixed = hermite::loadPointFile3d(path, warnings);
+  REQUIRE(fixed.size() == box.size());
+  CHECK(hermite::testing::flippedFraction(fixed.normals, box.normals) <= 0.005);
+  int turned = 0;
+  for (int i = 0; i < box.size(); ++i) {
+    CHECK(std::abs(fixed.normals.col(i).dot(given.col(i))) == doctest::Approx(1.0).epsilon(1e-12));  // same line
+    turned += fixed.normals.col(i).dot(given.col(i)) < 0;
+  }
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].rfind(path + ": normals are not consistently oriented (", 0) == 0);
+  CHECK(warnings[0].find("re-oriented " + std::to_string(turned) + " of 20000 normals (their lines kept)") !=
+        std::string::npos);
+  CHECK(warnings[0].find("set data.orient_normals to false") != std::string::npos);
+
+  warnings.clear();
+  const auto kept = hermite::loadPointFile3d(path, warnings, {hermite::GivenNormals::Never});
+  CHECK(warnings.empty());
+  CHECK((kept.normals - given).cwiseAbs().maxCoeff() <= 4e-16);
+
+  // Consistent normals, inward ones too, pass unchanged and without a warning.
+  std::string inward;
+  for (int i = 0; i < box.size(); ++i) {
+    const Vec<3> p = box.points.col(i), n = -box.normals.col(i);
+    char line[200];
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
+    inward += line;
+  }
+  warnings.clear();
+  const auto in = hermite::loadPointFile3d(dir.write("inward.pwn", inward), warnings);
+  CHECK(warnings.empty());
+  CHECK((in.normals + box.normals).cwiseAbs().maxCoeff() <= 4e-16);
 }

@@ -225,6 +225,13 @@ TEST_CASE("scene: data sources") {
                    "x.json: data: give exactly one data source, found data.file and data.normals"));
   CHECK(errorOf(head + R"({"file": "a.xyz", "count": 3}})") ==
         "x.json: data.count: only allowed together with data.preset");
+  CHECK(errorOf(head + R"({"preset": "a", "orient_normals": false}})") ==
+        "x.json: data.orient_normals: only allowed together with data.file (it says what happens to a file's normals)");
+  CHECK(errorOf(head + R"({"file": "a.xyz", "orient_normals": "yes"}})") ==
+        "x.json: data.orient_normals: must be \"auto\", true or false (got string \"yes\")");
+  CHECK(parse(head + R"({"file": "a.xyz", "orient_normals": false}})").data.orientNormals == hermite::GivenNormals::Never);
+  CHECK(parse(head + R"({"file": "a.xyz", "orient_normals": true}})").data.orientNormals == hermite::GivenNormals::Always);
+  CHECK(parse(head + R"({"file": "a.xyz"}})").data.orientNormals == hermite::GivenNormals::Auto);
   CHECK(errorOf(head + R"({"preset": "a", "count": 2.5}})") == "x.json: data.count: must be an integer (got 2.5)");
   CHECK(errorOf(head + R"({"preset": "a", "count": -1}})") == "x.json: data.count: must be >= 0 (got -1)");
   CHECK(errorOf(head + R"({"preset": "a", "count": "many"}})") ==

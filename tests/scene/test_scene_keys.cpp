@@ -31,7 +31,7 @@ std::vector<json> fullDocuments() {
   hole["holefill"] = {{"mesh", "m.off"}};
   json file = base;
   file["mode"] = "implicit3d";
-  file["data"] = {{"file", "p.xyz"}};
+  file["data"] = {{"file", "p.xyz"}, {"orient_normals", false}};
   std::vector<json> out;
   for (const json& d : {t3, t2, patch, hole, file}) out.push_back(hermite::sceneToJson(hermite::parseScene(d, "k.json", "")));
   return out;

@@ -12,7 +12,11 @@
 //   across a gap   d runs along both normals (|d̂·nᵢ|, |d̂·nⱼ| ≥ acrossCosine) and they are
 //                  parallel (|nᵢ·nⱼ| ≥ acrossCosine): two sheets of a closed surface face each
 //                  other, so the orientation is reversed, cost 2 + …;
-//   otherwise      copied, cost 4 + … (folds, creases, noise).
+//   otherwise      cost 4 + … (creases, folds, noise): where d leaves both tangent planes more
+//                  steeply than the normals agree (a sharp crease) the crease rule — d·nᵢ and
+//                  d·nⱼ have opposite signs across a convex or concave crease of a consistently
+//                  oriented surface — else copied. Exact normals of a box meet at 90°, where a
+//                  copied sign is a coin toss and the crease rule is sure.
 // Prim's tree takes the cheapest edge out of the oriented set, so it crosses a gap only where no
 // edge along a sheet reaches the rest of the part, and uses any other edge only where neither does.
 //
@@ -42,6 +46,25 @@ Points<Dim> estimateNormals(const Points<Dim>& points, const NormalEstimationOpt
 // InputError when a normal is missing and N < 2.
 template <int Dim>
 int completeNormals(const Points<Dim>& points, Points<Dim>& normals, const NormalEstimationOptions& options = {});
+
+// Orientation check of given normals: the fraction of the k-nearest-neighbour edges (each point
+// to its k nearest) that run along a sheet (the edge lies within 30° of both tangent planes and
+// the normals are within 60° of parallel) whose normals point opposite ways (nᵢ·nⱼ < 0). Zero
+// normals and their edges are skipped; 0 when no edge runs along a sheet. Above 50 000 points
+// an even stride of 50 000 of them query their neighbours. Measured on CGAL's
+// data: oni.pwn 0.11 %, a noisy sphere with 0.75 % of its normals inward 0.39 %, cube.pwn
+// (unoriented lines, half inward) 1.4 %, random signs ≈ 50 %.
+template <int Dim>
+double orientationDisagreement(const Points<Dim>& points, const Points<Dim>& normals,
+                               const NormalEstimationOptions& options = {});
+
+// Re-orients given normal lines (Dim × N, none zero; the lengths and lines are kept, only signs
+// change) by the propagation estimateNormals uses, seeded at each part's extreme point. Then,
+// per part, the given signs decide when they mostly agree: a part where at most a third of them
+// agree with the propagation is turned over (consistently given inward normals stay inward).
+// Returns how many normals changed sign. InputError when a normal is zero.
+template <int Dim>
+int orientNormalLines(const Points<Dim>& points, Points<Dim>& normals, const NormalEstimationOptions& options = {});
 
 // Flips every normal (the GUI's "flip" button): n ↦ −n.
 template <int Dim>

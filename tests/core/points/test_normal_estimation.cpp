@@ -9,6 +9,7 @@
 #include "core/shapes/mesh_shapes.h"
 #include "support/mesh_samples.h"
 #include "support/test_data.h"
+#include "support/thin_shapes.h"
 
 using namespace hermite;
 
@@ -83,16 +84,7 @@ TEST_CASE("normal estimation: a hollow ball's inner sheet points inward, across 
   // The solid between spheres of radius 1 and 1 − t: outward normals outside, inward inside.
   const int n = 40000;
   const double spacing = std::sqrt(8 * M_PI / n);  // the two spheres' area ≈ 8π
-  const double thickness = 2.5 * spacing;
-  TriMesh outer = uvSphereMesh(256, 128);
-  TriMesh inner = outer;
-  inner.vertices *= 1 - thickness;
-  inner.triangles.row(1).swap(inner.triangles.row(2));  // counter-clockwise seen from the hollow
-  TriMesh shell;
-  shell.vertices.resize(3, outer.vertexCount() + inner.vertexCount());
-  shell.vertices << outer.vertices, inner.vertices;
-  shell.triangles.resize(3, outer.triangleCount() + inner.triangleCount());
-  shell.triangles << outer.triangles, (inner.triangles.array() + outer.vertexCount()).matrix();
+  const TriMesh shell = testing::hollowBall(2.5 * spacing);
   const HermiteSamples<3> s = testing::sampleMesh(shell, n, 11);
   const Points<3> estimated = estimateNormals<3>(s.points);
   CHECK(testing::flippedFraction(estimated, s.normals) <= 0.005);
@@ -113,4 +105,78 @@ TEST_CASE("normal estimation: zero normals are filled and follow the given ones"
   CHECK(completeNormals<3>(s.points, complete) == 0);
   Points<3> lone = Points<3>::Zero(3, 1);
   CHECK_THROWS_AS(completeNormals<3>(Points<3>::Zero(3, 1), lone), InputError);
+}
+
+// The slab curled through 270°: both sheets 2.5 spacings apart, bent, so that a seed's outward
+// direction has to travel round the curl and along the thin rims.
+TEST_CASE("normal estimation: a thin curled plate keeps both sheets oriented outward") {
+  const int n = 20000;
+  const HermiteSamples<3> s = testing::sampleMesh(testing::curledPlate(2.5 * std::sqrt(2.0 / n)), n, 3);
+  CHECK(testing::flippedFraction(estimateNormals<3>(s.points), s.normals) <= 0.005);
+}
+
+namespace {
+
+// The true normal lines of `s` with signs from `sign(i, n)` (±1).
+template <class Sign>
+Points<3> signedLines(const HermiteSamples<3>& s, Sign sign) {
+  Points<3> lines = s.normals;
+  for (int i = 0; i < s.size(); ++i) lines.col(i) *= sign(i, Vec<3>(s.normals.col(i)));
+  return lines;
+}
+
+}  // namespace
+
+// CGAL's cube.pwn: a box-like part whose normals are lines with the sign that makes their
+// largest component positive, so one face of each pair points inward; and the same lines with
+// random signs, which the check flags (a plain box with canonical signs disagrees only across
+// its creases, which the check leaves out). Re-orienting keeps the lines and makes ≤ 0.5 % point
+// against the truth (sharp 90° creases: the crease rule, not a sign copied across perpendicular
+// normals).
+TEST_CASE("normal orientation: box samples with unoriented normals are detected and re-oriented") {
+  const HermiteSamples<3> s =
+      testing::sampleMesh(testing::boxMesh(Vec<3>(-0.5, -0.37, -0.37), Vec<3>(0.5, 0.37, 0.37)), 20000, 5);
+  CHECK(orientationDisagreement<3>(s.points, s.normals) <= 0.005);
+  std::mt19937 rng(9);
+  const Points<3> canonical = signedLines(s, [](int, const Vec<3>& n) {
+    Eigen::Index axis = 0;
+    n.cwiseAbs().maxCoeff(&axis);
+    return n(axis) < 0 ? -1.0 : 1.0;
+  });
+  const Points<3> random = signedLines(s, [&](int, const Vec<3>&) { return rng() & 1 ? -1.0 : 1.0; });
+  CHECK(orientationDisagreement<3>(s.points, random) > 0.1);
+  for (const Points<3>& given : {canonical, random}) {
+    Points<3> oriented = given;
+    const int changed = orientNormalLines<3>(s.points, oriented);
+    CHECK(testing::flippedFraction(oriented, s.normals) <= 0.005);
+    CHECK(orientationDisagreement<3>(s.points, oriented) <= 0.005);
+    int counted = 0;
+    for (int i = 0; i < s.size(); ++i) {
+      CHECK(std::abs(oriented.col(i).dot(given.col(i))) == doctest::Approx(1.0).epsilon(1e-12));  // the same line
+      counted += oriented.col(i).dot(given.col(i)) < 0;
+    }
+    CHECK(changed == counted);
+  }
+}
+
+TEST_CASE("normal orientation: a thin slab's unoriented lines are re-oriented outward") {
+  const int n = 20000;
+  const HermiteSamples<3> s =
+      testing::sampleMesh(testing::boxMesh(Vec<3>(0, 0, 0), Vec<3>(1, 1, 2.5 * std::sqrt(2.0 / n))), n, 7);
+  std::mt19937 rng(2);
+  Points<3> oriented = signedLines(s, [&](int, const Vec<3>&) { return rng() & 1 ? -1.0 : 1.0; });
+  orientNormalLines<3>(s.points, oriented);
+  CHECK(testing::flippedFraction(oriented, s.normals) <= 0.005);
+}
+
+TEST_CASE("normal orientation: consistent normals pass the check and keep their signs, inward too") {
+  const HermiteSamples<3> sphere = testing::goldenSphere(3000, 1.0);
+  const Points<3> inward = -sphere.normals;
+  CHECK(orientationDisagreement<3>(sphere.points, inward) == 0.0);
+  Points<3> oriented = inward;
+  CHECK(orientNormalLines<3>(sphere.points, oriented) == 0);
+  CHECK(oriented == inward);
+  Points<3> withZero = inward;
+  withZero.col(4).setZero();
+  CHECK_THROWS_AS(orientNormalLines<3>(sphere.points, withZero), InputError);
 }
