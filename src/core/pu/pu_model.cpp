@@ -160,12 +160,12 @@ SupportLimits supportLimits(const PuOptions& options) {
   limits.min = options.minSamples > 0 ? options.minSamples
                                       : std::max({1, m, std::min(options.maxPointsPerBox, 2 * (Dim + 1))});
   // A local solve costs O(samples³): with 6·maxPointsPerBox the 2.5 % of fits above 3· did 60 % of
-  // the factorisation work of 200 000 points sampled on a scan; with 2· (a box splits until its
-  // support holds at most 40 samples) the fit takes a third less CPU and its distances to the true
-  // surface are unchanged (docs/performance.md, Real data).
-  // 2·maxPointsPerBox in 64 bits, saturated: a limit beyond INT_MAX means "no limit" (a huge
+  // the factorisation work of 200 000 points sampled on a scan. 2· cut that further but gave a
+  // 45° wedge a stray piece 4.7 % of its diagonal away (smaller supports beside a sharp edge
+  // extrapolate past it); 3· keeps the wedge closed (docs/performance.md, Real data).
+  // 3·maxPointsPerBox in 64 bits, saturated: a limit beyond INT_MAX means "no limit" (a huge
   // max_points_per_box would otherwise wrap to a negative limit and split everything).
-  const std::int64_t automatic = std::min<std::int64_t>(2 * std::int64_t(options.maxPointsPerBox), INT_MAX);
+  const std::int64_t automatic = std::min<std::int64_t>(3 * std::int64_t(options.maxPointsPerBox), INT_MAX);
   limits.max = std::max(limits.min, options.maxSupportSamples > 0 ? options.maxSupportSamples : int(automatic));
   return limits;
 }

@@ -34,10 +34,10 @@ struct PuOptions {
   // and at least min(maxPointsPerBox, 2·(Dim + 1)) so empty boxes do not fit from one sample).
   int minSamples = 0;
   double growth = 1.5;          // > 1: factor a too-sparse support grows by per step
-  // A box whose support holds more than this many samples (0 = automatic: 2·maxPointsPerBox, at
+  // A box whose support holds more than this many samples (0 = automatic: 3·maxPointsPerBox, at
   // least minSamples) is split further (pu_tree.h); where that cannot help (depth limit) the
   // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2. Solves
-  // cost O(samples³): why 2· and not 6·, supportLimits in pu_model.cpp.
+  // cost O(samples³): why 3· and not 6· or 2·, supportLimits in pu_model.cpp.
   int maxSupportSamples = 0;
   // c of the data reach (pu_data_reach.h; scene key `fit.partition.data_reach`): the smooth
   // blend has data within c·dₖ of a sample, dₖ its distance to the (2·Dim)-th nearest other
