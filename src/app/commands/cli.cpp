@@ -10,6 +10,7 @@
 #include <new>
 #include <optional>
 #include <string>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 
@@ -143,131 +144,136 @@ Command displayCommand(Command command, const char* name) {
   return command;
 }
 
+// Adds --threads, parses argv (argc counts from the command's name) and runs `run` when the
+// arguments are complete; the exit code of a help or parse error otherwise.
+template <class Run>
+int parseThenRun(CLI::App& cmd, int argc, char** argv, Run run) {
+  int threads = 0;
+  addThreads(cmd, threads);
+  if (int rc = parse(cmd, argc, argv); rc >= 0) return rc;
+  if (threads > 0) setThreadCount(threads);
+  return run();
+}
+
+int fitCommand(int argc, char** argv, const DisplayCommands& /*display*/) {
+  FitArgs a;
+  CLI::App cmd("fit a scene and report residuals, solver and timing", "fit");
+  addSceneOptions(cmd, a.scene, true);
+  cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
+  cmd.add_flag("--coefficients", a.coefficients, "also print the fitted model (centres, alpha, beta, poly)");
+  cmd.add_flag("--verify", a.verify,
+               "with a transform, also re-solve on the transformed data and compare (as transform.verify)");
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return runFit(a); });
+}
+
+int evalCommand(int argc, char** argv, const DisplayCommands& /*display*/) {
+  EvalArgs a;
+  CLI::App cmd("evaluate the fitted field and its gradient at points read from a file", "eval");
+  addSceneOptions(cmd, a.scene, true);
+  cmd.add_option("--at", a.probeFile, "file with one point per line (2 or 3 numbers)")->required();
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return runEval(a); });
+}
+
+int renderCommand(int argc, char** argv, const DisplayCommands& display) {
+  RenderArgs a;
+  CLI::App cmd("render a scene to a PNG without a display (OSMesa or EGL)", "render");
+  addSceneOptions(cmd, a.scene, true);
+  cmd.add_option("-o,--output", a.output, "output PNG (written atomically)");
+  cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+  cmd.add_flag("--ui", a.ui, "draw the application's panels on top");
+  cmd.add_flag("--explore", a.explore, "with --ui: open the r explorer and run its sweep to the end first");
+  addUiScale(cmd, a.uiScale);
+  cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
+      ->check(CLI::IsMember({"osmesa", "egl"}));
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return displayCommand(display.render, "render")(a); });
+}
+
+int sweepCommand(int argc, char** argv, const DisplayCommands& display) {
+  SweepArgs a;
+  CLI::App cmd("refit a scene at log-spaced radii: one PNG per radius and diagnostics.csv", "sweep");
+  addSceneOptions(cmd, a.scene, true);
+  cmd.add_option("--radii", a.radii, "A:B:K — K radii spaced logarithmically from A to B")->required();
+  cmd.add_option("-o,--output", a.outputDirectory, "output directory (created when missing)")->required();
+  cmd.add_flag("--overwrite", a.overwrite,
+               "reuse a non-empty output directory: remove its earlier sweep images and diagnostics.csv first");
+  cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
+  cmd.add_option("--sheet", a.sheet, "also write a contact sheet of every image (a .png file)");
+  cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
+      ->check(CLI::IsMember({"osmesa", "egl"}));
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return displayCommand(display.sweep, "sweep")(a); });
+}
+
+int meshCommand(int argc, char** argv, const DisplayCommands& /*display*/) {
+  MeshArgs a;
+  CLI::App cmd("mesh the fitted zero set over view.bounds: marching cubes (3D), marching squares (2D)", "mesh");
+  addSceneOptions(cmd, a.scene, true);
+  cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (2D: .obj polylines or .svg)")->required();
+  cmd.add_option("--resolution", a.resolution, "cells along the longest side of view.bounds (default 64)")
+      ->check(CLI::Range(1, 4096));
+  cmd.add_option("--chord-tolerance", a.chordTolerance,
+                 "3D: split edges whose chord strays more than this many grid cells from the zero set, the new "
+                 "vertices projected onto it (default 0: off)")
+      ->check(CLI::Range(0.0, 1.0));
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return runMesh(a); });
+}
+
+int holefillCommand(int argc, char** argv, const DisplayCommands& /*display*/) {
+  HoleFillArgs a;
+  CLI::App cmd("fill the holes of a triangle mesh (advancing front, fairing, RBF projection)", "holefill");
+  cmd.add_option("input", a.input, "triangle mesh (.off, .obj, .ply, .glb, .gltf)")->required();
+  cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (written atomically)")->required();
+  cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
+  cmd.add_option("--rings", a.rings, "vertex rings around each hole fitted by the implicit (default 2)")
+      ->check(CLI::Range(1, 10));
+  cmd.add_option("--implicit", a.implicit, "rbf-offset (default: cubic, linear, ±d offsets) or hrbf")
+      ->check(CLI::IsMember({"rbf-offset", "hrbf"}));
+  cmd.add_flag("--allow-open", a.allowOpen, "exit 0 even when some hole stays open (default: exit 5)");
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return runHoleFill(a); });
+}
+
+int patchTableCommand(int argc, char** argv, const DisplayCommands& /*display*/) {
+  PatchTableArgs a;
+  CLI::App cmd("torus error study: bicubic Hermite patches from exact data vs the torus", "patch-table");
+  cmd.add_option("--samples", a.samples, "N x N local parameters per patch (default 15)")->check(CLI::Range(2, 100000));
+  cmd.add_option("--splits", a.splits, "comma-separated NxM splits, N along u (default 1x1,2x1,2x2,3x3)");
+  cmd.add_option("--domain", a.domain, "U0,U1,V0,V1 (default 0,1,0,1)");
+  cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return runPatchTable(a); });
+}
+
+int benchCommand(int argc, char** argv, const DisplayCommands& display) {
+  BenchArgs a;
+  CLI::App cmd("measure fit and evaluation speed on this machine", "bench");
+  cmd.add_flag("--json", a.json, "machine-readable output");
+  cmd.add_option("--only", a.only, "run the benchmarks whose name contains NAME");
+  cmd.add_flag("--quick", a.quick, "one repetition, small sizes (smoke test)");
+  return parseThenRun(cmd, argc - 1, argv + 1, [&] { return displayCommand(display.bench, "bench")(a); });
+}
+
+using CommandFunction = int (*)(int, char**, const DisplayCommands&);
+constexpr std::pair<const char*, CommandFunction> kCommandFunctions[] = {
+    {"fit", fitCommand},
+    {"eval", evalCommand},
+    {"render", renderCommand},
+    {"sweep", sweepCommand},
+    {"mesh", meshCommand},
+    {"holefill", holefillCommand},
+    {"patch-table", patchTableCommand},
+    {"bench", benchCommand},
+};
+
 int dispatch(int argc, char** argv, const DisplayCommands& display) {
   const std::string first = argc > 1 ? argv[1] : "";
   if (const std::optional<int> rc = topLevel(first)) return *rc;
-  int threads = 0;
-  if (first == "fit") {
-    FitArgs a;
-    CLI::App cmd("fit a scene and report residuals, solver and timing", "fit");
-    addSceneOptions(cmd, a.scene, true);
-    cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
-    cmd.add_flag("--coefficients", a.coefficients, "also print the fitted model (centres, alpha, beta, poly)");
-    cmd.add_flag("--verify", a.verify,
-                 "with a transform, also re-solve on the transformed data and compare (as transform.verify)");
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return runFit(a);
-  }
-  if (first == "eval") {
-    EvalArgs a;
-    CLI::App cmd("evaluate the fitted field and its gradient at points read from a file", "eval");
-    addSceneOptions(cmd, a.scene, true);
-    cmd.add_option("--at", a.probeFile, "file with one point per line (2 or 3 numbers)")->required();
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return runEval(a);
-  }
-  if (first == "render") {
-    RenderArgs a;
-    CLI::App cmd("render a scene to a PNG without a display (OSMesa or EGL)", "render");
-    addSceneOptions(cmd, a.scene, true);
-    cmd.add_option("-o,--output", a.output, "output PNG (written atomically)");
-    cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
-    cmd.add_flag("--ui", a.ui, "draw the application's panels on top");
-    cmd.add_flag("--explore", a.explore, "with --ui: open the r explorer and run its sweep to the end first");
-    addUiScale(cmd, a.uiScale);
-    cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
-        ->check(CLI::IsMember({"osmesa", "egl"}));
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return displayCommand(display.render, "render")(a);
-  }
-  if (first == "sweep") {
-    SweepArgs a;
-    CLI::App cmd("refit a scene at log-spaced radii: one PNG per radius and diagnostics.csv", "sweep");
-    addSceneOptions(cmd, a.scene, true);
-    cmd.add_option("--radii", a.radii, "A:B:K — K radii spaced logarithmically from A to B")->required();
-    cmd.add_option("-o,--output", a.outputDirectory, "output directory (created when missing)")->required();
-    cmd.add_flag("--overwrite", a.overwrite,
-                 "reuse a non-empty output directory: remove its earlier sweep images and diagnostics.csv first");
-    cmd.add_option("--size", a.size, "image size WxH (default: the scene's view.size)");
-    cmd.add_option("--sheet", a.sheet, "also write a contact sheet of every image (a .png file)");
-    cmd.add_option("--backend", a.backend, "headless GL context: osmesa (default) or egl")
-        ->check(CLI::IsMember({"osmesa", "egl"}));
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return displayCommand(display.sweep, "sweep")(a);
-  }
-  if (first == "mesh") {
-    MeshArgs a;
-    CLI::App cmd("mesh the fitted zero set over view.bounds: marching cubes (3D), marching squares (2D)", "mesh");
-    addSceneOptions(cmd, a.scene, true);
-    cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (2D: .obj polylines or .svg)")->required();
-    cmd.add_option("--resolution", a.resolution, "cells along the longest side of view.bounds (default 64)")
-        ->check(CLI::Range(1, 4096));
-    cmd.add_option("--chord-tolerance", a.chordTolerance,
-                   "3D: split edges whose chord strays more than this many grid cells from the zero set, the new "
-                   "vertices projected onto it (default 0: off)")
-        ->check(CLI::Range(0.0, 1.0));
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return runMesh(a);
-  }
-  if (first == "holefill") {
-    HoleFillArgs a;
-    CLI::App cmd("fill the holes of a triangle mesh (advancing front, fairing, RBF projection)", "holefill");
-    cmd.add_option("input", a.input, "triangle mesh (.off, .obj, .ply, .glb, .gltf)")->required();
-    cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (written atomically)")->required();
-    cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
-    cmd.add_option("--rings", a.rings, "vertex rings around each hole fitted by the implicit (default 2)")
-        ->check(CLI::Range(1, 10));
-    cmd.add_option("--implicit", a.implicit, "rbf-offset (default: cubic, linear, ±d offsets) or hrbf")
-        ->check(CLI::IsMember({"rbf-offset", "hrbf"}));
-    cmd.add_flag("--allow-open", a.allowOpen, "exit 0 even when some hole stays open (default: exit 5)");
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return runHoleFill(a);
-  }
-  if (first == "patch-table") {
-    PatchTableArgs a;
-    CLI::App cmd("torus error study: bicubic Hermite patches from exact data vs the torus", "patch-table");
-    cmd.add_option("--samples", a.samples, "N x N local parameters per patch (default 15)")->check(CLI::Range(2, 100000));
-    cmd.add_option("--splits", a.splits, "comma-separated NxM splits, N along u (default 1x1,2x1,2x2,3x3)");
-    cmd.add_option("--domain", a.domain, "U0,U1,V0,V1 (default 0,1,0,1)");
-    cmd.add_flag("--json", a.json, "machine-readable output (docs/cli.md)");
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return runPatchTable(a);
-  }
-  if (first == "bench") {
-    BenchArgs a;
-    CLI::App cmd("measure fit and evaluation speed on this machine", "bench");
-    cmd.add_flag("--json", a.json, "machine-readable output");
-    cmd.add_option("--only", a.only, "run the benchmarks whose name contains NAME");
-    cmd.add_flag("--quick", a.quick, "one repetition, small sizes (smoke test)");
-    addThreads(cmd, threads);
-    if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;
-    if (threads > 0) setThreadCount(threads);
-    return displayCommand(display.bench, "bench")(a);
-  }
+  for (const auto& [name, command] : kCommandFunctions)
+    if (first == name) return command(argc, argv, display);
   // No subcommand: the program's main job on SCENE (or the demo scene).
   SceneArgs a;
   double uiScale = 0;
   CLI::App cmd("Hermite Lab", "hermite-lab");
   addSceneOptions(cmd, a, false);
   addUiScale(cmd, uiScale);
-  addThreads(cmd, threads);
-  if (int rc = parse(cmd, argc, argv); rc >= 0) return rc;
-  if (threads > 0) setThreadCount(threads);
-  return displayCommand(display.window, "the window")(a, uiScale);
+  return parseThenRun(cmd, argc, argv, [&] { return displayCommand(display.window, "the window")(a, uiScale); });
 }
 
 }  // namespace

@@ -440,6 +440,107 @@ SolverChoice plannedSolverPath(SolverChoice choice, Eigen::Index m, int definite
   return choice;
 }
 
+namespace {
+
+// The nullspace-cholesky path: the lower triangle of A becomes that of B = Qᵀ A Q, whose trailing
+// (n − m) block is Zᵀ A Z with Z spanning null(Pᵀ); the unknowns x = Q [0; y] satisfy Pᵀx = 0 by
+// construction. Fills out.x and out.c on success.
+Factorised nullspaceCholeskySolve(SaddleSystem& sys, const Eigen::MatrixXd& QR, const Eigen::VectorXd& tau,
+                                  double sign, PhaseClock& clock, SaddleSolution& out) {
+  const Index n = sys.A.rows(), m = sys.P.cols();
+  projectLower(sys.A, QR, tau);
+  clock.lap("project");
+  throwIfCancelled(sys.cancel);
+  Eigen::VectorXd bq = sys.b;
+  applyQ(QR, tau, 'L', 'T', bq);
+  Eigen::VectorXd y = bq.tail(n - m);
+  Factorised fact =
+      choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y, clock, sys.cancel);
+  if (!fact.ok) return fact;
+  // R c = (Qᵀ b)₁ − B₁₂ y, with B₁₂ = B₂₁ᵀ from the (untouched by dpotrf) lower part.
+  const Eigen::VectorXd rhs = bq.head(m) - sys.A.block(m, 0, n - m, m).transpose() * y;
+  out.c = QR.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(rhs);
+  out.x = Eigen::VectorXd::Zero(n);
+  out.x.tail(n - m) = y;
+  applyQ(QR, tau, 'L', 'N', out.x);
+  return fact;
+}
+
+// Runs one of the Cholesky paths (cholesky, nullspace-cholesky, projected-cholesky). On success
+// out.x, out.c, out.solver and out.factorFlops are set; on failure A is restored for the LU that
+// follows and `failure` says why.
+Factorised choleskyPathSolve(SaddleSystem& sys, SolverChoice path, const Eigen::MatrixXd& QR,
+                             const Eigen::VectorXd& tau, double aNorm, PhaseClock& clock, SaddleSolution& out) {
+  const Index n = sys.A.rows(), m = sys.P.cols();
+  const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
+  const Eigen::VectorXd diagonal = sys.A.diagonal();  // restoreAfterCholesky's copy
+  Factorised fact;
+  Index factorised = n;
+  if (path == SolverChoice::Cholesky) {
+    out.x = sys.b;
+    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock, sys.cancel, true, aNorm);
+    out.c.resize(0);
+  } else if (path == SolverChoice::NullspaceCholesky) {
+    fact = nullspaceCholeskySolve(sys, QR, tau, sign, clock, out);
+    factorised = n - m;
+  } else {
+    fact = projectedCholeskySolve(sys, aNorm, out.x, clock);
+    out.c.resize(0);
+    factorised = n - sys.definiteOn.cols();
+  }
+  if (!fact.ok) {
+    restoreAfterCholesky(sys, diagonal);
+    return fact;
+  }
+  out.solver = std::string(solverName(path));
+  out.factorFlops = factorisationFlops(SolverChoice::Cholesky, factorised);
+  return fact;
+}
+
+// The pivoted paths (ldlt, with LU as its fallback, and lu) on the whole saddle matrix
+// [[A, P], [Pᵀ, 0]]; `choice` becomes lu when ldlt falls back. Sets out.x, out.c, out.solver and
+// out.factorFlops, or throws NumericalError for a singular system.
+Factorised pivotedSolve(SaddleSystem& sys, SolverChoice& choice, PhaseClock& clock, SaddleSolution& out) {
+  const Index n = sys.A.rows(), m = sys.P.cols();
+  // The copies made here (the saddle matrix when m > 0, the one kept for the LU fallback of
+  // ldlt) on top of A: sized before they are made, also when a Cholesky path fell back.
+  const std::uint64_t copies = (m > 0 ? 1u : 0u) + (choice == SolverChoice::Ldlt ? 1u : 0u);
+  checkMemory({saturatingProduct({copies, std::uint64_t(n + m), std::uint64_t(n + m), sizeof(double)}),
+               "the " + std::string(solverName(choice)) + " factorisation of " + std::to_string(n + m) +
+                   " unknowns (" + std::to_string(copies) + " more matrices of that size)"},
+              kDenseFitRemedy);
+  throwIfCancelled(sys.cancel);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
+  rhs.head(n) = sys.b;
+  Eigen::MatrixXd K = m > 0 ? saddleMatrix(sys.A, sys.P) : std::move(sys.A);
+  Factorised fact;
+  if (choice == SolverChoice::Ldlt) {
+    Eigen::MatrixXd Kcopy = K;  // kept for the LU fallback
+    Eigen::VectorXd r = rhs;
+    fact = ldltSolve(K, r, clock);
+    if (fact.ok) {
+      out.solver = "ldlt";
+      out.factorFlops = factorisationFlops(SolverChoice::Ldlt, n + m);
+      rhs = r;
+    } else {
+      out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
+      K = std::move(Kcopy);
+      choice = SolverChoice::Lu;
+    }
+  }
+  if (choice == SolverChoice::Lu) {
+    fact = luSolve(K, rhs, clock, sys.cancel);
+    if (!fact.ok) throw NumericalError("singular system: " + fact.failure);
+    out.solver = "lu";
+    out.factorFlops = factorisationFlops(SolverChoice::Lu, n + m);
+  }
+  out.x = rhs.head(n);
+  out.c = rhs.tail(m);
+  return fact;
+}
+
+}  // namespace
+
 SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
   const Index n = sys.A.rows(), m = sys.P.cols();
   if (sys.A.cols() != n || sys.P.rows() != n || sys.b.size() != n)
@@ -469,97 +570,19 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     factorPolynomialBlock(QR, tau);
     clock.lap("qr");
   }
-
   if (choice == SolverChoice::Cholesky && m > 0)
     out.warnings.push_back("cholesky needs a system without polynomial term; using nullspace-cholesky");
   choice = plannedSolverPath(choice, m, sys.definiteSign, projectable);
-  const double sign = sys.definiteSign < 0 ? -1.0 : 1.0;
 
-  const Eigen::VectorXd diagonal = sys.A.diagonal();  // restoreAfterCholesky's copy
   Factorised fact;
-  if (choice == SolverChoice::Cholesky) {
-    out.x = sys.b;
-    fact = choleskySolve(sys.A.data(), toLapack(n), toLapack(n), sign, out.x, clock, sys.cancel, true, aNorm);
-    if (fact.ok) {
-      out.solver = "cholesky";
-      out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n);
-      out.c.resize(0);
-    } else {
-      restoreAfterCholesky(sys, diagonal);
-    }
-  } else if (choice == SolverChoice::NullspaceCholesky) {
-    // Lower triangle of A := that of B = Qᵀ A Q; its trailing (n − m) block is Zᵀ A Z with Z
-    // spanning null(Pᵀ): the unknowns x = Q [0; y] satisfy Pᵀx = 0 by construction.
-    projectLower(sys.A, QR, tau);
-    clock.lap("project");
-    throwIfCancelled(sys.cancel);
-    Eigen::VectorXd bq = sys.b;
-    applyQ(QR, tau, 'L', 'T', bq);
-    Eigen::VectorXd y = bq.tail(n - m);
-    fact = choleskySolve(sys.A.data() + m * n + m, toLapack(n - m), toLapack(n), sign, y, clock, sys.cancel);
-    if (fact.ok) {
-      out.solver = "nullspace-cholesky";
-      out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n - m);
-      // R c = (Qᵀ b)₁ − B₁₂ y, with B₁₂ = B₂₁ᵀ from the (untouched by dpotrf) lower part.
-      Eigen::VectorXd rhs = bq.head(m) - sys.A.block(m, 0, n - m, m).transpose() * y;
-      out.c = QR.topLeftCorner(m, m).triangularView<Eigen::Upper>().solve(rhs);
-      out.x = Eigen::VectorXd::Zero(n);
-      out.x.tail(n - m) = y;
-      applyQ(QR, tau, 'L', 'N', out.x);
-    } else {
-      restoreAfterCholesky(sys, diagonal);
-    }
-  } else if (choice == SolverChoice::ProjectedCholesky) {
-    fact = projectedCholeskySolve(sys, aNorm, out.x, clock);
-    if (fact.ok) {
-      out.solver = "projected-cholesky";
-      out.factorFlops = factorisationFlops(SolverChoice::Cholesky, n - sys.definiteOn.cols());
-      out.c.resize(0);
-    } else {
-      restoreAfterCholesky(sys, diagonal);
+  if (isCholeskyPath(choice)) {
+    fact = choleskyPathSolve(sys, choice, QR, tau, aNorm, clock, out);
+    if (!fact.ok) {
+      out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
+      choice = SolverChoice::Lu;
     }
   }
-
-  if (!fact.ok && (choice == SolverChoice::Cholesky || choice == SolverChoice::NullspaceCholesky ||
-                   choice == SolverChoice::ProjectedCholesky)) {
-    out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
-    choice = SolverChoice::Lu;
-  }
-  if (choice == SolverChoice::Ldlt || choice == SolverChoice::Lu) {
-    // The copies made here (the saddle matrix when m > 0, the one kept for the LU fallback of
-    // ldlt) on top of A: sized before they are made, also when a Cholesky path fell back.
-    const std::uint64_t copies = (m > 0 ? 1u : 0u) + (choice == SolverChoice::Ldlt ? 1u : 0u);
-    checkMemory({saturatingProduct({copies, std::uint64_t(n + m), std::uint64_t(n + m), sizeof(double)}),
-                 "the " + std::string(solverName(choice)) + " factorisation of " + std::to_string(n + m) +
-                     " unknowns (" + std::to_string(copies) + " more matrices of that size)"},
-                kDenseFitRemedy);
-    throwIfCancelled(sys.cancel);
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
-    rhs.head(n) = sys.b;
-    Eigen::MatrixXd K = m > 0 ? saddleMatrix(sys.A, sys.P) : std::move(sys.A);
-    if (choice == SolverChoice::Ldlt) {
-      Eigen::MatrixXd Kcopy = K;  // kept for the LU fallback
-      Eigen::VectorXd r = rhs;
-      fact = ldltSolve(K, r, clock);
-      if (fact.ok) {
-        out.solver = "ldlt";
-        out.factorFlops = factorisationFlops(SolverChoice::Ldlt, n + m);
-        rhs = r;
-      } else {
-        out.warnings.push_back(fact.failure + "; fell back to LU with partial pivoting");
-        K = std::move(Kcopy);
-        choice = SolverChoice::Lu;
-      }
-    }
-    if (choice == SolverChoice::Lu) {
-      fact = luSolve(K, rhs, clock, sys.cancel);
-      if (!fact.ok) throw NumericalError("singular system: " + fact.failure);
-      out.solver = "lu";
-      out.factorFlops = factorisationFlops(SolverChoice::Lu, n + m);
-    }
-    out.x = rhs.head(n);
-    out.c = rhs.tail(m);
-  }
+  if (choice == SolverChoice::Ldlt || choice == SolverChoice::Lu) fact = pivotedSolve(sys, choice, clock, out);
 
   clock.lap("solve");
   out.conditionEstimate = fact.rcond > 0 ? 1.0 / fact.rcond : std::numeric_limits<double>::infinity();

@@ -52,11 +52,87 @@ HrbfBorderedRefit<Dim>::HrbfBorderedRefit(const HermiteSamples<Dim>& samples, co
 }
 
 template <int Dim>
-void HrbfBorderedRefit<Dim>::solveBordered(const Border& Kri, const Eigen::PartialPivLU<Block>& schur, const Border& Y,
-                                        Eigen::VectorXd& rhsR, Eigen::Matrix<double, B, 1>& rhsI) const {
-  lu_->solveInPlace(rhsR);                                                    // y = K_RR⁻¹ r_R
-  rhsI = schur.solve((rhsI - Kri.transpose() * rhsR).eval());                 // x_I = S⁻¹ (r_I − K_IR y)
-  rhsR -= Y * rhsI;                                                            // x_R = y − Y x_I
+typename HrbfBorderedRefit<Dim>::Bordered HrbfBorderedRefit<Dim>::assembleBorder(const Vec<Dim>& point) const {
+  const int N = samples_.size();
+  const Kernel& kernel = options_.kernel;
+  const int m = monomialCount<Dim>(options_.polynomial);
+  // The border: conditions at every other sample against the moved centre, then the polynomial
+  // orthogonality rows (the moved sample's polynomial values and gradients).
+  Bordered k;
+  k.Kri.resize(Krr_.rows(), B);
+  for (int i = 0, r = 0; i < N; ++i) {
+    if (i == moved_) continue;
+    k.Kri.template middleRows<B>(Eigen::Index(r) * B) = hrbfBlock<Dim>(kernel, samples_.points.col(i) - point);
+    ++r;
+  }
+  if (m > 0) k.Kri.bottomRows(m) = hrbfPolynomialRows<Dim>(options_.polynomial, point).transpose();
+  k.Kii = hrbfBlock<Dim>(kernel, Vec<Dim>::Zero());
+  k.Kii.diagonal().array() += kernel.smoothingSign() * options_.smoothing;
+  if (!k.Kri.allFinite() || !k.Kii.allFinite())
+    throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
+  return k;
+}
+
+template <int Dim>
+void HrbfBorderedRefit<Dim>::factorBorder(Bordered& k) const {
+  Eigen::MatrixXd Ydyn = k.Kri;
+  lu_->solveInPlace(Ydyn);
+  k.Y = Ydyn;
+  k.schur.compute(Block(k.Kii - k.Kri.transpose() * k.Y));
+  const double schurRcond = k.schur.rcond();
+  if (!(schurRcond > 1e-15))
+    throw NumericalError("singular system: the moved sample adds no independent conditions (Schur complement rcond " +
+                         shortNumber(schurRcond) + ")");
+}
+
+template <int Dim>
+void HrbfBorderedRefit<Dim>::solveBordered(const Bordered& k, Eigen::VectorXd& rhsR, BVec& rhsI) const {
+  lu_->solveInPlace(rhsR);                                        // y = K_RR⁻¹ r_R
+  rhsI = k.schur.solve((rhsI - k.Kri.transpose() * rhsR).eval());  // x_I = S⁻¹ (r_I − K_IR y)
+  rhsR -= k.Y * rhsI;                                              // x_R = y − Y x_I
+}
+
+template <int Dim>
+double HrbfBorderedRefit<Dim>::refineAndCheck(const Bordered& k, const BVec& bI, Eigen::VectorXd& xR, BVec& xI) const {
+  auto residual = [&](Eigen::VectorXd& rR, BVec& rI) {
+    rR = bR_ - Krr_ * xR - k.Kri * xI;
+    rI = bI - k.Kri.transpose() * xR - k.Kii * xI;
+  };
+  Eigen::VectorXd rR;
+  BVec rI;
+  residual(rR, rI);
+  solveBordered(k, rR, rI);
+  xR += rR;
+  xI += rI;
+  residual(rR, rI);
+  // K is symmetric: its row sums are its column sums.
+  const double normInfK =
+      std::max((krrColumnSums_ + k.Kri.cwiseAbs().rowwise().sum()).maxCoeff(),
+               (k.Kri.cwiseAbs().colwise().sum().transpose() + k.Kii.cwiseAbs().rowwise().sum()).maxCoeff());
+  const double xNorm = std::max(xR.cwiseAbs().maxCoeff(), xI.cwiseAbs().maxCoeff());
+  const double bNorm = std::max(bR_.cwiseAbs().maxCoeff(), bI.cwiseAbs().maxCoeff());
+  const double rNorm = std::max(rR.cwiseAbs().maxCoeff(), rI.cwiseAbs().maxCoeff());
+  if (!xR.allFinite() || !xI.allFinite() || !(rNorm <= kResidualTolerance * (normInfK * xNorm + bNorm)))
+    throw NumericalError("the bordered drag solve is not accurate (relative residual " +
+                         shortNumber(rNorm / (normInfK * xNorm + bNorm)) + ")");
+  return normInfK;
+}
+
+template <int Dim>
+HrbfModel<Dim> HrbfBorderedRefit<Dim>::model(const Vec<Dim>& point, const Eigen::VectorXd& xR, const BVec& xI) const {
+  const int N = samples_.size();
+  Points<Dim> centres = samples_.points;
+  centres.col(moved_) = point;
+  Eigen::VectorXd alpha(N);
+  Points<Dim> beta(Dim, N);
+  for (int i = 0, r = 0; i < N; ++i) {
+    const BVec x = i == moved_ ? xI : BVec(xR.template segment<B>(Eigen::Index(r++) * B));
+    alpha(i) = x(0);
+    beta.col(i) = x.template tail<Dim>();
+  }
+  Eigen::VectorXd poly = xR.segment(Eigen::Index(N - 1) * B, monomialCount<Dim>(options_.polynomial));
+  return HrbfModel<Dim>(options_.kernel, options_.polynomial, std::move(centres), std::move(alpha), std::move(beta),
+                        std::move(poly));
 }
 
 template <int Dim>
@@ -64,103 +140,41 @@ HrbfModel<Dim> HrbfBorderedRefit<Dim>::fit(const Vec<Dim>& point, const Vec<Dim>
   const auto t0 = std::chrono::steady_clock::now();
   if (!point.allFinite() || !normal.allFinite() || !(normal.norm() > 0))
     throw InputError("HRBF drag refit: the moved sample needs a finite point and a non-zero normal");
-  const int N = samples_.size();
-  const Kernel& kernel = options_.kernel;
-  const int m = monomialCount<Dim>(options_.polynomial);
-  const Eigen::Index nR = Krr_.rows();
-  const Eigen::Index blocksR = Eigen::Index(N - 1) * B;  // rows of R that are sample conditions
-
-  // The border: conditions at every other sample against the moved centre, then the polynomial
-  // orthogonality rows (the moved sample's polynomial values and gradients).
-  Border Kri(nR, B);
-  for (int i = 0, r = 0; i < N; ++i) {
-    if (i == moved_) continue;
-    Kri.template middleRows<B>(Eigen::Index(r) * B) = hrbfBlock<Dim>(kernel, samples_.points.col(i) - point);
-    ++r;
-  }
-  if (m > 0) Kri.bottomRows(m) = hrbfPolynomialRows<Dim>(options_.polynomial, point).transpose();
-  Block Kii = hrbfBlock<Dim>(kernel, Vec<Dim>::Zero());
-  Kii.diagonal().array() += kernel.smoothingSign() * options_.smoothing;
-  const Vec<Dim> unitNormal = normal.normalized();
-  Eigen::Matrix<double, B, 1> bI;
-  bI << 0.0, unitNormal;
-  if (!Kri.allFinite() || !Kii.allFinite())
-    throw NumericalError("the system has non-finite entries (kernel values overflow for this radius?)");
+  Bordered k = assembleBorder(point);
+  BVec bI;
+  bI << 0.0, normal.normalized();
   const double assemblyMs = msSince(t0);
+  factorBorder(k);
 
-  // Schur complement of K_RR.
-  Eigen::MatrixXd Ydyn = Kri;
-  lu_->solveInPlace(Ydyn);
-  const Border Y = Ydyn;
-  const Block S = Kii - Kri.transpose() * Y;
-  const Eigen::PartialPivLU<Block> schur(S);
-  const double schurRcond = schur.rcond();
-  if (!(schurRcond > 1e-15))
-    throw NumericalError("singular system: the moved sample adds no independent conditions (Schur complement rcond " +
-                         shortNumber(schurRcond) + ")");
-
-  // x = K⁻¹ b, with z = K_RR⁻¹ b_R from the factorisation.
-  Eigen::Matrix<double, B, 1> xI = schur.solve((bI - Kri.transpose() * zR_).eval());
-  Eigen::VectorXd xR = zR_ - Y * xI;
-
-  // One step of iterative refinement on the whole system, then the residual check.
-  auto residual = [&](Eigen::VectorXd& rR, Eigen::Matrix<double, B, 1>& rI) {
-    rR = bR_ - Krr_ * xR - Kri * xI;
-    rI = bI - Kri.transpose() * xR - Kii * xI;
-  };
-  Eigen::VectorXd rR;
-  Eigen::Matrix<double, B, 1> rI;
-  residual(rR, rI);
-  solveBordered(Kri, schur, Y, rR, rI);
-  xR += rR;
-  xI += rI;
-  residual(rR, rI);
-  // K is symmetric: its row sums are its column sums.
-  const double normInfK = std::max((krrColumnSums_ + Kri.cwiseAbs().rowwise().sum()).maxCoeff(),
-                                   (Kri.cwiseAbs().colwise().sum().transpose() + Kii.cwiseAbs().rowwise().sum()).maxCoeff());
-  const double xNorm = std::max(xR.cwiseAbs().maxCoeff(), xI.cwiseAbs().maxCoeff());
-  const double bNorm = std::max(bR_.cwiseAbs().maxCoeff(), bI.cwiseAbs().maxCoeff());
-  const double rNorm = std::max(rR.cwiseAbs().maxCoeff(), rI.cwiseAbs().maxCoeff());
-  if (!xR.allFinite() || !xI.allFinite() || !(rNorm <= kResidualTolerance * (normInfK * xNorm + bNorm)))
-    throw NumericalError("the bordered drag solve is not accurate (relative residual " +
-                         shortNumber(rNorm / (normInfK * xNorm + bNorm)) + ")");
+  // x = K⁻¹ b, with z = K_RR⁻¹ b_R from the factorisation, refined and checked.
+  BVec xI = k.schur.solve((bI - k.Kri.transpose() * zR_).eval());
+  Eigen::VectorXd xR = zR_ - k.Y * xI;
+  const double normInfK = refineAndCheck(k, bI, xR, xI);
 
   // 1-norm condition estimate of the whole K (symmetric: its 1- and ∞-norms agree).
+  const Eigen::Index nR = Krr_.rows();
   const double inverseNorm = symmetricInverseNormEstimate(nR + B, [&](Eigen::VectorXd& v) {
     Eigen::VectorXd vR = v.head(nR);
-    Eigen::Matrix<double, B, 1> vI = v.tail<B>();
-    solveBordered(Kri, schur, Y, vR, vI);
+    BVec vI = v.tail<B>();
+    solveBordered(k, vR, vI);
     v.head(nR) = vR;
     v.tail<B>() = vI;
   });
   const double condition = normInfK * inverseNorm;
 
-  // Back to fitHrbf's layout: centres in the samples' order, the moved one in its place.
-  Points<Dim> centres = samples_.points;
-  centres.col(moved_) = point;
-  Eigen::VectorXd alpha(N);
-  Points<Dim> beta(Dim, N);
-  for (int i = 0, r = 0; i < N; ++i) {
-    const Eigen::Matrix<double, B, 1> x =
-        i == moved_ ? xI : Eigen::Matrix<double, B, 1>(xR.template segment<B>(Eigen::Index(r++) * B));
-    alpha(i) = x(0);
-    beta.col(i) = x.template tail<Dim>();
-  }
-  Eigen::VectorXd poly = xR.segment(blocksR, m);
-
   if (report) {
+    const int N = samples_.size();
     report->nSamples = N;
-    report->nUnknowns = int(N * B + m);
+    report->nUnknowns = int(N * B + monomialCount<Dim>(options_.polynomial));
     report->solver = "bordered-lu";
     report->conditionEstimate = condition;
-    report->warnings = polynomialOrderWarnings(kernel, options_.polynomial);
+    report->warnings = polynomialOrderWarnings(options_.kernel, options_.polynomial);
     if (auto warning = illConditionedWarning(condition, report->solver)) report->warnings.push_back(*warning);
     report->assemblyMs = assemblyMs;
     report->fitMs = msSince(t0);
     report->solveMs = report->fitMs - assemblyMs;
   }
-  return HrbfModel<Dim>(kernel, options_.polynomial, std::move(centres), std::move(alpha), std::move(beta),
-                        std::move(poly));
+  return model(point, xR, xI);
 }
 
 template class HrbfBorderedRefit<2>;

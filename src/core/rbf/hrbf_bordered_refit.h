@@ -49,9 +49,26 @@ class HrbfBorderedRefit {
   using Border = Eigen::Matrix<double, Eigen::Dynamic, B>;
   using Block = Eigen::Matrix<double, B, B>;
 
+  using BVec = Eigen::Matrix<double, B, 1>;
+  // The moved sample's part of K for one move: K_RI, K_II, Y = K_RR⁻¹ K_RI and the LU of the
+  // Schur complement S = K_II − K_IR Y.
+  struct Bordered {
+    Border Kri;
+    Block Kii;
+    Border Y;
+    Eigen::PartialPivLU<Block> schur;
+  };
+  // K_RI and K_II for the moved sample at `point`; throws NumericalError for non-finite entries.
+  Bordered assembleBorder(const Vec<Dim>& point) const;
+  // Y and the Schur complement's LU; throws NumericalError when S is singular.
+  void factorBorder(Bordered& k) const;
   // The full solve K x = rhs through the Schur complement (rhs split as R, I).
-  void solveBordered(const Border& Kri, const Eigen::PartialPivLU<Block>& schur, const Border& Y,
-                     Eigen::VectorXd& rhsR, Eigen::Matrix<double, B, 1>& rhsI) const;
+  void solveBordered(const Bordered& k, Eigen::VectorXd& rhsR, BVec& rhsI) const;
+  // One step of iterative refinement of x = (xR, xI), then the residual check (NumericalError
+  // when inaccurate). Returns ‖K‖∞.
+  double refineAndCheck(const Bordered& k, const BVec& bI, Eigen::VectorXd& xR, BVec& xI) const;
+  // The model in fitHrbf's layout: centres in the samples' order, the moved one in its place.
+  HrbfModel<Dim> model(const Vec<Dim>& point, const Eigen::VectorXd& xR, const BVec& xI) const;
 
   HermiteSamples<Dim> samples_;
   HrbfOptions options_;
