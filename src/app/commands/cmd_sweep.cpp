@@ -120,10 +120,9 @@ void checkSweepMemory(const Scene& scene) {
   if (const auto plan = sceneFitPlan(scene, samples.size())) checkMemory(*plan, kDenseFitRemedy);
 }
 
-}  // namespace
-
-int runSweep(const SweepArgs& args) {
-  // A data file's default scene is cubic (no radius): the sweep takes wendland unless told.
+// The sweep's scene: a data file's default scene is cubic (no radius), so the sweep takes
+// wendland unless told; refused for modes and kernels without a radius.
+Scene sweepScene(const SweepArgs& args) {
   SceneArgs sceneArgs = args.scene;
   const bool kernelGiven = std::any_of(sceneArgs.overrides.begin(), sceneArgs.overrides.end(),
                                        [](const std::string& o) { return o.rfind("fit.kernel=", 0) == 0; });
@@ -135,27 +134,25 @@ int runSweep(const SweepArgs& args) {
   if (!Kernel{scene.fit.kernel, 1.0}.usesRadius())
     throw InputError("sweep: kernel '" + std::string(kernelName(scene.fit.kernel)) +
                      "' has no radius (it is scale-free): nothing to sweep");
-  const std::vector<double> radii = parseRadiiArgument(args.radii);
-  if (!args.size.empty()) scene.view.size = parseImageSize(args.size);
-  checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
-  if (scene.mode == SceneMode::Implicit2d) checkSweepMemory<2>(scene);
-  else checkSweepMemory<3>(scene);
-  if (!args.sheet.empty()) {
-    requireExtension("sweep --sheet", args.sheet, {"png"});
-    requireWritableLocation("sweep --sheet", args.sheet);
-  }
-  prepareDirectory(args.outputDirectory, args.overwrite);
-  const std::filesystem::path dir(args.outputDirectory);
+  return scene;
+}
 
+// What the sweep produced: a row and an image name ("" when the fit failed) per radius.
+struct SweepRun {
+  std::vector<RadiusSweepRow> rows;
+  std::vector<std::string> images;
+  std::string firstError;
+};
+
+// Fits and renders every radius into `dir` (and onto the contact sheet when asked).
+SweepRun sweepRadii(const Scene& scene, const std::vector<double>& radii, const SweepArgs& args,
+                    const std::filesystem::path& dir, SheetBuilder& sheet) {
   const int w = scene.view.size[0], h = scene.view.size[1];
   const auto context = offscreenContext(args.backend, w, h);
   SceneViewRenderer renderer;
   renderer.colourRange = sharedColourRange(scene);  // one heat-map range for every radius
-  std::vector<RadiusSweepRow> rows;
-  std::vector<std::string> images;
+  SweepRun run;
   double spacing = -1;
-  std::string firstError;
-  SheetBuilder sheet(int(radii.size()), w);
   for (std::size_t k = 0; k < radii.size(); ++k) {
     Scene s = scene;
     s.fit.radius = radii[k];
@@ -177,33 +174,59 @@ int runSweep(const SweepArgs& args) {
     } else {
       row.radius = radii[k];
       row.error = fit->error;
-      if (firstError.empty()) firstError = fit->error;
+      if (run.firstError.empty()) run.firstError = fit->error;
     }
-    rows.push_back(std::move(row));
-    images.push_back(std::move(image));
+    run.rows.push_back(std::move(row));
+    run.images.push_back(std::move(image));
   }
-  writeFileAtomically((dir / "diagnostics.csv").string(), radiusSweepCsv(rows, &images));
+  return run;
+}
 
-  const int best = suggestedRadiusIndex(rows);
-  const int dim = scene.dimension();
+// The table printed on stdout: one line per radius, the suggestion starred, then notes.
+std::string sweepSummary(const SweepRun& run, int best, int dim) {
   std::string out;
   char buf[256];
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const RadiusSweepRow& r = rows[k];
+  for (std::size_t k = 0; k < run.rows.size(); ++k) {
+    const RadiusSweepRow& r = run.rows[k];
     if (r.ok())
       std::snprintf(buf, sizeof buf, "%s r = %-10.4g cond %-10.3g ", int(k) == best ? "*" : " ", r.radius,
                     r.conditionEstimate);
     else
       std::snprintf(buf, sizeof buf, "  r = %-10.4g ", r.radius);
     out += buf + radiusSweepVerdict(r, dim).substr(0, 200);
-    out += images[k].empty() ? "\n" : "  " + images[k] + "\n";
+    out += run.images[k].empty() ? "\n" : "  " + run.images[k] + "\n";
   }
   if (best < 0)
     out += "no radius suggested: every radius failed, is ill-conditioned (condition above 1e14) or has no finite "
            "validation error; try smaller radii or a polynomial term\n";
-  else if (rows[std::size_t(best)].degenerate || rows[std::size_t(best)].defects() > 0)
+  else if (run.rows[std::size_t(best)].degenerate || run.rows[std::size_t(best)].defects() > 0)
     out += "note: every candidate radius has a degenerate field, spurious zero-set components or sign failures; the "
            "suggestion has the fewest — try a wider range of radii or a polynomial term\n";
+  return out;
+}
+
+}  // namespace
+
+int runSweep(const SweepArgs& args) {
+  Scene scene = sweepScene(args);
+  const std::vector<double> radii = parseRadiiArgument(args.radii);
+  if (!args.size.empty()) scene.view.size = parseImageSize(args.size);
+  checkMemory(renderPlan(scene.view.size[0], scene.view.size[1]), kRenderRemedy);
+  if (scene.mode == SceneMode::Implicit2d) checkSweepMemory<2>(scene);
+  else checkSweepMemory<3>(scene);
+  if (!args.sheet.empty()) {
+    requireExtension("sweep --sheet", args.sheet, {"png"});
+    requireWritableLocation("sweep --sheet", args.sheet);
+  }
+  prepareDirectory(args.outputDirectory, args.overwrite);
+  const std::filesystem::path dir(args.outputDirectory);
+
+  SheetBuilder sheet(int(radii.size()), scene.view.size[0]);
+  const SweepRun run = sweepRadii(scene, radii, args, dir, sheet);
+  writeFileAtomically((dir / "diagnostics.csv").string(), radiusSweepCsv(run.rows, &run.images));
+
+  const int best = suggestedRadiusIndex(run.rows);
+  std::string out = sweepSummary(run, best, scene.dimension());
   out += "wrote " + std::to_string(radii.size()) + " rows to " + (dir / "diagnostics.csv").string() + "\n";
   if (!args.sheet.empty()) {
     sheet.markSuggested(best);
@@ -212,8 +235,8 @@ int runSweep(const SweepArgs& args) {
   }
   writeStdout(out);
   bool anyOk = false;
-  for (const auto& r : rows) anyOk |= r.ok();
-  if (!anyOk) throw NumericalError("sweep: no radius could be fitted: " + firstError);
+  for (const auto& r : run.rows) anyOk |= r.ok();
+  if (!anyOk) throw NumericalError("sweep: no radius could be fitted: " + run.firstError);
   return 0;
 }
 
