@@ -76,6 +76,8 @@ HoleImplicit fitHoleImplicit(const PreparedMesh& prepared, const HolePatch& patc
   return out;
 }
 
+namespace {
+
 // Columns per batch evaluation between progress reports: about 10 ms of a 3 000-centre field.
 constexpr Eigen::Index kEvaluationChunk = 1024;
 
@@ -134,92 +136,124 @@ bool batchedNewtonStart(const ImplicitField<3>& field, const Eigen::Matrix3Xd& f
 // Patches with at least this many new vertices start with batched Newton steps.
 constexpr int kBatchProjectionVertices = 4096;
 
+// The patch's triangles against their orientation before projection: which positions of a new
+// vertex keep every triangle around it unflipped and non-degenerate. Reads the patch's current
+// vertex positions (the projection moves them).
+class PatchOrientation {
+ public:
+  PatchOrientation(const PreparedMesh& prepared, const HolePatch& P) : prepared_(prepared), P_(P) {
+    const Eigen::Index T = P.triangles.cols();
+    reference_.resize(static_cast<size_t>(T));
+    incident_.resize(static_cast<size_t>(P.vertices.cols()));
+    for (Eigen::Index t = 0; t < T; ++t) {
+      reference_[static_cast<size_t>(t)] = triangleNormal(t);
+      for (int k = 0; k < 3; ++k)
+        if (P.triangles(k, t) >= P.baseId) incident_[static_cast<size_t>(P.triangles(k, t) - P.baseId)].push_back(t);
+    }
+    minArea2_ = 1e-10 * P.meanEdgeLength * P.meanEdgeLength;
+  }
+  // Triangle t is not degenerate and faces the way it did.
+  bool unflipped(Eigen::Index t) const {
+    const Eigen::Vector3d n = triangleNormal(t);
+    return n.norm() > minArea2_ && n.dot(reference_[static_cast<size_t>(t)]) > 0;
+  }
+  // Every triangle of new vertex k is unflipped at k's current position.
+  bool acceptable(int k) const {
+    for (Eigen::Index t : incident_[static_cast<size_t>(k)])
+      if (!unflipped(t)) return false;
+    return true;
+  }
+
+ private:
+  Eigen::Vector3d position(int id) const {
+    return id >= P_.baseId ? Eigen::Vector3d(P_.vertices.col(id - P_.baseId))
+                           : Eigen::Vector3d(prepared_.mesh().vertices.col(id));
+  }
+  Eigen::Vector3d triangleNormal(Eigen::Index t) const {  // 2 × area times the unit normal
+    return (position(P_.triangles(1, t)) - position(P_.triangles(0, t)))
+        .cross(position(P_.triangles(2, t)) - position(P_.triangles(0, t)));
+  }
+  const PreparedMesh& prepared_;
+  const HolePatch& P_;
+  std::vector<Eigen::Vector3d> reference_;
+  std::vector<std::vector<Eigen::Index>> incident_;
+  double minArea2_ = 0;
+};
+
+enum class VertexProjection { Converged, Blocked, Unfinished };
+
+// Newton steps x ← x − f ∇f/‖∇f‖² for new vertex k, each halved up to four times until k's
+// triangles stay acceptable; a step that cannot be made acceptable leaves k where it was.
+VertexProjection projectVertex(int k, HolePatch& P, const ImplicitField<3>& field, const PatchOrientation& orientation,
+                               double scale, const HoleFillOptions& options) {
+  for (int it = 0; it < options.newtonIterations; ++it) {
+    const Eigen::Vector3d x = P.vertices.col(k);
+    Vec<3> g;
+    const double f = field.evaluate(x, &g);
+    const double g2 = g.squaredNorm();
+    if (!std::isfinite(f) || !(g2 > 0) || !std::isfinite(g2)) return VertexProjection::Unfinished;
+    Eigen::Vector3d step = -f / g2 * g;
+    if (step.norm() > 0.5 * scale) step *= 0.5 * scale / step.norm();  // a wild step: bounded
+    bool accepted = false;
+    for (int halving = 0; halving <= 4 && !accepted; ++halving, step *= 0.5) {
+      P.vertices.col(k) = x + step;
+      accepted = orientation.acceptable(k);
+    }
+    if (!accepted) {
+      P.vertices.col(k) = x;
+      return VertexProjection::Blocked;
+    }
+    if ((P.vertices.col(k) - x).norm() < options.newtonTolerance * scale) return VertexProjection::Converged;
+  }
+  return VertexProjection::Unfinished;
+}
+
+// Gauss–Seidel sweeps: a vertex whose step was blocked by a neighbour not yet projected gets
+// another chance once the neighbours have moved. Marks `converged`; false when cancelled.
+bool projectionSweeps(HolePatch& P, const ImplicitField<3>& field, const PatchOrientation& orientation, double scale,
+                      const HoleFillOptions& options, std::vector<char>& converged) {
+  const int K = static_cast<int>(P.vertices.cols());
+  for (int sweep = 0; sweep < 3; ++sweep) {
+    bool blocked = false;
+    for (int k = 0; k < K; ++k) {
+      if (options.progress && k % 256 == 0 && !options.progress((sweep + double(k) / K) / 3.0)) return false;
+      if (converged[static_cast<size_t>(k)]) continue;
+      const VertexProjection outcome = projectVertex(k, P, field, orientation, scale, options);
+      converged[static_cast<size_t>(k)] = outcome == VertexProjection::Converged;
+      blocked |= outcome == VertexProjection::Blocked;
+    }
+    if (!blocked) break;
+  }
+  return true;
+}
+
+}  // namespace
+
 ProjectionResult projectPatch(const PreparedMesh& prepared, const HolePatch& patch, const ImplicitField<3>& field,
                               const HoleFillOptions& options) {
   ProjectionResult result;
   result.patch = patch;
   HolePatch& P = result.patch;
   const int K = static_cast<int>(P.vertices.cols());
-  const Eigen::Index T = P.triangles.cols();
-  auto position = [&](int id) -> Eigen::Vector3d {
-    return id >= P.baseId ? Eigen::Vector3d(P.vertices.col(id - P.baseId)) : Eigen::Vector3d(prepared.mesh().vertices.col(id));
-  };
-  auto triangleNormal = [&](Eigen::Index t) {  // 2 × area times the unit normal
-    return Eigen::Vector3d((position(P.triangles(1, t)) - position(P.triangles(0, t)))
-                               .cross(position(P.triangles(2, t)) - position(P.triangles(0, t))));
-  };
-  std::vector<Eigen::Vector3d> reference(static_cast<size_t>(T));
-  std::vector<std::vector<Eigen::Index>> incident(static_cast<size_t>(K));
-  for (Eigen::Index t = 0; t < T; ++t) {
-    reference[static_cast<size_t>(t)] = triangleNormal(t);
-    for (int k = 0; k < 3; ++k)
-      if (P.triangles(k, t) >= P.baseId) incident[static_cast<size_t>(P.triangles(k, t) - P.baseId)].push_back(t);
-  }
+  const PatchOrientation orientation(prepared, P);
   const double scale = std::max(P.diameter, 1e-300);
-  const double minArea2 = 1e-10 * P.meanEdgeLength * P.meanEdgeLength;
-  // Whether vertex k at its current position leaves its triangles unflipped and non-degenerate.
-  auto acceptable = [&](int k) {
-    for (Eigen::Index t : incident[static_cast<size_t>(k)]) {
-      const Eigen::Vector3d n = triangleNormal(t);
-      if (!(n.norm() > minArea2) || !(n.dot(reference[static_cast<size_t>(t)]) > 0)) return false;
-    }
-    return true;
-  };
   const Eigen::Matrix3Xd faired = P.vertices;
   // Large patches: Newton steps for all vertices at once first (batch evaluation), then every
   // vertex of a triangle they flipped or degenerated back to its faired position; the sweeps
   // below finish from there.
-  const auto unflipped = [&](Eigen::Index t) {
-    const Eigen::Vector3d n = triangleNormal(t);
-    return n.norm() > minArea2 && n.dot(reference[static_cast<size_t>(t)]) > 0;
-  };
-  if (K >= kBatchProjectionVertices && !batchedNewtonStart(field, faired, scale, unflipped, options.progress, P)) {
+  const auto unflipped = [&](Eigen::Index t) { return orientation.unflipped(t); };
+  std::vector<char> converged(static_cast<size_t>(K), 0);
+  if ((K >= kBatchProjectionVertices && !batchedNewtonStart(field, faired, scale, unflipped, options.progress, P)) ||
+      !projectionSweeps(P, field, orientation, scale, options, converged)) {
     result.cancelled = true;
     return result;
-  }
-  // Gauss–Seidel sweeps: a vertex whose step was blocked by a neighbour not yet projected gets
-  // another chance once the neighbours have moved.
-  std::vector<char> converged(static_cast<size_t>(K), 0);
-  for (int sweep = 0; sweep < 3; ++sweep) {
-    bool blocked = false;
-    for (int k = 0; k < K; ++k) {
-      if (options.progress && k % 256 == 0 && !options.progress((sweep + double(k) / K) / 3.0)) {
-        result.cancelled = true;
-        return result;
-      }
-      if (converged[static_cast<size_t>(k)]) continue;
-      for (int it = 0; it < options.newtonIterations; ++it) {
-        const Eigen::Vector3d x = P.vertices.col(k);
-        Vec<3> g;
-        const double f = field.evaluate(x, &g);
-        const double g2 = g.squaredNorm();
-        if (!std::isfinite(f) || !(g2 > 0) || !std::isfinite(g2)) break;
-        Eigen::Vector3d step = -f / g2 * g;
-        if (step.norm() > 0.5 * scale) step *= 0.5 * scale / step.norm();  // a wild step: bounded
-        bool accepted = false;
-        for (int halving = 0; halving <= 4 && !accepted; ++halving, step *= 0.5) {
-          P.vertices.col(k) = x + step;
-          accepted = acceptable(k);
-        }
-        if (!accepted) {
-          P.vertices.col(k) = x;
-          blocked = true;
-          break;
-        }
-        if ((P.vertices.col(k) - x).norm() < options.newtonTolerance * scale) {
-          converged[static_cast<size_t>(k)] = 1;
-          break;
-        }
-      }
-    }
-    if (!blocked) break;
   }
   for (int k = 0; k < K; ++k) {
     if (converged[static_cast<size_t>(k)]) continue;
     ++result.unconverged;
     const Eigen::Vector3d last = P.vertices.col(k);
     P.vertices.col(k) = faired.col(k);  // back to the faired position, unless that would now flip a triangle
-    if (!acceptable(k)) P.vertices.col(k) = last;
+    if (!orientation.acceptable(k)) P.vertices.col(k) = last;
   }
   Eigen::VectorXd f;
   if (!evaluateInChunks(field, P.vertices, f, nullptr, options.progress, 1.0)) {
