@@ -25,76 +25,54 @@ struct Mark {
   float r, g, b, width;
 };
 
-}  // namespace
-
-Field2dView::Field2dView()
-    : heat_(buildProgram({"fullscreen.vert", "field2d.frag"})), marks_(buildProgram({"marks2d.vert", "marks2d.frag"})) {
-  marksVao_.setVertexBuffer(0, marksBuffer_, 0, sizeof(Mark));
-  marksVao_.setAttribute(0, 0, 4, GL_FLOAT, false, 0);
-  marksVao_.setAttribute(1, 0, 4, GL_FLOAT, false, 4 * sizeof(float));
-  glVertexArrayBindingDivisor(marksVao_.id(), 0, 1);  // one segment per instance
-  checkGl("Field2dView vertex arrays");
-}
-
-void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, const Field2dViewOptions& options,
-                           const Points<2>& points, const Points<2>& normals) {
-  const auto t0 = Clock::now();
+// Grid point (a, b), b = 0 at the bottom (GL row order), sits at GL pixel coordinates
+// ((a + ½)·W/gw, (b + ½)·H/gh); with gw = W, gh = H these are the pixel centres. World
+// coordinates, column b·gw + a.
+Points<2> gridPoints(const View2d& view, int gw, int gh) {
   const int W = view.width(), H = view.height();
-  const double scale = std::clamp(options.gridScale, 0.05, 1.0);
-  const int gw = std::max(1, int(std::lround(W * scale)));
-  const int gh = std::max(1, int(std::lround(H * scale)));
-  const std::size_t n = std::size_t(gw) * gh;
-
-  // Grid point (a, b), b = 0 at the bottom (GL row order), sits at GL pixel coordinates
-  // ((a + ½)·W/gw, (b + ½)·H/gh); with gw = W, gh = H these are the pixel centres.
-  Points<2> X(2, Eigen::Index(n));
+  Points<2> X(2, Eigen::Index(gw) * gh);
   const double sx = double(W) / gw, sy = double(H) / gh;
 #pragma omp parallel for schedule(static)
   for (int b = 0; b < gh; ++b)
     for (int a = 0; a < gw; ++a)
       X.col(Eigen::Index(b) * gw + a) = view.pixelToWorld((a + 0.5) * sx, H - (b + 0.5) * sy);
-  Eigen::VectorXd f;
-  Points<2> G;
-  field.evaluateBatch(X, f, &G);
-  std::vector<char> valid;
-  field.validBatch(X, valid);
+  return X;
+}
 
-  // RGBA32F, not RGB32F: llvmpipe fetches 3-channel float textures through a slow generic path.
-  std::vector<float> texels(4 * n);
+// RGBA32F texels (f, ∂f/∂x, ∂f/∂y, 1 where there is no data), not RGB32F: llvmpipe fetches
+// 3-channel float textures through a slow generic path.
+std::vector<float> fieldTexels(const Eigen::VectorXd& f, const Points<2>& G, const std::vector<char>& valid) {
+  const std::ptrdiff_t n = f.size();
+  std::vector<float> texels(4 * std::size_t(n));
 #pragma omp parallel for schedule(static)
-  for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p) {
+  for (std::ptrdiff_t p = 0; p < n; ++p) {
     texels[4 * p] = float(f(p));
     texels[4 * p + 1] = float(G(0, p));
     texels[4 * p + 2] = float(G(1, p));
-    texels[4 * p + 3] = valid[std::size_t(p)] ? 0.0f : 1.0f;  // 1: no data
+    texels[4 * p + 3] = valid[std::size_t(p)] ? 0.0f : 1.0f;
   }
+  return texels;
+}
 
-  range_ = options.style.range;
-  if (!(range_ > 0)) {
-    double m = 0;
-    for (std::size_t p = 0; p < n; ++p) {
-      if (!valid[p] || !std::isfinite(f(Eigen::Index(p)))) continue;
-      if (options.bounds && !options.bounds->contains(X.col(Eigen::Index(p)))) continue;
-      m = std::max(m, std::abs(f(Eigen::Index(p))));
-    }
-    range_ = m > 0 ? m : 1.0;
+// The colour range when none is given: the largest finite |f| with data (inside `bounds` when
+// set), 1 if that is 0.
+double automaticRange(const Eigen::VectorXd& f, const std::vector<char>& valid, const Points<2>& X,
+                      const std::optional<Box<2>>& bounds) {
+  double m = 0;
+  for (Eigen::Index p = 0; p < f.size(); ++p) {
+    if (!valid[std::size_t(p)] || !std::isfinite(f(p))) continue;
+    if (bounds && !bounds->contains(X.col(p))) continue;
+    m = std::max(m, std::abs(f(p)));
   }
-  isoSpacing_ = options.style.isoSpacing == 0 ? niceIsoSpacing(range_) : options.style.isoSpacing;
-  evaluateMs_ = msSince(t0);
+  return m > 0 ? m : 1.0;
+}
 
-  const auto t1 = Clock::now();
-  if (!field_.valid() || gw != gridW_ || gh != gridH_) {
-    field_ = Texture::create2D(GL_RGBA32F, gw, gh);
-    field_.setWrap(GL_CLAMP_TO_EDGE);
-  }
-  field_.upload2D(GL_RGBA, GL_FLOAT, texels.data());
-  gridW_ = gw;
-  gridH_ = gh;
-  view_ = view;
-  options_ = options;
-
-  // Marks: normals (with arrow heads) first, then the dots on top, as the reference draws them.
+// Marks in GL pixels: normals (with arrow heads) first, then the dots on top, as the reference
+// draws them, scaled to the mean sample spacing (mark_sizes.h).
+std::vector<Mark> sampleMarks(const View2d& view, const Field2dViewOptions& options, const Points<2>& points,
+                              const Points<2>& normals) {
   std::vector<Mark> marks;
+  const int H = view.height();
   const auto toGl = [&](const Vec<2>& world) {
     const Vec<2> p = view.worldToPixel(world);
     return Vec<2>(p.x(), H - p.y());
@@ -104,7 +82,6 @@ void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, co
                      float(width)});
   };
   const Field2dStyle& st = options.style;
-  // Marks scaled to the mean sample spacing (mark_sizes.h), as the reference draws them.
   const MarkSizes marksPx = markSizes2d(st, view, points);
   const double normalPx = marksPx.normalLengthPx, dotRadiusPx = marksPx.pointRadiusPx;
   if (options.showNormals && normals.cols() == points.cols() && normalPx > 0)
@@ -128,6 +105,48 @@ void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, co
       const Vec<2> a = toGl(points.col(s));
       add(a, a, 2.0 * dotRadiusPx, st.pointColor);
     }
+  return marks;
+}
+
+}  // namespace
+
+Field2dView::Field2dView()
+    : heat_(buildProgram({"fullscreen.vert", "field2d.frag"})), marks_(buildProgram({"marks2d.vert", "marks2d.frag"})) {
+  marksVao_.setVertexBuffer(0, marksBuffer_, 0, sizeof(Mark));
+  marksVao_.setAttribute(0, 0, 4, GL_FLOAT, false, 0);
+  marksVao_.setAttribute(1, 0, 4, GL_FLOAT, false, 4 * sizeof(float));
+  glVertexArrayBindingDivisor(marksVao_.id(), 0, 1);  // one segment per instance
+  checkGl("Field2dView vertex arrays");
+}
+
+void Field2dView::setField(const ImplicitField<2>& field, const View2d& view, const Field2dViewOptions& options,
+                           const Points<2>& points, const Points<2>& normals) {
+  const auto t0 = Clock::now();
+  const double scale = std::clamp(options.gridScale, 0.05, 1.0);
+  const int gw = std::max(1, int(std::lround(view.width() * scale)));
+  const int gh = std::max(1, int(std::lround(view.height() * scale)));
+  const Points<2> X = gridPoints(view, gw, gh);
+  Eigen::VectorXd f;
+  Points<2> G;
+  field.evaluateBatch(X, f, &G);
+  std::vector<char> valid;
+  field.validBatch(X, valid);
+  const std::vector<float> texels = fieldTexels(f, G, valid);
+  range_ = options.style.range > 0 ? options.style.range : automaticRange(f, valid, X, options.bounds);
+  isoSpacing_ = options.style.isoSpacing == 0 ? niceIsoSpacing(range_) : options.style.isoSpacing;
+  evaluateMs_ = msSince(t0);
+
+  const auto t1 = Clock::now();
+  if (!field_.valid() || gw != gridW_ || gh != gridH_) {
+    field_ = Texture::create2D(GL_RGBA32F, gw, gh);
+    field_.setWrap(GL_CLAMP_TO_EDGE);
+  }
+  field_.upload2D(GL_RGBA, GL_FLOAT, texels.data());
+  gridW_ = gw;
+  gridH_ = gh;
+  view_ = view;
+  options_ = options;
+  const std::vector<Mark> marks = sampleMarks(view, options, points, normals);
   markCount_ = int(marks.size());
   if (!marks.empty()) {
     marksBuffer_.setData(marks.data(), marks.size() * sizeof(Mark));
