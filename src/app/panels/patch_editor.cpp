@@ -119,11 +119,12 @@ void PatchEditor::drawHandles() const {
   }
 }
 
-void PatchEditor::drawPanel() {
-  Scene s = ctx_.scene();
-  PatchSpec& p = s.patch;
+namespace {
+
+// The patch's data: preset, splits and domain. Each change clears the edited knots (the data
+// come from the preset again); `label` names the change for undo.
+bool drawPatchData(PatchSpec& p, std::string& label) {
   bool changed = false;
-  std::string label = "patch";
   if (ImGui::BeginCombo("preset##patch", p.preset.c_str())) {
     for (const auto& [name, description] : patchPresets()) {
       if (ImGui::Selectable(name.c_str(), name == p.preset) && name != p.preset) {
@@ -156,6 +157,13 @@ void PatchEditor::drawPanel() {
     changed = true;
     label = "domain";
   }
+  return changed;
+}
+
+// How the patch is shown and edited: Hermite or Bézier handles, colouring, tessellation, and
+// the reset of edited knots.
+bool drawPatchDisplay(GuiContext& ctx, PatchSpec& p, std::string& label) {
+  bool changed = false;
   int form = p.form == PatchForm::Hermite ? 0 : 1;
   ImGui::RadioButton("Hermite", &form, 0);
   ImGui::SameLine();
@@ -165,7 +173,7 @@ void PatchEditor::drawPanel() {
     changed = true;
     label = "form";
   }
-  ctx_.recordWidget("patch.form");
+  ctx.recordWidget("patch.form");
   helpMarker("Hermite: corner points, u/v tangents (red/green) and twists (blue) per knot. Bezier: the 16 "
               "control points per patch. Both edit the same knot data, so the surface never jumps when you switch.");
   changed |= ImGui::Checkbox("error colour", &p.showError);
@@ -183,35 +191,48 @@ void PatchEditor::drawPanel() {
     changed = true;
     label = "reset patch";
   }
-  if (changed) ctx_.document.apply(s, label);
+  return changed;
+}
 
-  const FitOutcome* f = ctx_.fits.shown().get();
-  if (const PatchDisplay* shownPatch = f ? f->as<PatchDisplay>() : nullptr) {
-    ImGui::Separator();
-    const PatchDisplay& v = *shownPatch;
-    ImGui::Text("%d x %d patches, %d triangles", v.grid.patchesU(), v.grid.patchesV(), int(v.mesh.triangles.cols()));
-    if (ctx_.options.showTimings) ImGui::Text("tessellation %.2f ms", v.tessellateMs);
-    if (!v.vertexError.empty()) ImGui::Text("max |X - torus| %.3g", v.maxError);
-    if (!v.table.empty() && ImGui::BeginTable("torus error", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
-      ImGui::TableSetupColumn("splits");
-      ImGui::TableSetupColumn("err x");
-      ImGui::TableSetupColumn("err y");
-      ImGui::TableSetupColumn("err z");
-      ImGui::TableHeadersRow();
-      for (const PatchStudyRow& r : v.table) {
-        ImGui::TableNextRow();
+// The shown patch grid's size and timing, its largest error against the torus, and the torus
+// error table by splits.
+void drawPatchSummary(const FitOutcome& f, const PatchDisplay& v, bool showTimings) {
+  ImGui::Separator();
+  ImGui::Text("%d x %d patches, %d triangles", v.grid.patchesU(), v.grid.patchesV(), int(v.mesh.triangles.cols()));
+  if (showTimings) ImGui::Text("tessellation %.2f ms", v.tessellateMs);
+  if (!v.vertexError.empty()) ImGui::Text("max |X - torus| %.3g", v.maxError);
+  if (!v.table.empty() && ImGui::BeginTable("torus error", 4, ImGuiTableFlags_Borders | ImGuiTableFlags_SizingFixedFit)) {
+    ImGui::TableSetupColumn("splits");
+    ImGui::TableSetupColumn("err x");
+    ImGui::TableSetupColumn("err y");
+    ImGui::TableSetupColumn("err z");
+    ImGui::TableHeadersRow();
+    for (const PatchStudyRow& r : v.table) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::Text("%dx%d", r.splits[0], r.splits[1]);
+      for (double e : r.error) {
         ImGui::TableNextColumn();
-        ImGui::Text("%dx%d", r.splits[0], r.splits[1]);
-        for (double e : r.error) {
-          ImGui::TableNextColumn();
-          ImGui::Text("%.3g", e);
-        }
+        ImGui::Text("%.3g", e);
       }
-      ImGui::EndTable();
-    } else if (f->scene.patch.preset == "torus" && !f->scene.patch.knots.empty()) {
-      ImGui::TextDisabled("(error table: the data are edited, not the torus's)");
     }
+    ImGui::EndTable();
+  } else if (f.scene.patch.preset == "torus" && !f.scene.patch.knots.empty()) {
+    ImGui::TextDisabled("(error table: the data are edited, not the torus's)");
   }
+}
+
+}  // namespace
+
+void PatchEditor::drawPanel() {
+  Scene s = ctx_.scene();
+  std::string label = "patch";
+  bool changed = drawPatchData(s.patch, label);
+  changed |= drawPatchDisplay(ctx_, s.patch, label);
+  if (changed) ctx_.document.apply(s, label);
+  const FitOutcome* f = ctx_.fits.shown().get();
+  if (const PatchDisplay* shownPatch = f ? f->as<PatchDisplay>() : nullptr)
+    drawPatchSummary(*f, *shownPatch, ctx_.options.showTimings);
 }
 
 }  // namespace hermite::app
