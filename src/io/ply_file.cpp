@@ -77,6 +77,75 @@ bool isInteger(Scalar type) { return type != Scalar::Float32 && type != Scalar::
 
 bool isIndexList(const Property& p) { return p.list && (p.name == "vertex_indices" || p.name == "vertex_index"); }
 
+// "format KIND VERSION" (after the keyword): ascii or binary of either byte order, version 1.0.
+Format parseFormatLine(Tokens& tokens, const std::string& where) {
+  std::string_view kind, version;
+  if (!tokens.next(kind) || !tokens.next(version))
+    throw InputError(where + "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
+  Format format = Format::Ascii;
+  if (kind == "ascii")
+    format = Format::Ascii;
+  else if (kind == "binary_little_endian")
+    format = Format::BinaryLittle;
+  else if (kind == "binary_big_endian")
+    format = Format::BinaryBig;
+  else
+    throw InputError(where + "unknown format " + quotedToken(kind) +
+                     " (expected ascii, binary_little_endian or binary_big_endian)");
+  if (version != "1.0") throw InputError(where + "unsupported PLY version " + quotedToken(version) + " (expected 1.0)");
+  return format;
+}
+
+// "element NAME COUNT" (after the keyword), appended to the header's elements.
+void parseElementLine(Tokens& tokens, long lineNumber, const std::string& where, Header& header) {
+  Element element;
+  element.line = lineNumber;
+  std::string_view name, count;
+  if (!tokens.next(name) || !tokens.next(count)) throw InputError(where + "expected 'element NAME COUNT'");
+  element.name = std::string(name);
+  if (!parseInteger(count, element.count) || element.count < 0)
+    throw InputError(where + "element " + quotedToken(element.name) + ": the count " + quotedToken(count) +
+                     " is not a non-negative integer");
+  if (element.count > kMaxMeshElements)
+    throw InputError(where + "element " + quotedToken(element.name) + ": the count " + std::to_string(element.count) +
+                     " is larger than this reader supports (" + std::to_string(kMaxMeshElements) + ")");
+  for (const Element& e : header.elements)
+    if (e.name == element.name) throw InputError(where + "element " + quotedToken(element.name) + " is declared twice");
+  header.elements.push_back(std::move(element));
+}
+
+// "property TYPE NAME" or "property list COUNT_TYPE ITEM_TYPE NAME" (after the keyword), appended
+// to the last element's properties.
+void parsePropertyLine(Tokens& tokens, const std::string& where, Header& header) {
+  if (header.elements.empty()) throw InputError(where + "a property before any element");
+  Property property;
+  std::string_view type;
+  if (!tokens.next(type)) throw InputError(where + "expected 'property TYPE NAME'");
+  if (type == "list") {
+    std::string_view countType, itemType;
+    property.list = true;
+    if (!tokens.next(countType) || !tokens.next(itemType))
+      throw InputError(where + "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
+    if (!parseScalarName(countType, property.countType))
+      throw InputError(where + "unknown PLY type " + quotedToken(countType));
+    if (!isInteger(property.countType))
+      throw InputError(where + "a list count type must be an integer type, not " + quotedToken(countType));
+    type = itemType;
+  }
+  if (!parseScalarName(type, property.type))
+    throw InputError(where + "unknown PLY type " + quotedToken(type) +
+                     " (expected char, uchar, short, ushort, int, uint, float, double or their sized names)");
+  std::string_view name;
+  if (!tokens.next(name)) throw InputError(where + "a property without a name");
+  property.name = std::string(name);
+  Element& element = header.elements.back();
+  for (const Property& p : element.properties)
+    if (p.name == property.name)
+      throw InputError(where + "property " + quotedToken(property.name) + " of element " + quotedToken(element.name) +
+                       " is declared twice");
+  element.properties.push_back(std::move(property));
+}
+
 Header parseHeader(std::string_view bytes, const std::string& path) {
   // UTF-16 text would not even show the magic; say so instead of "not a PLY file".
   const std::size_t headerEnd = bytes.find("end_header");
@@ -95,63 +164,12 @@ Header parseHeader(std::string_view bytes, const std::string& path) {
     if (!tokens.next(token)) continue;  // blank header line: tolerated
     if (token == "comment" || token == "obj_info") continue;
     if (token == "format") {
-      std::string_view kind, version;
-      if (!tokens.next(kind) || !tokens.next(version))
-        throw InputError(where() + "expected 'format ascii|binary_little_endian|binary_big_endian 1.0'");
-      if (kind == "ascii")
-        header.format = Format::Ascii;
-      else if (kind == "binary_little_endian")
-        header.format = Format::BinaryLittle;
-      else if (kind == "binary_big_endian")
-        header.format = Format::BinaryBig;
-      else
-        throw InputError(where() + "unknown format " + quotedToken(kind) +
-                         " (expected ascii, binary_little_endian or binary_big_endian)");
-      if (version != "1.0") throw InputError(where() + "unsupported PLY version " + quotedToken(version) + " (expected 1.0)");
+      header.format = parseFormatLine(tokens, where());
       haveFormat = true;
     } else if (token == "element") {
-      Element element;
-      element.line = lines.number();
-      std::string_view name, count;
-      if (!tokens.next(name) || !tokens.next(count)) throw InputError(where() + "expected 'element NAME COUNT'");
-      element.name = std::string(name);
-      if (!parseInteger(count, element.count) || element.count < 0)
-        throw InputError(where() + "element " + quotedToken(element.name) + ": the count " + quotedToken(count) +
-                         " is not a non-negative integer");
-      if (element.count > kMaxMeshElements)
-        throw InputError(where() + "element " + quotedToken(element.name) + ": the count " + std::to_string(element.count) +
-                         " is larger than this reader supports (" + std::to_string(kMaxMeshElements) + ")");
-      for (const Element& e : header.elements)
-        if (e.name == element.name) throw InputError(where() + "element " + quotedToken(element.name) + " is declared twice");
-      header.elements.push_back(std::move(element));
+      parseElementLine(tokens, lines.number(), where(), header);
     } else if (token == "property") {
-      if (header.elements.empty()) throw InputError(where() + "a property before any element");
-      Property property;
-      std::string_view type;
-      if (!tokens.next(type)) throw InputError(where() + "expected 'property TYPE NAME'");
-      if (type == "list") {
-        std::string_view countType, itemType;
-        property.list = true;
-        if (!tokens.next(countType) || !tokens.next(itemType))
-          throw InputError(where() + "expected 'property list COUNT_TYPE ITEM_TYPE NAME'");
-        if (!parseScalarName(countType, property.countType))
-          throw InputError(where() + "unknown PLY type " + quotedToken(countType));
-        if (!isInteger(property.countType))
-          throw InputError(where() + "a list count type must be an integer type, not " + quotedToken(countType));
-        type = itemType;
-      }
-      if (!parseScalarName(type, property.type))
-        throw InputError(where() + "unknown PLY type " + quotedToken(type) +
-                         " (expected char, uchar, short, ushort, int, uint, float, double or their sized names)");
-      std::string_view name;
-      if (!tokens.next(name)) throw InputError(where() + "a property without a name");
-      property.name = std::string(name);
-      Element& element = header.elements.back();
-      for (const Property& p : element.properties)
-        if (p.name == property.name)
-          throw InputError(where() + "property " + quotedToken(property.name) + " of element " +
-                           quotedToken(element.name) + " is declared twice");
-      element.properties.push_back(std::move(property));
+      parsePropertyLine(tokens, where(), header);
     } else if (token == "end_header") {
       ended = true;
     } else {
