@@ -57,25 +57,77 @@ void parseVertexLines(std::string_view bytes, const std::string& path, std::vect
   }
 }
 
-}  // namespace
-
-TriMesh readObj(std::string_view bytes, const std::string& path) {
-  requireSingleByteText(bytes, path, "OBJ files");
-  std::vector<double> vertexValues, normalValues;
-  parseVertexLines(bytes, path, vertexValues, normalValues);
-
+// tinyobjloader's faces (fan-triangulated here, with our own index checks); the material text
+// is empty, so an `mtllib` line reads nothing from disk.
+void parseWithTinyobj(std::string_view bytes, const std::string& path, tinyobj::ObjReader& reader) {
   tinyobj::ObjReaderConfig config;
-  config.triangulate = false;  // fan-triangulated below, with our own index checks
+  config.triangulate = false;
   config.vertex_color = false;
-  tinyobj::ObjReader reader;
-  // The material text is empty: an `mtllib` line reads nothing from disk. tinyobjloader does
-  // not skip a byte-order mark; TextLines does.
+  // tinyobjloader does not skip a byte-order mark; TextLines does.
   const std::string_view body = bytes.substr(0, 3) == "\xEF\xBB\xBF" ? bytes.substr(3) : bytes;
   if (!reader.ParseFromString(std::string(body), std::string(), config)) {
     std::string message = reader.Error();
     while (!message.empty() && (message.back() == '\n' || message.back() == '\r')) message.pop_back();
     throw InputError(path + ": not a valid OBJ file (" + (message.empty() ? "unknown parse error" : message) + ")");
   }
+}
+
+// The faces' triangles (fans), and per vertex the sum of the normals its corners name when
+// every corner names one.
+struct ObjFaces {
+  std::vector<int> corners;
+  Eigen::Matrix3Xd normalSums;
+  bool everyCornerHasNormal = false;
+  std::size_t count = 0;
+};
+
+ObjFaces collectFaces(const tinyobj::ObjReader& reader, Eigen::Index vertexCount, const std::vector<double>& normals,
+                      const std::string& path) {
+  const Eigen::Index normalCount = static_cast<Eigen::Index>(normals.size() / 3);
+  ObjFaces faces;
+  faces.normalSums = Eigen::Matrix3Xd::Zero(3, normalCount > 0 ? vertexCount : 0);
+  faces.everyCornerHasNormal = normalCount > 0;
+  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
+    const auto& indices = shape.mesh.indices;
+    std::size_t next = 0;
+    for (const auto sides : shape.mesh.num_face_vertices) {
+      const std::size_t n = sides;
+      const auto face = [&] { return path + ": face " + std::to_string(faces.count); };  // built only to throw
+      if (n < 3) throw InputError(face() + " has " + std::to_string(n) + " vertices; a face needs at least 3");
+      if (next + n > indices.size()) throw InputError(face() + " has fewer indices than vertices");
+      for (std::size_t k = 0; k < n; ++k) {
+        const tinyobj::index_t& corner = indices[next + k];
+        if (corner.vertex_index < 0 || corner.vertex_index >= vertexCount)
+          throw InputError(face() + " refers to vertex " + std::to_string(corner.vertex_index + 1) + ", but there are " +
+                           std::to_string(vertexCount) + " 'v' lines");
+        if (corner.normal_index < 0) {
+          faces.everyCornerHasNormal = false;
+        } else if (corner.normal_index >= normalCount) {
+          throw InputError(face() + " refers to normal " + std::to_string(corner.normal_index + 1) + ", but there are " +
+                           std::to_string(normalCount) + " 'vn' lines");
+        } else if (faces.everyCornerHasNormal) {
+          faces.normalSums.col(corner.vertex_index) +=
+              Eigen::Map<const Eigen::Vector3d>(normals.data() + 3 * corner.normal_index);
+        }
+        if (k >= 2)
+          faces.corners.insert(faces.corners.end(), {indices[next].vertex_index, indices[next + k - 1].vertex_index,
+                                                     corner.vertex_index});
+      }
+      next += n;
+      ++faces.count;
+    }
+  }
+  return faces;
+}
+
+}  // namespace
+
+TriMesh readObj(std::string_view bytes, const std::string& path) {
+  requireSingleByteText(bytes, path, "OBJ files");
+  std::vector<double> vertexValues, normalValues;
+  parseVertexLines(bytes, path, vertexValues, normalValues);
+  tinyobj::ObjReader reader;
+  parseWithTinyobj(bytes, path, reader);
   const tinyobj::attrib_t& attrib = reader.GetAttrib();
   const Eigen::Index vertexCount = static_cast<Eigen::Index>(attrib.vertices.size() / 3);
   const Eigen::Index normalCount = static_cast<Eigen::Index>(attrib.normals.size() / 3);
@@ -87,63 +139,24 @@ TriMesh readObj(std::string_view bytes, const std::string& path) {
                      std::to_string(normalValues.size() / 3) + " 'vn' lines, but tinyobjloader saw " +
                      std::to_string(attrib.vertices.size() / 3) + " and " + std::to_string(attrib.normals.size() / 3) +
                      " (control characters or NUL bytes in a line?)");
-  const std::vector<double>& vertexData = vertexValues;
-  const std::vector<double>& normalData = normalValues;
 
   TriMesh mesh;
-  mesh.vertices = Eigen::Map<const Eigen::Matrix3Xd>(vertexData.data(), 3, vertexCount);
-
-  std::vector<int> corners;
-  Eigen::Matrix3Xd normalSums = Eigen::Matrix3Xd::Zero(3, normalCount > 0 ? vertexCount : 0);
-  bool everyCornerHasNormal = normalCount > 0;
-  std::size_t faceNumber = 0;
-  for (const tinyobj::shape_t& shape : reader.GetShapes()) {
-    const auto& indices = shape.mesh.indices;
-    std::size_t next = 0;
-    for (const auto sides : shape.mesh.num_face_vertices) {
-      const std::size_t n = sides;
-      if (n < 3)
-        throw InputError(path + ": face " + std::to_string(faceNumber) + " has " + std::to_string(n) +
-                         " vertices; a face needs at least 3");
-      if (next + n > indices.size())
-        throw InputError(path + ": face " + std::to_string(faceNumber) + " has fewer indices than vertices");
-      for (std::size_t k = 0; k < n; ++k) {
-        const tinyobj::index_t& corner = indices[next + k];
-        if (corner.vertex_index < 0 || corner.vertex_index >= vertexCount)
-          throw InputError(path + ": face " + std::to_string(faceNumber) + " refers to vertex " +
-                           std::to_string(corner.vertex_index + 1) + ", but there are " +
-                           std::to_string(vertexCount) + " 'v' lines");
-        if (corner.normal_index < 0) {
-          everyCornerHasNormal = false;
-        } else if (corner.normal_index >= normalCount) {
-          throw InputError(path + ": face " + std::to_string(faceNumber) + " refers to normal " +
-                           std::to_string(corner.normal_index + 1) + ", but there are " +
-                           std::to_string(normalCount) + " 'vn' lines");
-        } else if (everyCornerHasNormal) {
-          normalSums.col(corner.vertex_index) +=
-              Eigen::Map<const Eigen::Vector3d>(normalData.data() + 3 * corner.normal_index);
-        }
-        if (k >= 2)
-          corners.insert(corners.end(), {indices[next].vertex_index, indices[next + k - 1].vertex_index,
-                                         corner.vertex_index});
-      }
-      next += n;
-      ++faceNumber;
-    }
-  }
-  mesh.triangles = Eigen::Map<const Eigen::Matrix3Xi>(corners.data(), 3, static_cast<Eigen::Index>(corners.size() / 3));
-
-  if (faceNumber == 0) {
+  mesh.vertices = Eigen::Map<const Eigen::Matrix3Xd>(vertexValues.data(), 3, vertexCount);
+  ObjFaces faces = collectFaces(reader, vertexCount, normalValues, path);
+  mesh.triangles =
+      Eigen::Map<const Eigen::Matrix3Xi>(faces.corners.data(), 3, static_cast<Eigen::Index>(faces.corners.size() / 3));
+  if (faces.count == 0) {
     // An oriented point set: the i-th vn is the normal of the i-th v.
     if (normalCount > 0 && normalCount != vertexCount)
       throw InputError(path + ": " + std::to_string(vertexCount) + " 'v' lines but " + std::to_string(normalCount) +
                        " 'vn' lines; without faces, each point needs exactly one normal");
-    if (normalCount > 0) mesh.normals = Eigen::Map<const Eigen::Matrix3Xd>(normalData.data(), 3, normalCount);
-  } else if (everyCornerHasNormal) {
+    if (normalCount > 0) mesh.normals = Eigen::Map<const Eigen::Matrix3Xd>(normalValues.data(), 3, normalCount);
+  } else if (faces.everyCornerHasNormal) {
     // Vertices no face uses keep a zero sum: give the mesh normals only when every vertex has one.
     bool complete = true;
-    for (Eigen::Index i = 0; i < vertexCount && complete; ++i) complete = normalSums.col(i).cwiseAbs().maxCoeff() > 0;
-    if (complete) mesh.normals = std::move(normalSums);
+    for (Eigen::Index i = 0; i < vertexCount && complete; ++i)
+      complete = faces.normalSums.col(i).cwiseAbs().maxCoeff() > 0;
+    if (complete) mesh.normals = std::move(faces.normalSums);
   }
   checkAndNormalizeMesh(mesh, path);
   return mesh;
