@@ -415,71 +415,87 @@ TriMesh readGltf(std::string_view bytes, const std::string& path) {
   return mesh;
 }
 
+namespace {
+
+// One buffer holding the positions, then the normals when the mesh has them, then the triangle
+// indices: float32 × 3 per vertex, uint32 × 3 per triangle.
+tinygltf::Buffer meshBuffer(const TriMesh& mesh) {
+  const std::size_t vec3Bytes = static_cast<std::size_t>(mesh.vertexCount()) * 3 * sizeof(float);
+  const std::size_t indexBytes = static_cast<std::size_t>(mesh.triangleCount()) * 3 * sizeof(std::uint32_t);
+  const bool normals = mesh.hasNormals();
+  tinygltf::Buffer buffer;
+  buffer.data.resize(vec3Bytes * (normals ? 2 : 1) + indexBytes);
+  unsigned char* p = buffer.data.data();
+  const Eigen::Matrix3Xf positions = mesh.vertices.cast<float>();
+  std::memcpy(p, positions.data(), vec3Bytes);
+  if (normals) {
+    const Eigen::Matrix3Xf n = mesh.normals.cast<float>();
+    std::memcpy(p + vec3Bytes, n.data(), vec3Bytes);
+  }
+  if (indexBytes > 0) {
+    const Eigen::Matrix<std::uint32_t, 3, Eigen::Dynamic> t = mesh.triangles.cast<std::uint32_t>();
+    std::memcpy(p + vec3Bytes * (normals ? 2 : 1), t.data(), indexBytes);
+  }
+  return buffer;
+}
+
+// Appends a view of buffer 0 and an accessor of it; the accessor's index.
+int addAccessor(tinygltf::Model& model, std::size_t offset, std::size_t length, int target, int componentType,
+                int type, std::size_t count) {
+  tinygltf::BufferView view;
+  view.buffer = 0;
+  view.byteOffset = offset;
+  view.byteLength = length;
+  view.target = target;
+  model.bufferViews.push_back(view);
+  tinygltf::Accessor a;
+  a.bufferView = static_cast<int>(model.bufferViews.size() - 1);
+  a.byteOffset = 0;
+  a.componentType = componentType;
+  a.type = type;
+  a.count = count;
+  model.accessors.push_back(a);
+  return static_cast<int>(model.accessors.size() - 1);
+}
+
+// The mesh's one primitive (triangles, or points when it has none) over meshBuffer's layout.
+tinygltf::Primitive meshPrimitive(const TriMesh& mesh, tinygltf::Model& model) {
+  const std::size_t vertexCount = static_cast<std::size_t>(mesh.vertexCount());
+  const std::size_t vec3Bytes = vertexCount * 3 * sizeof(float);
+  const std::size_t indexCount = static_cast<std::size_t>(mesh.triangleCount()) * 3;
+  const bool normals = mesh.hasNormals();
+  tinygltf::Primitive primitive;
+  primitive.mode = indexCount > 0 ? TINYGLTF_MODE_TRIANGLES : TINYGLTF_MODE_POINTS;
+  const int position = addAccessor(model, 0, vec3Bytes, TINYGLTF_TARGET_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                   TINYGLTF_TYPE_VEC3, vertexCount);
+  // POSITION needs min and max (glTF 2.0 §5.1.1), of the stored floats: rounding to float is
+  // monotone, so those are the rounded extremes of the doubles.
+  const Eigen::Vector3f lo = mesh.vertices.rowwise().minCoeff().cast<float>();
+  const Eigen::Vector3f hi = mesh.vertices.rowwise().maxCoeff().cast<float>();
+  model.accessors[static_cast<std::size_t>(position)].minValues = {lo.x(), lo.y(), lo.z()};
+  model.accessors[static_cast<std::size_t>(position)].maxValues = {hi.x(), hi.y(), hi.z()};
+  primitive.attributes["POSITION"] = position;
+  if (normals)
+    primitive.attributes["NORMAL"] = addAccessor(model, vec3Bytes, vec3Bytes, TINYGLTF_TARGET_ARRAY_BUFFER,
+                                                 TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertexCount);
+  if (indexCount > 0)
+    primitive.indices = addAccessor(model, vec3Bytes * (normals ? 2 : 1), indexCount * sizeof(std::uint32_t),
+                                    TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                                    TINYGLTF_TYPE_SCALAR, indexCount);
+  return primitive;
+}
+
+}  // namespace
+
 std::string writeGltf(const TriMesh& mesh, bool binary, const std::string& path) {
   tinygltf::Model model;
   model.asset.version = "2.0";
   model.asset.generator = "Hermite Lab";
   tinygltf::Scene scene;
-
-  const std::size_t vertexCount = static_cast<std::size_t>(mesh.vertexCount());
-  if (vertexCount > 0) {
-    const bool normals = mesh.hasNormals();
-    const bool triangles = mesh.triangleCount() > 0;
-    const std::size_t vec3Bytes = vertexCount * 3 * sizeof(float);
-    const std::size_t indexBytes = static_cast<std::size_t>(mesh.triangleCount()) * 3 * sizeof(std::uint32_t);
-    tinygltf::Buffer buffer;
-    buffer.data.resize(vec3Bytes * (normals ? 2 : 1) + indexBytes);
-    unsigned char* p = buffer.data.data();
-    const Eigen::Matrix3Xf positions = mesh.vertices.cast<float>();
-    std::memcpy(p, positions.data(), vec3Bytes);
-    if (normals) {
-      const Eigen::Matrix3Xf n = mesh.normals.cast<float>();
-      std::memcpy(p + vec3Bytes, n.data(), vec3Bytes);
-    }
-    if (triangles) {
-      const Eigen::Matrix<std::uint32_t, 3, Eigen::Dynamic> t = mesh.triangles.cast<std::uint32_t>();
-      std::memcpy(p + vec3Bytes * (normals ? 2 : 1), t.data(), indexBytes);
-    }
-    model.buffers.push_back(std::move(buffer));
-
-    auto addView = [&](std::size_t offset, std::size_t length, int target) {
-      tinygltf::BufferView view;
-      view.buffer = 0;
-      view.byteOffset = offset;
-      view.byteLength = length;
-      view.target = target;
-      model.bufferViews.push_back(view);
-      return static_cast<int>(model.bufferViews.size() - 1);
-    };
-    auto addAccessor = [&](int view, int componentType, int type, std::size_t count) {
-      tinygltf::Accessor a;
-      a.bufferView = view;
-      a.byteOffset = 0;
-      a.componentType = componentType;
-      a.type = type;
-      a.count = count;
-      model.accessors.push_back(a);
-      return static_cast<int>(model.accessors.size() - 1);
-    };
-    tinygltf::Primitive primitive;
-    primitive.mode = triangles ? TINYGLTF_MODE_TRIANGLES : TINYGLTF_MODE_POINTS;
-    const int position = addAccessor(addView(0, vec3Bytes, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                     TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertexCount);
-    // POSITION needs min and max (glTF 2.0 §5.1.1), of the stored floats.
-    const Eigen::Vector3f lo = positions.rowwise().minCoeff(), hi = positions.rowwise().maxCoeff();
-    model.accessors[static_cast<std::size_t>(position)].minValues = {lo.x(), lo.y(), lo.z()};
-    model.accessors[static_cast<std::size_t>(position)].maxValues = {hi.x(), hi.y(), hi.z()};
-    primitive.attributes["POSITION"] = position;
-    if (normals)
-      primitive.attributes["NORMAL"] = addAccessor(addView(vec3Bytes, vec3Bytes, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                                   TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, vertexCount);
-    if (triangles)
-      primitive.indices =
-          addAccessor(addView(vec3Bytes * (normals ? 2 : 1), indexBytes, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR,
-                      static_cast<std::size_t>(mesh.triangleCount()) * 3);
+  if (mesh.vertexCount() > 0) {
+    model.buffers.push_back(meshBuffer(mesh));
     tinygltf::Mesh gltfMesh;
-    gltfMesh.primitives.push_back(primitive);
+    gltfMesh.primitives.push_back(meshPrimitive(mesh, model));
     model.meshes.push_back(gltfMesh);
     tinygltf::Node node;
     node.mesh = 0;
