@@ -39,6 +39,44 @@ void drawSegment(std::vector<Vec<3>>& buffer, int W, int H, const Vec<2>& a, con
     }
 }
 
+// The linear colour of a pixel with data: the diverging map of f, iso-lines darkened over it
+// and the zero curve on top, each with its anti-aliased coverage (`zeroCoverage` the last).
+Vec<3> pixelColor(double v, double gradPx, const Field2dStyle& style, double range, double isoSpacing,
+                  float& zeroCoverage) {
+  Vec<3> c = divergingColor(v, range);
+  if (isoSpacing > 0) {
+    const double k = std::round(v / isoSpacing);
+    if (k != 0) {
+      const double d = gradPx > 0 ? std::abs(v - k * isoSpacing) / gradPx : std::numeric_limits<double>::infinity();
+      const double cov = coverage(d, style.isoWidthPx);
+      c = (1 - cov) * c + cov * (kIsoLineDarken * c);
+    }
+  }
+  const double d0 = v == 0 ? 0.0 : gradPx > 0 ? std::abs(v) / gradPx : std::numeric_limits<double>::infinity();
+  const double cov0 = coverage(d0, style.zeroWidthPx);
+  zeroCoverage = float(cov0);
+  return (1 - cov0) * c + cov0 * toVec(kZeroCurveColor);
+}
+
+// Normals, then sample dots over them, scaled to the sample spacing (mark_sizes.h).
+void drawSampleMarks(std::vector<Vec<3>>& color, const View2d& view, const Field2dStyle& style,
+                     const Points<2>& points, const Points<2>& normals) {
+  const int W = view.width(), H = view.height();
+  const MarkSizes marks = markSizes2d(style, view, points);
+  if (normals.cols() == points.cols() && marks.normalLengthPx > 0)
+    for (Eigen::Index s = 0; s < points.cols(); ++s) {
+      const Vec<2> a = view.worldToPixel(points.col(s));
+      const Vec<2> nrm = normals.col(s).normalized();
+      const Vec<2> b = a + marks.normalLengthPx * Vec<2>(nrm.x(), -nrm.y());  // rows grow downwards
+      drawSegment(color, W, H, a, b, 1.5, toVec(style.normalColor));
+    }
+  if (marks.pointRadiusPx > 0)
+    for (Eigen::Index s = 0; s < points.cols(); ++s) {
+      const Vec<2> a = view.worldToPixel(points.col(s));
+      drawSegment(color, W, H, a, a, 2.0 * marks.pointRadiusPx, toVec(style.pointColor));
+    }
+}
+
 }  // namespace
 
 Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d& view, const Field2dStyle& style,
@@ -68,50 +106,20 @@ Field2dImage renderField2dReference(const ImplicitField<2>& field, const View2d&
   out.zeroCoverage.resize(n);
 
   const double px = view.pixelSize();
-  const Vec<3> zeroColor = toVec(kZeroCurveColor);
   std::vector<Vec<3>> color(n);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p) {
-    const double v = f(p);
-    out.value[p] = float(v);
-    if (!valid[std::size_t(p)]) {
+    out.value[p] = float(f(p));
+    if (valid[std::size_t(p)]) {
+      color[p] = pixelColor(f(p), G.col(p).norm() * px, style, out.range, out.isoSpacing, out.zeroCoverage[p]);
+    } else {
       const int i = int(p % W), row = H - 1 - int(p / W);  // GL row: 0 at the bottom
       const bool hatch = (i + row) % kNoDataHatchPeriod < kNoDataHatchWidth;
       color[p] = toVec(hatch ? kNoDataHatchColor : kNoDataColor);
       out.zeroCoverage[p] = 0.0f;
-      continue;
     }
-    const double gradPx = G.col(p).norm() * px;  // change of f per pixel
-    Vec<3> c = divergingColor(v, out.range);
-    if (out.isoSpacing > 0) {
-      const double k = std::round(v / out.isoSpacing);
-      if (k != 0) {
-        const double d = gradPx > 0 ? std::abs(v - k * out.isoSpacing) / gradPx : std::numeric_limits<double>::infinity();
-        const double cov = coverage(d, style.isoWidthPx);
-        c = (1 - cov) * c + cov * (kIsoLineDarken * c);
-      }
-    }
-    const double d0 = v == 0 ? 0.0 : gradPx > 0 ? std::abs(v) / gradPx : std::numeric_limits<double>::infinity();
-    const double cov0 = coverage(d0, style.zeroWidthPx);
-    c = (1 - cov0) * c + cov0 * zeroColor;
-    color[p] = c;
-    out.zeroCoverage[p] = float(cov0);
   }
-
-  const bool withNormals = normals.cols() == points.cols();
-  const MarkSizes marks = markSizes2d(style, view, points);  // scaled to the sample spacing
-  if (withNormals && marks.normalLengthPx > 0)
-    for (Eigen::Index s = 0; s < points.cols(); ++s) {
-      const Vec<2> a = view.worldToPixel(points.col(s));
-      const Vec<2> nrm = normals.col(s).normalized();
-      const Vec<2> b = a + marks.normalLengthPx * Vec<2>(nrm.x(), -nrm.y());  // rows grow downwards
-      drawSegment(color, W, H, a, b, 1.5, toVec(style.normalColor));
-    }
-  if (marks.pointRadiusPx > 0)
-    for (Eigen::Index s = 0; s < points.cols(); ++s) {
-      const Vec<2> a = view.worldToPixel(points.col(s));
-      drawSegment(color, W, H, a, a, 2.0 * marks.pointRadiusPx, toVec(style.pointColor));
-    }
+  drawSampleMarks(color, view, style, points, normals);
 
   out.image = ImageRgba8(W, H);
   for (std::size_t p = 0; p < n; ++p) {
