@@ -8,6 +8,7 @@
 #include <imgui.h>
 
 #include <cstdio>
+#include <string>
 
 #include "app/gui/gui_widgets.h"
 #include "scene/scene_fit.h"
@@ -61,16 +62,9 @@ void drawTransformReport(const GuiContext& ctx) {
   }
 }
 
-}  // namespace
-
-void drawTransformPanel(GuiContext& ctx) {
-  Scene s = ctx.scene();
-  TransformSpec& t = s.transform;
-  const int dim = ctx.dimension();
+// Translation, and the rotation axis in 3D (numeric fields, applied on Enter).
+bool drawTranslateAxis(TransformSpec& t, int dim, std::string& label) {
   bool changed = false;
-  std::string label = "transform";
-  ImGui::Checkbox("gizmo", &ctx.showGizmo);
-  helpMarker("Drag the arrows (translate), the rings (rotate) or the yellow square (uniform scale) in the view.");
   double tr[3] = {0, 0, 0};
   for (int k = 0; k < dim && k < int(t.translate.size()); ++k) tr[k] = t.translate[std::size_t(k)];
   if (ImGui::InputScalarN("translate", ImGuiDataType_Double, tr, dim, nullptr, nullptr, "%.4g",
@@ -89,7 +83,13 @@ void drawTransformPanel(GuiContext& ctx) {
       label = "rotation axis";
     }
   }
-  drawRotateScale(ctx, s, dim);
+  return changed;
+}
+
+// The model choice (auto, update coefficients, re-solve) and the non-uniform scale, a diagonal
+// transform.matrix (the composition f(T⁻¹x)).
+bool drawMethodAndMatrix(GuiContext& ctx, TransformSpec& t, int dim, std::string& label) {
+  bool changed = false;
   int method = int(t.method);
   ImGui::TextUnformatted("model");
   ImGui::SameLine();
@@ -104,7 +104,6 @@ void drawTransformPanel(GuiContext& ctx) {
     changed = true;
     label = "transform model";
   }
-  // Non-uniform scale: a diagonal transform.matrix (the composition f(T⁻¹x)).
   double diag[3] = {1, 1, 1};
   if (int(t.matrix.size()) == dim * dim)
     for (int k = 0; k < dim; ++k) diag[k] = t.matrix[std::size_t(k * dim + k)];
@@ -119,6 +118,12 @@ void drawTransformPanel(GuiContext& ctx) {
   }
   helpMarker("Not a similarity: the field becomes the composition f(T^-1 x), which is NOT the re-solved "
              "interpolant of the transformed data (the Diagnostics show how far it is from one).");
+  return changed;
+}
+
+// Verification against a re-solve, and the reset (which keeps the verification choice).
+bool drawVerifyReset(TransformSpec& t, int dim, std::string& label) {
+  bool changed = false;
   if (ImGui::Checkbox("verify against a re-solve", &t.verify)) {
     changed = true;
     label = t.verify ? "verify the transform" : "stop verifying the transform";
@@ -133,6 +138,21 @@ void drawTransformPanel(GuiContext& ctx) {
     changed = true;
     label = "reset transform";
   }
+  return changed;
+}
+
+}  // namespace
+
+void drawTransformPanel(GuiContext& ctx) {
+  Scene s = ctx.scene();
+  const int dim = ctx.dimension();
+  std::string label = "transform";
+  ImGui::Checkbox("gizmo", &ctx.showGizmo);
+  helpMarker("Drag the arrows (translate), the rings (rotate) or the yellow square (uniform scale) in the view.");
+  bool changed = drawTranslateAxis(s.transform, dim, label);
+  drawRotateScale(ctx, s, dim);
+  changed |= drawMethodAndMatrix(ctx, s.transform, dim, label);
+  changed |= drawVerifyReset(s.transform, dim, label);
   if (changed) ctx.document.apply(s, label);
   drawTransformReport(ctx);
 }
