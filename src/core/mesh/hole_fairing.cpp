@@ -47,6 +47,59 @@ std::unordered_map<std::uint64_t, double> meanValueWeights(const PreparedMesh& p
   return meanValue;
 }
 
+using OneRings = std::unordered_map<int, std::vector<int>>;
+
+// One-rings, sorted and without repeats: the patch's edges, plus the original mesh's around the
+// boundary vertices.
+OneRings patchOneRings(const PreparedMesh& prepared, const HolePatch& patch) {
+  OneRings ring;
+  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int a = patch.triangles(k, t), b = patch.triangles((k + 1) % 3, t);
+      ring[a].push_back(b);
+      ring[b].push_back(a);
+    }
+  for (int v : patch.loop) {
+    const std::vector<int> nb = prepared.neighbours(v);
+    ring[v].insert(ring[v].end(), nb.begin(), nb.end());
+  }
+  for (auto& [v, nb] : ring) {
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  }
+  return ring;
+}
+
+// Weights of v's one-ring: uniform, or for graded patches the mean-value weights normalised to
+// sum 1 (uniform again where none is known).
+std::vector<double> ringWeights(int v, const std::vector<int>& nb, bool graded,
+                                const std::unordered_map<std::uint64_t, double>& meanValue) {
+  std::vector<double> weights(nb.size(), 1.0 / static_cast<double>(nb.size()));
+  if (!graded) return weights;
+  double sum = 0;
+  for (size_t i = 0; i < nb.size(); ++i) {
+    const auto it = meanValue.find((std::uint64_t(std::uint32_t(v)) << 32) | std::uint32_t(nb[i]));
+    sum += weights[i] = it == meanValue.end() ? 0.0 : it->second;
+  }
+  if (sum > 0)
+    for (double& w : weights) w /= sum;
+  else
+    std::fill(weights.begin(), weights.end(), 1.0 / static_cast<double>(nb.size()));
+  return weights;
+}
+
+// min ‖A x − b‖ through the normal equations (sparse LDLᵀ); the rows of the solution.
+Eigen::MatrixX3d leastSquares(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX3d& b) {
+  const Eigen::SparseMatrix<double> AtA = A.transpose() * A;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(AtA);
+  if (solver.info() != Eigen::Success)
+    throw NumericalError("hole fairing: the least-squares normal equations could not be factorised");
+  const Eigen::MatrixX3d X = solver.solve(A.transpose() * b);
+  if (solver.info() != Eigen::Success || !X.allFinite())
+    throw NumericalError("hole fairing: the least-squares solve failed (result not finite)");
+  return X;
+}
+
 }  // namespace
 
 HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
@@ -58,19 +111,7 @@ HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
   auto position = [&](int id) -> Eigen::Vector3d {
     return isNew(id) ? Eigen::Vector3d(patch.vertices.col(id - patch.baseId)) : Eigen::Vector3d(mesh.vertices.col(id));
   };
-
-  // One-rings: the patch's edges, plus the original mesh's around the boundary vertices.
-  std::unordered_map<int, std::vector<int>> ring;
-  for (Eigen::Index t = 0; t < patch.triangles.cols(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int a = patch.triangles(k, t), b = patch.triangles((k + 1) % 3, t);
-      ring[a].push_back(b);
-      ring[b].push_back(a);
-    }
-  for (int v : patch.loop) {
-    const std::vector<int> nb = prepared.neighbours(v);
-    ring[v].insert(ring[v].end(), nb.begin(), nb.end());
-  }
+  const OneRings ring = patchOneRings(prepared, patch);
   // Graded patches: mean-value weights (see meanValueWeights).
   const std::unordered_map<std::uint64_t, double> meanValue =
       patch.graded ? meanValueWeights(prepared, patch) : std::unordered_map<std::uint64_t, double>{};
@@ -78,47 +119,27 @@ HolePatch fairPatch(const PreparedMesh& prepared, const HolePatch& patch) {
   // wedge drops the boundary rows: they would carry the mesh's slope into the patch and bend it
   // through the mesh; without them the patch is a membrane inside the rim's convex hull.
   std::vector<int> rows;
-  for (auto& [v, nb] : ring) {
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  for (const auto& [v, nb] : ring)
     if (isNew(v) || patch.rimFold == 0) rows.push_back(v);
-  }
   std::sort(rows.begin(), rows.end());  // deterministic
   std::vector<Eigen::Triplet<double>> entries;
   Eigen::MatrixX3d b = Eigen::MatrixX3d::Zero(static_cast<Eigen::Index>(rows.size()), 3);
   for (size_t r = 0; r < rows.size(); ++r) {
     const int v = rows[r];
-    const std::vector<int>& nb = ring[v];
-    std::vector<double> weights(nb.size(), 1.0 / static_cast<double>(nb.size()));
-    if (patch.graded) {
-      double sum = 0;
-      for (size_t i = 0; i < nb.size(); ++i) {
-        const auto it = meanValue.find((std::uint64_t(std::uint32_t(v)) << 32) | std::uint32_t(nb[i]));
-        sum += weights[i] = it == meanValue.end() ? 0.0 : it->second;
-      }
-      if (sum > 0) for (double& w : weights) w /= sum;
-      else std::fill(weights.begin(), weights.end(), 1.0 / static_cast<double>(nb.size()));
-    }
+    const std::vector<int>& nb = ring.at(v);
+    const std::vector<double> weights = ringWeights(v, nb, patch.graded, meanValue);
     // (L x)_v = x_v − weighted mean of the one-ring; known terms go to the right-hand side.
     if (isNew(v)) entries.emplace_back(static_cast<int>(r), v - patch.baseId, 1.0);
     else b.row(static_cast<Eigen::Index>(r)) -= position(v).transpose();
     for (size_t i = 0; i < nb.size(); ++i) {
       const int u = nb[i];
-      const double w = weights[i];
-      if (isNew(u)) entries.emplace_back(static_cast<int>(r), u - patch.baseId, -w);
-      else b.row(static_cast<Eigen::Index>(r)) += w * position(u).transpose();
+      if (isNew(u)) entries.emplace_back(static_cast<int>(r), u - patch.baseId, -weights[i]);
+      else b.row(static_cast<Eigen::Index>(r)) += weights[i] * position(u).transpose();
     }
   }
   Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(rows.size()), K);
   A.setFromTriplets(entries.begin(), entries.end());
-  const Eigen::SparseMatrix<double> AtA = A.transpose() * A;
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(AtA);
-  if (solver.info() != Eigen::Success)
-    throw NumericalError("hole fairing: the least-squares normal equations could not be factorised");
-  const Eigen::MatrixX3d X = solver.solve(A.transpose() * b);
-  if (solver.info() != Eigen::Success || !X.allFinite())
-    throw NumericalError("hole fairing: the least-squares solve failed (result not finite)");
-  out.vertices = X.transpose();
+  out.vertices = leastSquares(A, b).transpose();
   return out;
 }
 
