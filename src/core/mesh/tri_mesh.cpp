@@ -43,11 +43,10 @@ int findRoot(std::vector<int>& parent, int x) {
   return x;
 }
 
-}  // namespace
-
-std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
-  // One sort of the half-edges by undirected edge (the low bit keeps the direction): an edge
-  // alone in its group is a boundary edge, traversed as its one triangle does.
+// The boundary edges as directed keys, sorted (grouped by source vertex): one sort of the
+// half-edges by undirected edge (the low bit keeps the direction); an edge alone in its group is
+// a boundary edge, directed as its one triangle traverses it.
+std::vector<std::uint64_t> boundaryEdges(const TriMesh& mesh) {
   std::vector<std::uint64_t> halfEdges;
   halfEdges.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
   for (int t = 0; t < mesh.triangleCount(); ++t)
@@ -56,7 +55,7 @@ std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
       halfEdges.push_back((edgeKey(a, b) << 1) | (a > b ? 1u : 0u));
     }
   std::sort(halfEdges.begin(), halfEdges.end());
-  std::vector<std::uint64_t> boundary;  // directed keys
+  std::vector<std::uint64_t> boundary;
   for (size_t i = 0; i < halfEdges.size();) {
     size_t j = i + 1;
     while (j < halfEdges.size() && (halfEdges[j] >> 1) == (halfEdges[i] >> 1)) ++j;
@@ -67,7 +66,14 @@ std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
     }
     i = j;
   }
-  std::sort(boundary.begin(), boundary.end());  // grouped by source vertex
+  std::sort(boundary.begin(), boundary.end());
+  return boundary;
+}
+
+}  // namespace
+
+std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
+  const std::vector<std::uint64_t> boundary = boundaryEdges(mesh);
   std::vector<char> used(boundary.size(), 0);
   // First boundary edge leaving v not used yet, or -1.
   auto nextUnused = [&](int v) -> int {
