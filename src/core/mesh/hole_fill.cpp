@@ -267,6 +267,58 @@ TriMesh appendPatches(const TriMesh& mesh, const std::vector<const HolePatch*>& 
   return out;
 }
 
+namespace {
+
+// Every hole filled through to the projection, one per thread, each with one BLAS thread (its
+// system is small — 3 × the ring vertices — and threads inside it would only contend).
+// `cancelled` is set when the progress report said stop.
+std::vector<HoleOutcome> fillEveryHole(const PreparedMesh& prepared, const std::vector<BoundaryLoop>& holes,
+                                       const HoleFillOptions& options, bool& cancelled) {
+  std::vector<HoleOutcome> perHole(holes.size());
+  const int threads = threadCount();
+  setBlasThreadCount(1);
+  HolesProgress progress(holes, options.progress);
+  const auto report = [&progress](size_t h, double fraction) { return progress.report(h, fraction); };
+#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
+  for (size_t h = 0; h < holes.size(); ++h) {
+    if (progress.cancelled) {
+      perHole[h].reason = "cancelled";
+      perHole[h].cancelled = true;
+      continue;
+    }
+    const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
+                             " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
+    HoleFillOptions own = options;
+    if (options.progress) own.progress = [&report, h](double f) { return report(h, f); };
+    perHole[h] = fillHole(prepared, holes[h], own, HoleFillStage::Project, name);
+    if (options.progress) report(h, 1.0);
+  }
+  setThreadCount(threads);
+  cancelled = progress.cancelled;
+  for (const HoleOutcome& o : perHole) cancelled = cancelled || o.cancelled;
+  return perHole;
+}
+
+// The per-hole rows, notes and figures of `result`; the filled patches, in hole order.
+std::vector<const HolePatch*> collectOutcomes(const std::vector<BoundaryLoop>& holes,
+                                              std::vector<HoleOutcome>& perHole, HoleFillResult& result) {
+  std::vector<const HolePatch*> patches;
+  for (size_t h = 0; h < holes.size(); ++h) {
+    HoleOutcome& o = perHole[h];
+    result.holes.push_back({int(holes[h].size()), o.method, o.filled, o.reason});
+    for (std::string& m : o.notes) result.messages.push_back(std::move(m));
+    result.unconverged += o.unconverged;
+    result.maxAbsF = std::max(result.maxAbsF, o.maxAbsF);
+    if (o.filled) {
+      patches.push_back(&o.patch);
+      result.trianglesAdded += static_cast<int>(o.patch.triangles.cols());
+    }
+  }
+  return patches;
+}
+
+}  // namespace
+
 HoleFillResult fillHoles(const TriMesh& input, const HoleFillOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   HoleFillResult result;
@@ -284,44 +336,8 @@ HoleFillResult fillHoles(const TriMesh& input, const HoleFillOptions& options) {
   if (stopped()) return result;
   const std::vector<BoundaryLoop> holes = detectHoles(mesh);
   result.holesFound = static_cast<int>(holes.size());
-
-  // Holes are independent: one per thread, each with one BLAS thread (its system is small —
-  // 3 × the ring vertices — and threads inside it would only contend).
-  std::vector<HoleOutcome> perHole(holes.size());
-  const int threads = threadCount();
-  setBlasThreadCount(1);
-  HolesProgress progress(holes, options.progress);
-  std::atomic<bool>& cancelled = progress.cancelled;
-  const auto report = [&progress](size_t h, double fraction) { return progress.report(h, fraction); };
-#pragma omp parallel for num_threads(threads) schedule(dynamic, 1)
-  for (size_t h = 0; h < holes.size(); ++h) {
-    if (cancelled) {
-      perHole[h].reason = "cancelled";
-      perHole[h].cancelled = true;
-      continue;
-    }
-    const std::string name = "hole " + std::to_string(h) + " (" + std::to_string(holes[h].size()) +
-                             " boundary edges, at vertex " + std::to_string(holes[h][0]) + ")";
-    HoleFillOptions own = options;
-    if (options.progress) own.progress = [&report, h](double f) { return report(h, f); };
-    perHole[h] = fillHole(prepared, holes[h], own, HoleFillStage::Project, name);
-    if (options.progress) report(h, 1.0);
-  }
-  setThreadCount(threads);
-  result.cancelled = cancelled;
-  for (const HoleOutcome& o : perHole) result.cancelled = result.cancelled || o.cancelled;
-  std::vector<const HolePatch*> patches;
-  for (size_t h = 0; h < holes.size(); ++h) {
-    HoleOutcome& o = perHole[h];
-    result.holes.push_back({int(holes[h].size()), o.method, o.filled, o.reason});
-    for (std::string& m : o.notes) result.messages.push_back(std::move(m));
-    result.unconverged += o.unconverged;
-    result.maxAbsF = std::max(result.maxAbsF, o.maxAbsF);
-    if (o.filled) {
-      patches.push_back(&o.patch);
-      result.trianglesAdded += static_cast<int>(o.patch.triangles.cols());
-    }
-  }
+  std::vector<HoleOutcome> perHole = fillEveryHole(prepared, holes, options, result.cancelled);
+  const std::vector<const HolePatch*> patches = collectOutcomes(holes, perHole, result);
   // The patches' new vertices get consecutive ids after the input's.
   result.mesh = appendPatches(mesh, patches);
   result.holesFilled = static_cast<int>(patches.size());
