@@ -84,6 +84,81 @@ struct SavedState {
   }
 };
 
+// Where each draw list starts in the one vertex and one index buffer of a frame.
+struct ListBases {
+  std::vector<std::size_t> vertex, index;
+};
+
+// All lists in one vertex and one index upload; each list keeps its own base vertex/index.
+ListBases uploadDrawLists(const ImDrawData* draw_data, Buffer& vertices, Buffer& indices) {
+  ListBases bases;
+  bases.vertex.resize(static_cast<std::size_t>(draw_data->CmdListsCount));
+  bases.index.resize(bases.vertex.size());
+  std::size_t vertex_count = 0;
+  std::size_t index_count = 0;
+  for (int n = 0; n < draw_data->CmdListsCount; ++n) {
+    const ImDrawList* list = draw_data->CmdLists[n];
+    bases.vertex[static_cast<std::size_t>(n)] = vertex_count;
+    bases.index[static_cast<std::size_t>(n)] = index_count;
+    vertex_count += static_cast<std::size_t>(list->VtxBuffer.Size);
+    index_count += static_cast<std::size_t>(list->IdxBuffer.Size);
+  }
+  vertices.setData(nullptr, vertex_count * sizeof(ImDrawVert), GL_STREAM_DRAW);
+  indices.setData(nullptr, index_count * sizeof(ImDrawIdx), GL_STREAM_DRAW);
+  for (int n = 0; n < draw_data->CmdListsCount; ++n) {
+    const ImDrawList* list = draw_data->CmdLists[n];
+    vertices.setSubData(bases.vertex[static_cast<std::size_t>(n)] * sizeof(ImDrawVert), list->VtxBuffer.Data,
+                        static_cast<std::size_t>(list->VtxBuffer.Size) * sizeof(ImDrawVert));
+    indices.setSubData(bases.index[static_cast<std::size_t>(n)] * sizeof(ImDrawIdx), list->IdxBuffer.Data,
+                       static_cast<std::size_t>(list->IdxBuffer.Size) * sizeof(ImDrawIdx));
+  }
+  return bases;
+}
+
+// Orthographic map of the display rectangle (y down) to clip space.
+glm::mat4 displayProjection(const ImDrawData* draw_data) {
+  const float l = draw_data->DisplayPos.x;
+  const float r = l + draw_data->DisplaySize.x;
+  const float t = draw_data->DisplayPos.y;
+  const float b = t + draw_data->DisplaySize.y;
+  return glm::mat4(2.0f / (r - l), 0.0f, 0.0f, 0.0f,
+                   0.0f, 2.0f / (t - b), 0.0f, 0.0f,
+                   0.0f, 0.0f, -1.0f, 0.0f,
+                   (r + l) / (l - r), (t + b) / (b - t), 0.0f, 1.0f);
+}
+
+// Blending on, culling, depth and stencil off, scissor on, over the whole framebuffer.
+void setupBlendState(int fb_width, int fb_height) {
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glEnable(GL_SCISSOR_TEST);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glViewport(0, 0, fb_width, fb_height);
+}
+
+// One textured command of list n, clipped to its rectangle (skipped when that is empty).
+void drawCommand(const ImDrawData* draw_data, const ImDrawCmd& cmd, const ListBases& bases, int n, int fb_height) {
+  const ImVec2 origin = draw_data->DisplayPos;
+  const ImVec2 scale = draw_data->FramebufferScale;
+  // Clip rectangle in framebuffer pixels (y down), then flipped for glScissor (y up).
+  const float x0 = (cmd.ClipRect.x - origin.x) * scale.x;
+  const float y0 = (cmd.ClipRect.y - origin.y) * scale.y;
+  const float x1 = (cmd.ClipRect.z - origin.x) * scale.x;
+  const float y1 = (cmd.ClipRect.w - origin.y) * scale.y;
+  if (x1 <= x0 || y1 <= y0) return;
+  glScissor(static_cast<GLint>(x0), static_cast<GLint>(static_cast<float>(fb_height) - y1),
+            static_cast<GLsizei>(x1 - x0), static_cast<GLsizei>(y1 - y0));
+  glBindTextureUnit(0, fromTextureId(cmd.TextureId));
+  const std::size_t first_index = bases.index[static_cast<std::size_t>(n)] + cmd.IdxOffset;
+  glDrawElementsBaseVertex(GL_TRIANGLES, static_cast<GLsizei>(cmd.ElemCount), kIndexType,
+                           reinterpret_cast<const void*>(first_index * sizeof(ImDrawIdx)),
+                           static_cast<GLint>(bases.vertex[static_cast<std::size_t>(n)] + cmd.VtxOffset));
+}
+
 }  // namespace
 
 ImGuiRenderer::ImGuiRenderer() : program_(buildProgram({"imgui.vert", "imgui.frag"})) {
@@ -121,86 +196,29 @@ void ImGuiRenderer::rebuildFontTexture() {
 
 void ImGuiRenderer::render(const ImDrawData* draw_data) {
   if (draw_data == nullptr || draw_data->CmdListsCount == 0) return;
-  const ImVec2 origin = draw_data->DisplayPos;
-  const ImVec2 scale = draw_data->FramebufferScale;
-  const int fb_width = static_cast<int>(draw_data->DisplaySize.x * scale.x);
-  const int fb_height = static_cast<int>(draw_data->DisplaySize.y * scale.y);
+  const int fb_width = static_cast<int>(draw_data->DisplaySize.x * draw_data->FramebufferScale.x);
+  const int fb_height = static_cast<int>(draw_data->DisplaySize.y * draw_data->FramebufferScale.y);
   if (fb_width <= 0 || fb_height <= 0) return;
-
-  // All lists in one vertex and one index upload; each list keeps its own base vertex/index.
-  std::vector<std::size_t> base_vertex(static_cast<std::size_t>(draw_data->CmdListsCount));
-  std::vector<std::size_t> base_index(base_vertex.size());
-  std::size_t vertex_count = 0;
-  std::size_t index_count = 0;
-  for (int n = 0; n < draw_data->CmdListsCount; ++n) {
-    const ImDrawList* list = draw_data->CmdLists[n];
-    base_vertex[static_cast<std::size_t>(n)] = vertex_count;
-    base_index[static_cast<std::size_t>(n)] = index_count;
-    vertex_count += static_cast<std::size_t>(list->VtxBuffer.Size);
-    index_count += static_cast<std::size_t>(list->IdxBuffer.Size);
-  }
-  vertices_.setData(nullptr, vertex_count * sizeof(ImDrawVert), GL_STREAM_DRAW);
-  indices_.setData(nullptr, index_count * sizeof(ImDrawIdx), GL_STREAM_DRAW);
-  for (int n = 0; n < draw_data->CmdListsCount; ++n) {
-    const ImDrawList* list = draw_data->CmdLists[n];
-    vertices_.setSubData(base_vertex[static_cast<std::size_t>(n)] * sizeof(ImDrawVert), list->VtxBuffer.Data,
-                         static_cast<std::size_t>(list->VtxBuffer.Size) * sizeof(ImDrawVert));
-    indices_.setSubData(base_index[static_cast<std::size_t>(n)] * sizeof(ImDrawIdx), list->IdxBuffer.Data,
-                        static_cast<std::size_t>(list->IdxBuffer.Size) * sizeof(ImDrawIdx));
-  }
+  const ListBases bases = uploadDrawLists(draw_data, vertices_, indices_);
 
   const SavedState saved;
   auto setupState = [&] {
-    glEnable(GL_BLEND);
-    glBlendEquation(GL_FUNC_ADD);
-    glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
-    glDisable(GL_CULL_FACE);
-    glDisable(GL_DEPTH_TEST);
-    glDisable(GL_STENCIL_TEST);
-    glEnable(GL_SCISSOR_TEST);
-    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
-    glViewport(0, 0, fb_width, fb_height);
-    // Orthographic map of the display rectangle (y down) to clip space.
-    const float l = origin.x;
-    const float r = origin.x + draw_data->DisplaySize.x;
-    const float t = origin.y;
-    const float b = origin.y + draw_data->DisplaySize.y;
-    const glm::mat4 projection(2.0f / (r - l), 0.0f, 0.0f, 0.0f,
-                               0.0f, 2.0f / (t - b), 0.0f, 0.0f,
-                               0.0f, 0.0f, -1.0f, 0.0f,
-                               (r + l) / (l - r), (t + b) / (b - t), 0.0f, 1.0f);
+    setupBlendState(fb_width, fb_height);
     program_.use();
-    program_.setUniform("u_projection", projection);
+    program_.setUniform("u_projection", displayProjection(draw_data));
     vertex_array_.bind();
   };
   setupState();
-
   for (int n = 0; n < draw_data->CmdListsCount; ++n) {
     const ImDrawList* list = draw_data->CmdLists[n];
     for (int c = 0; c < list->CmdBuffer.Size; ++c) {
       const ImDrawCmd& cmd = list->CmdBuffer[c];
-      if (cmd.UserCallback != nullptr) {
-        if (cmd.UserCallback == ImDrawCallback_ResetRenderState) {
-          setupState();
-        } else {
-          cmd.UserCallback(list, &cmd);
-        }
-        continue;
-      }
-      // Clip rectangle in framebuffer pixels (y down), then flipped for glScissor (y up).
-      const float x0 = (cmd.ClipRect.x - origin.x) * scale.x;
-      const float y0 = (cmd.ClipRect.y - origin.y) * scale.y;
-      const float x1 = (cmd.ClipRect.z - origin.x) * scale.x;
-      const float y1 = (cmd.ClipRect.w - origin.y) * scale.y;
-      if (x1 <= x0 || y1 <= y0) continue;
-      glScissor(static_cast<GLint>(x0), static_cast<GLint>(static_cast<float>(fb_height) - y1),
-                static_cast<GLsizei>(x1 - x0), static_cast<GLsizei>(y1 - y0));
-      glBindTextureUnit(0, fromTextureId(cmd.TextureId));
-      const std::size_t first_index = base_index[static_cast<std::size_t>(n)] + cmd.IdxOffset;
-      glDrawElementsBaseVertex(
-          GL_TRIANGLES, static_cast<GLsizei>(cmd.ElemCount), kIndexType,
-          reinterpret_cast<const void*>(first_index * sizeof(ImDrawIdx)),
-          static_cast<GLint>(base_vertex[static_cast<std::size_t>(n)] + cmd.VtxOffset));
+      if (cmd.UserCallback == nullptr)
+        drawCommand(draw_data, cmd, bases, n, fb_height);
+      else if (cmd.UserCallback == ImDrawCallback_ResetRenderState)
+        setupState();
+      else
+        cmd.UserCallback(list, &cmd);
     }
   }
   checkGl("drawing ImGui draw data");
