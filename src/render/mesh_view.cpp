@@ -24,6 +24,57 @@ struct LineVertex {
   float color[4];
 };
 
+// The box of the vertices and the line ends.
+Box<3> drawnBox(const MeshDrawData& data) {
+  Box<3> box;
+  if (data.positions.cols() > 0) box = boundingBox<3>(data.positions);
+  for (const Vec<3>& p : data.lineEnds) {
+    box.lo = box.lo.cwiseMin(p);
+    box.hi = box.hi.cwiseMax(p);
+  }
+  return box;
+}
+
+// Interleaved float vertices; the front colour where the data have no per-vertex colours.
+std::vector<SurfaceVertex> surfaceVertices(const MeshDrawData& data) {
+  const int V = int(data.positions.cols());
+  std::vector<SurfaceVertex> vertices(V);
+  for (int i = 0; i < V; ++i) {
+    const Vec<3> c = data.colors.cols() == V
+                         ? Vec<3>(data.colors.col(i))
+                         : Vec<3>(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]);
+    for (int k = 0; k < 3; ++k) {
+      vertices[i].position[k] = float(data.positions(k, i));
+      vertices[i].normal[k] = float(data.normals(k, i));
+      vertices[i].color[k] = float(c(k));
+    }
+  }
+  return vertices;
+}
+
+// Two vertices per segment, opaque, in the segment's colour.
+std::vector<LineVertex> lineVertices(const MeshDrawData& data) {
+  std::vector<LineVertex> lines(data.lineEnds.size());
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const Vec<3>& c = data.lineColors[k / 2];
+    for (int a = 0; a < 3; ++a) {
+      lines[k].position[a] = float(data.lineEnds[k](a));
+      lines[k].color[a] = float(c(a));
+    }
+    lines[k].color[3] = 1.0f;
+  }
+  return lines;
+}
+
+// The uniforms both programs share: the camera's transform, eye, direction and projection kind.
+void setCameraUniforms(Program& program, const Camera& camera, const glm::mat4& viewProj) {
+  program.use();
+  program.setUniform("uViewProj", viewProj);
+  program.setUniform("uEye", toGlm(camera.eye()));
+  program.setUniform("uForward", toGlm(camera.forward()));
+  program.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
+}
+
 }  // namespace
 
 MeshView::MeshView()
@@ -36,13 +87,7 @@ MeshView::MeshView()
 }
 
 ImageRgba8 MeshView::render(const Camera& camera, const MeshDrawData& data) {
-  const int V = int(data.positions.cols());
-  Box<3> box;
-  if (V > 0) box = boundingBox<3>(data.positions);
-  for (const Vec<3>& p : data.lineEnds) {
-    box.lo = box.lo.cwiseMin(p);
-    box.hi = box.hi.cwiseMax(p);
-  }
+  const Box<3> box = drawnBox(data);
   const double diagonal = std::max(box.extent().norm(), 1e-9);
   Box<3> padded = box;
   padded.lo.array() -= 0.05 * diagonal;
@@ -60,55 +105,12 @@ ImageRgba8 MeshView::render(const Camera& camera, const MeshDrawData& data) {
   glDepthMask(GL_TRUE);
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
-
-  if (V > 0 && data.triangles.cols() > 0) {
-    std::vector<SurfaceVertex> vertices(V);
-    for (int i = 0; i < V; ++i) {
-      const Vec<3> c = data.colors.cols() == V
-                           ? Vec<3>(data.colors.col(i))
-                           : Vec<3>(shading::kFrontColor[0], shading::kFrontColor[1], shading::kFrontColor[2]);
-      for (int k = 0; k < 3; ++k) {
-        vertices[i].position[k] = float(data.positions(k, i));
-        vertices[i].normal[k] = float(data.normals(k, i));
-        vertices[i].color[k] = float(c(k));
-      }
-    }
-    vertices_.setData(vertices.data(), vertices.size() * sizeof(SurfaceVertex));
-    indices_.setData(data.triangles.data(), std::size_t(data.triangles.size()) * sizeof(int));
-    surfaceVao_.setVertexBuffer(0, vertices_, 0, sizeof(SurfaceVertex));
-    surfaceVao_.setElementBuffer(indices_);
-    surface_.use();
-    surface_.setUniform("uViewProj", viewProj);
-    surface_.setUniform("uEye", toGlm(camera.eye()));
-    surface_.setUniform("uForward", toGlm(camera.forward()));
-    surface_.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
-    for (int k = 0; k < 2; ++k) {
-      const Vec<3> l = shading::lightDirection(shading::kLights[k], camera.right(), camera.up(), camera.forward());
-      surface_.setUniform("uLightDir[" + std::to_string(k) + "]", toGlm(l));
-      surface_.setUniform("uLightIntensity[" + std::to_string(k) + "]", float(shading::kLights[k].intensity));
-    }
-    surface_.setUniform("uAmbient", float(shading::kAmbient));
-    surface_.setUniform("uBackColor", toGlm(shading::kBackColor));
-    surfaceVao_.bind();
-    glDrawElements(GL_TRIANGLES, GLsizei(data.triangles.size()), GL_UNSIGNED_INT, nullptr);
-  }
+  if (data.positions.cols() > 0 && data.triangles.cols() > 0) drawSurface(camera, viewProj, data);
   if (!data.lineEnds.empty()) {
-    std::vector<LineVertex> lines(data.lineEnds.size());
-    for (std::size_t k = 0; k < lines.size(); ++k) {
-      const Vec<3>& c = data.lineColors[k / 2];
-      for (int a = 0; a < 3; ++a) {
-        lines[k].position[a] = float(data.lineEnds[k](a));
-        lines[k].color[a] = float(c(a));
-      }
-      lines[k].color[3] = 1.0f;
-    }
+    const std::vector<LineVertex> lines = lineVertices(data);
     lineVertices_.setData(lines.data(), lines.size() * sizeof(LineVertex));
     linesVao_.setVertexBuffer(0, lineVertices_, 0, sizeof(LineVertex));
-    lines_.use();
-    lines_.setUniform("uViewProj", viewProj);
-    lines_.setUniform("uEye", toGlm(camera.eye()));
-    lines_.setUniform("uForward", toGlm(camera.forward()));
-    lines_.setUniform("uOrtho", camera.projection() == Projection::Orthographic ? 1 : 0);
+    setCameraUniforms(lines_, camera, viewProj);
     lines_.setUniform("uBias", float(data.lineBias * diagonal));
     lines_.setUniform("uPointSize", 1.0f);
     lines_.setUniform("uRoundPoints", 0);
@@ -120,6 +122,24 @@ ImageRgba8 MeshView::render(const Camera& camera, const MeshDrawData& data) {
   glBindVertexArray(0);
   checkGl("mesh view");
   return target.read();
+}
+
+void MeshView::drawSurface(const Camera& camera, const glm::mat4& viewProj, const MeshDrawData& data) {
+  const std::vector<SurfaceVertex> vertices = surfaceVertices(data);
+  vertices_.setData(vertices.data(), vertices.size() * sizeof(SurfaceVertex));
+  indices_.setData(data.triangles.data(), std::size_t(data.triangles.size()) * sizeof(int));
+  surfaceVao_.setVertexBuffer(0, vertices_, 0, sizeof(SurfaceVertex));
+  surfaceVao_.setElementBuffer(indices_);
+  setCameraUniforms(surface_, camera, viewProj);
+  for (int k = 0; k < 2; ++k) {
+    const Vec<3> l = shading::lightDirection(shading::kLights[k], camera.right(), camera.up(), camera.forward());
+    surface_.setUniform("uLightDir[" + std::to_string(k) + "]", toGlm(l));
+    surface_.setUniform("uLightIntensity[" + std::to_string(k) + "]", float(shading::kLights[k].intensity));
+  }
+  surface_.setUniform("uAmbient", float(shading::kAmbient));
+  surface_.setUniform("uBackColor", toGlm(shading::kBackColor));
+  surfaceVao_.bind();
+  glDrawElements(GL_TRIANGLES, GLsizei(data.triangles.size()), GL_UNSIGNED_INT, nullptr);
 }
 
 }  // namespace hermite::render

@@ -6,6 +6,8 @@
 
 #include <vector>
 
+#include <glm/fwd.hpp>
+
 #include "core/trace/camera.h"
 #include "core/trace/image.h"
 #include "render/gl/gl_objects.h"
@@ -32,6 +34,9 @@ class MeshView {
   ImageRgba8 render(const Camera& camera, const MeshDrawData& data);
 
  private:
+  // The triangles, shaded with two lights and the back colour, depth-tested.
+  void drawSurface(const Camera& camera, const glm::mat4& viewProj, const MeshDrawData& data);
+
   Program surface_, lines_;
   VertexArray surfaceVao_, linesVao_;
   Buffer vertices_, indices_, lineVertices_;
