@@ -34,6 +34,7 @@ struct NormalEstimationOptions {
   double gapSine = 0.5;      // an edge leaving a tangent plane by more than 30° crosses a gap
   double agreeCosine = 0.5;  // normals more than 60° apart are not along one sheet
   double acrossCosine = 0.85;  // across a gap: normals within 32° of parallel, d within 32° of them
+  double sheetBand = 0.3;  // × the neighbourhood radius: farther off a tangent plane is another sheet
 };
 
 // Unit normals (Dim × N) for the columns of `points` (Dim × N, N ≥ 2). InputError when N < 2.
