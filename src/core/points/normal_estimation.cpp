@@ -141,8 +141,7 @@ struct SheetModel {
 // The normal is the smallest eigenvector of the inliers' covariance, each sheet about its own
 // mean (parallel sheets share their normal, so all inliers estimate it); `second` receives the
 // second sheet's offset times that normal (zero for one sheet). Plain PCA over all k when fewer
-// than Dim + 1 fit, and at once (no search) when PCA's own hyperplane through pᵢ holds all k
-// within the band: a clean sheet, where the search would end in that same PCA.
+// than Dim + 1 fit, and at once (no search) when PCA's hyperplane fits all k as one sheet (below).
 template <int Dim>
 Vec<Dim> sheetNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, double band, Vec<Dim>& second) {
   const std::uint32_t* idx = g.of(i);
@@ -152,10 +151,14 @@ Vec<Dim> sheetNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, 
   for (int j = 0; j < k; ++j) Q.col(j) = points.col(idx[j]) - p;
   const double band2 = band * band;
   second = Vec<Dim>::Zero();
-  // One clean sheet (most points): PCA's hyperplane through pᵢ holds all k within the band, so no
-  // candidate can fit better and PCA over those inliers, all k, is the answer.
+  // One sheet (most points): PCA's hyperplane through pᵢ holds all k within band / 2. In 2D also
+  // when the line through their mean holds them within 0.75·band: the k samples of a curve span
+  // k spacings of arc (a 3D neighbourhood is a disc ~1.8 spacings across), so curvature, not a
+  // second sheet, moves its ends off the tangent (10 of 40 samples on a circle: ±0.15·r).
   const Vec<Dim> pca = pcaNormal<Dim>(points, idx, k);
-  if ((pca.transpose() * Q).cwiseAbs().maxCoeff() <= 0.5 * band) return pca;
+  const Eigen::Matrix<double, 1, Eigen::Dynamic> off = pca.transpose() * Q;
+  if (off.cwiseAbs().maxCoeff() <= 0.5 * band) return pca;
+  if (Dim == 2 && (off.array() - off.mean()).abs().maxCoeff() <= 0.75 * band) return pca;
   SheetModel<Dim> one, two;
   auto consider = [&](Vec<Dim> nrm) {
     const double len = nrm.norm();
