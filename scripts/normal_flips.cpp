@@ -15,7 +15,8 @@
 // fraction whose unsigned line is more than 30° off the truth (|n̂·n| < cos 30°, a wrong plane
 // rather than a wrong sign), and "flipped-on-good-lines C": the flipped ones among the others
 // (pure sign errors). --flipped writes the flipped points with their true normals
-// (x y z nx ny nz) for a look.
+// (x y z nx ny nz) for a look; with NORMAL_FLIPS_DUMP=FILE in the environment every sample is
+// written there as x y z, true normal, estimated normal (9 numbers a line).
 
 #include <chrono>
 #include <cmath>
