@@ -128,37 +128,12 @@ struct SheetModel {
   double score = std::numeric_limits<double>::infinity();
 };
 
-// Point i's normal, robust to a second sheet among its neighbours (docs/maths.md): every
-// hyperplane through Dim of the k neighbourhood points (pᵢ included; 120 for k = 10 in 3D) gives
-// a candidate normal n, scored by its truncated squared residual Σ min(r², band²) over the k
-// (MSAC: inliers count by how well they fit, every outlier costs band²), once as one sheet
-// through pᵢ (r = h = n·(pⱼ − pᵢ)) and once as two parallel sheets, through pᵢ and at the mean
-// offset c of the neighbours beyond the band on the side holding more of them (at least 2),
-// r = min(|h|, |h − c|). A candidate spanned by the other sheet's points gives the second model
-// its exact normal even when pᵢ's own sheet holds only 3 of the k. Two sheets are taken when
-// they fit at least two neighbours' worth (2·band²) better than the best single sheet: on one
-// sheet, flat or mildly curved, every neighbour already fits within the band and they cannot.
-// The normal is the smallest eigenvector of the inliers' covariance, each sheet about its own
-// mean (parallel sheets share their normal, so all inliers estimate it); `second` receives the
-// second sheet's offset times that normal (zero for one sheet). Plain PCA over all k when fewer
-// than Dim + 1 fit, and at once (no search) when PCA's hyperplane fits all k as one sheet (below).
+// The best one-sheet and two-sheet models of a neighbourhood (Q: Dim × k, the neighbours minus
+// pᵢ) over the candidate normals of the hyperplanes through Dim of its points (sheetNormal).
 template <int Dim>
-Vec<Dim> sheetNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, double band, Vec<Dim>& second) {
-  const std::uint32_t* idx = g.of(i);
-  const int k = g.k;
-  const Vec<Dim> p = points.col(i);
-  Eigen::Matrix<double, Dim, Eigen::Dynamic> Q(Dim, k);
-  for (int j = 0; j < k; ++j) Q.col(j) = points.col(idx[j]) - p;
+std::pair<SheetModel<Dim>, SheetModel<Dim>> fitSheets(const Eigen::Matrix<double, Dim, Eigen::Dynamic>& Q, double band) {
+  const int k = static_cast<int>(Q.cols());
   const double band2 = band * band;
-  second = Vec<Dim>::Zero();
-  // One sheet (most points): PCA's hyperplane through pᵢ holds all k within band / 2. In 2D also
-  // when the line through their mean holds them within 0.75·band: the k samples of a curve span
-  // k spacings of arc (a 3D neighbourhood is a disc ~1.8 spacings across), so curvature, not a
-  // second sheet, moves its ends off the tangent (10 of 40 samples on a circle: ±0.15·r).
-  const Vec<Dim> pca = pcaNormal<Dim>(points, idx, k);
-  const Eigen::Matrix<double, 1, Eigen::Dynamic> off = pca.transpose() * Q;
-  if (off.cwiseAbs().maxCoeff() <= 0.5 * band) return pca;
-  if (Dim == 2 && (off.array() - off.mean()).abs().maxCoeff() <= 0.75 * band) return pca;
   SheetModel<Dim> one, two;
   auto consider = [&](Vec<Dim> nrm) {
     const double len = nrm.norm();
@@ -198,12 +173,19 @@ Vec<Dim> sheetNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, 
           consider(spanNormal<Dim>(q));
         }
   }
-  const SheetModel<Dim>& m = two.score <= one.score - 2 * band2 ? two : one;
-  // Each sheet's inliers about their own mean: sums and outer products per sheet.
+  return {one, two};
+}
+
+// The normal of model m refitted to its inliers (|h| ≤ band on pᵢ's sheet, |h − c| ≤ band on the
+// second), each sheet about its own mean; `second` receives c times it. `fallback` when fewer
+// than Dim + 1 fit.
+template <int Dim>
+Vec<Dim> refitSheets(const Eigen::Matrix<double, Dim, Eigen::Dynamic>& Q, const SheetModel<Dim>& m, double band,
+                     const Vec<Dim>& fallback, Vec<Dim>& second) {
   Vec<Dim> sum[2] = {Vec<Dim>::Zero(), Vec<Dim>::Zero()};
   Mat<Dim> outer = Mat<Dim>::Zero();
   int count[2] = {0, 0};
-  for (int j = 0; j < k; ++j) {
+  for (Eigen::Index j = 0; j < Q.cols(); ++j) {
     const double h = m.normal.dot(Q.col(j));
     const int sheet = std::abs(h) <= band ? 0 : m.twoSheets && std::abs(h - m.second) <= band ? 1 : -1;
     if (sheet < 0) continue;
@@ -211,13 +193,45 @@ Vec<Dim> sheetNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, 
     outer += Q.col(j) * Q.col(j).transpose();
     ++count[sheet];
   }
-  if (count[0] + count[1] < Dim + 1) return pca;
+  if (count[0] + count[1] < Dim + 1) return fallback;
   Mat<Dim> C = outer;
   for (int sh = 0; sh < 2; ++sh)
     if (count[sh] > 0) C -= sum[sh] * sum[sh].transpose() / count[sh];
   const Vec<Dim> nrm = smallestEigenvector<Dim>(C);
   if (m.twoSheets && count[1] > 0) second = nrm * nrm.dot(sum[1] / count[1]);
   return nrm;
+}
+
+// Point i's normal, robust to a second sheet among its neighbours (docs/maths.md): every
+// hyperplane through Dim of the k neighbourhood points (pᵢ included; 120 for k = 10 in 3D) gives
+// a candidate normal n, scored by its truncated squared residual Σ min(r², band²) over the k
+// (MSAC: inliers count by how well they fit, every outlier costs band²), once as one sheet
+// through pᵢ (r = h = n·(pⱼ − pᵢ)) and once as two parallel sheets, through pᵢ and at the mean
+// offset c of the neighbours beyond the band on the side holding more of them (at least 2),
+// r = min(|h|, |h − c|). A candidate spanned by the other sheet's points gives the second model
+// its exact normal even when pᵢ's own sheet holds only 3 of the k. Two sheets are taken when
+// they fit at least two neighbours' worth (2·band²) better than the best single sheet: on one
+// sheet, flat or mildly curved, every neighbour already fits within the band and they cannot.
+// The normal is the smallest eigenvector of the inliers' covariance, each sheet about its own
+// mean (parallel sheets share their normal, so all inliers estimate it); `second` receives the
+// second sheet's offset times that normal (zero for one sheet). Plain PCA over all k when fewer
+// than Dim + 1 fit, and at once (no search) when PCA's hyperplane fits all k as one sheet (below).
+template <int Dim>
+Vec<Dim> sheetNormal(const Points<Dim>& points, const NeighbourGraph& g, int i, double band, Vec<Dim>& second) {
+  const std::uint32_t* idx = g.of(i);
+  Eigen::Matrix<double, Dim, Eigen::Dynamic> Q(Dim, g.k);
+  for (int j = 0; j < g.k; ++j) Q.col(j) = points.col(idx[j]) - points.col(i);
+  second = Vec<Dim>::Zero();
+  // One sheet (most points): PCA's hyperplane through pᵢ holds all k within band / 2. In 2D also
+  // when the line through their mean holds them within 0.75·band: the k samples of a curve span
+  // k spacings of arc (a 3D neighbourhood is a disc ~1.8 spacings across), so curvature, not a
+  // second sheet, moves its ends off the tangent (10 of 40 samples on a circle: ±0.15·r).
+  const Vec<Dim> pca = pcaNormal<Dim>(points, idx, g.k);
+  const Eigen::Matrix<double, 1, Eigen::Dynamic> off = pca.transpose() * Q;
+  if (off.cwiseAbs().maxCoeff() <= 0.5 * band) return pca;
+  if (Dim == 2 && (off.array() - off.mean()).abs().maxCoeff() <= 0.75 * band) return pca;
+  const auto [one, two] = fitSheets<Dim>(Q, band);
+  return refitSheets<Dim>(Q, two.score <= one.score - 2 * band * band ? two : one, band, pca, second);
 }
 
 // How an orientation crosses the edge i → j, and at what cost (see the header). `flip` says
