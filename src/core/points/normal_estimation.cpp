@@ -347,14 +347,13 @@ std::vector<int> growPatches(const Points<Dim>& P, Points<Dim>& N, const std::ve
     bool operator>(const Item& x) const { return cost > x.cost; }
   };
   std::vector<int> patch(static_cast<std::size_t>(n), -1);
-  std::vector<Item> store;
   patches = 0;
   for (int s = 0; s < n; ++s) {
     if (patch[s] >= 0) continue;
     const int id = patches++;
     patch[s] = id;
     if (fixed[s]) continue;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap(std::greater<Item>(), std::move(store));
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
     auto push = [&](std::uint32_t from) {
       auto edge = [&](std::uint32_t to) {
         if (patch[to] >= 0 || fixed[to]) return;
@@ -375,7 +374,6 @@ std::vector<int> growPatches(const Points<Dim>& P, Points<Dim>& N, const std::ve
       ++size;
       push(e.child);
     }
-    store.clear();
   }
   return patch;
 }
