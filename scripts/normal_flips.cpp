@@ -5,12 +5,18 @@
 // and re-orients them (orientNormalLines); prints the fraction pointing against the truth.
 //
 //   normal_flips MESH.off|slab|curl|shell N [--seed S] [--unoriented] [--gap G] [--flipped OUT.xyz]
+//   normal_flips --sphere CLOUD.xyz   (x y z per line, a noisy sphere such as CGAL's sphere_20k.xyz:
+//                                      the truth is the direction from the centroid)
 //
 // slab, curl and shell are thin shapes whose two sheets lie G mean sample spacings apart
 // (G = 2.5 by default: inside one another's 10-neighbourhood): a 1 × 1 slab, the same slab
 // curled through 270° about an axis (radius 1/(1.5π)), and a hollow ball (radii 1 and 1 − gap).
-// Output, one line: name N seconds flipped fraction (flipped / N). --flipped writes the flipped
-// points with their true normals (x y z nx ny nz) for a look.
+// Output, one line: name N seconds flipped fraction (flipped / N), then "lines>30° F (C)": the
+// fraction whose unsigned line is more than 30° off the truth (|n̂·n| < cos 30°, a wrong plane
+// rather than a wrong sign), and "flipped-on-good-lines C": the flipped ones among the others
+// (pure sign errors). --flipped writes the flipped points with their true normals
+// (x y z nx ny nz) for a look; with NORMAL_FLIPS_DUMP=FILE in the environment every sample is
+// written there as x y z, true normal, estimated normal (9 numbers a line).
 
 #include <chrono>
 #include <cmath>
@@ -72,7 +78,29 @@ int checkFile(const char* path, const char* out) {
   return 0;
 }
 
+// `normal_flips --sphere FILE` (x y z per line, sampled round a sphere): estimates the normals
+// and compares them with the directions from the centroid.
+int sphereFile(const char* path) {
+  std::FILE* f = std::fopen(path, "r");
+  if (!f) return std::fprintf(stderr, "normal_flips: cannot open %s\n", path), 1;
+  std::vector<double> v;
+  double x[3];
+  while (std::fscanf(f, "%lf %lf %lf%*[^\n]", x, x + 1, x + 2) == 3) v.insert(v.end(), x, x + 3);
+  std::fclose(f);
+  const Eigen::Index n = static_cast<Eigen::Index>(v.size() / 3);
+  const Points<3> P = Eigen::Map<const Eigen::Matrix<double, 3, Eigen::Dynamic>>(v.data(), 3, n);
+  const Vec<3> centre = P.rowwise().mean();
+  const Points<3> truth = (P.colwise() - centre).colwise().normalized();
+  const auto t0 = std::chrono::steady_clock::now();
+  const Points<3> estimated = estimateNormals<3>(P);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const double flipped = testing::flippedFraction(estimated, truth);
+  std::printf("%s %ld %.2f %.5f (%ld)\n", path, long(n), seconds, flipped, std::lround(flipped * double(n)));
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc >= 3 && std::string(argv[1]) == "--sphere") return sphereFile(argv[2]);
   if (argc >= 3 && std::string(argv[1]) == "--check") return checkFile(argv[2], argc > 3 ? argv[3] : nullptr);
   if (argc < 3) {
     std::fprintf(stderr, "usage: normal_flips MESH.off|slab|curl|shell N [--seed S] [--unoriented] [--gap G]\n");
@@ -107,7 +135,21 @@ int main(int argc, char** argv) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double flipped = testing::flippedFraction(estimated, s.normals);
     if (!flippedPath.empty()) writeFlipped(flippedPath, s, estimated);
-    std::printf("%s %d %.2f %.5f (%d)\n", name.c_str(), n, seconds, flipped, int(std::lround(flipped * n)));
+    if (const char* dump = std::getenv("NORMAL_FLIPS_DUMP")) {
+      std::FILE* f = std::fopen(dump, "w");
+      for (int i = 0; f && i < n; ++i)
+        std::fprintf(f, "%.9g %.9g %.9g %.6f %.6f %.6f %.6f %.6f %.6f\n", s.points(0, i), s.points(1, i), s.points(2, i),
+                     s.normals(0, i), s.normals(1, i), s.normals(2, i), estimated(0, i), estimated(1, i), estimated(2, i));
+      if (f) std::fclose(f);
+    }
+    int badLines = 0, signOnly = 0;
+    for (int i = 0; i < n; ++i) {
+      const double c = estimated.col(i).normalized().dot(s.normals.col(i));
+      if (std::abs(c) < std::cos(M_PI / 6)) ++badLines;
+      else signOnly += c < 0;
+    }
+    std::printf("%s %d %.2f %.5f (%d) lines>30° %.5f (%d) flipped-on-good-lines %d\n", name.c_str(), n, seconds,
+                flipped, int(std::lround(flipped * n)), double(badLines) / n, badLines, signOnly);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "normal_flips: %s\n", e.what());
     return 1;

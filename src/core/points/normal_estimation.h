@@ -1,24 +1,25 @@
 #pragma once
-// Normals for raw clouds (docs/maths.md, Normal estimation): PCA over the k nearest
-// neighbours (the normal is the eigenvector of the smallest eigenvalue of the neighbourhood's
-// covariance), then consistent orientation by propagation over a minimum spanning tree of the
-// symmetric k-nearest-neighbour graph (Hoppe et al. 1992) with edge cost 1 − |nᵢ·nⱼ|.
+// Normals for raw clouds (docs/maths.md, Normal estimation): a normal line per point from its k
+// nearest neighbours, then one orientation for all (after Hoppe et al. 1992).
 //
-// Thin parts: two sheets closer than the neighbourhood share neighbours, and their normals are
-// parallel up to sign, so a plain 1 − |nᵢ·nⱼ| tree copies an orientation across the gap and
-// flips a whole sheet. Each edge is classified by its direction d = pⱼ − pᵢ:
-//   along a sheet  d leaves neither tangent plane by more than asin(gapSine) and the normals
-//                  agree (|nᵢ·nⱼ| ≥ agreeCosine): the orientation is copied, cost 1 − |nᵢ·nⱼ|;
-//   across a gap   d runs along both normals (|d̂·nᵢ|, |d̂·nⱼ| ≥ acrossCosine) and they are
-//                  parallel (|nᵢ·nⱼ| ≥ acrossCosine): two sheets of a closed surface face each
-//                  other, so the orientation is reversed, cost 2 + …;
-//   otherwise      cost 4 + … (creases, folds, noise): where d leaves both tangent planes more
-//                  steeply than the normals agree (a sharp crease) the crease rule — d·nᵢ and
-//                  d·nⱼ have opposite signs across a convex or concave crease of a consistently
-//                  oriented surface — else copied. Exact normals of a box meet at 90°, where a
-//                  copied sign is a coin toss and the crease rule is sure.
-// Prim's tree takes the cheapest edge out of the oriented set, so it crosses a gap only where no
-// edge along a sheet reaches the rest of the part, and uses any other edge only where neither does.
+// Thin parts: two sheets closer than the neighbourhood share neighbours. The line: PCA when its
+// plane through pᵢ holds all k within half the sheet band (sheetBand × the neighbourhood
+// radius); else the best of the hyperplanes through Dim of the k, scored (MSAC) as one sheet
+// through pᵢ or two parallel sheets, refitted over the inliers of each sheet about its mean.
+// The orientation: every k-nearest-neighbour edge is classified by its direction d = pⱼ − pᵢ
+// and by whether each end sees the other on its own sheet (within the band, nearer its own
+// sheet than its second):
+//   along a sheet  one sheet, d leaves neither tangent plane by more than asin(gapSine), the
+//                  normals agree (|nᵢ·nⱼ| ≥ agreeCosine): the orientation is copied;
+//   across a gap   off one another's sheets (or d along both normals), normals parallel
+//                  (|nᵢ·nⱼ| ≥ acrossCosine): two sheets of a closed surface face each other, so
+//                  the orientation is reversed;
+//   otherwise      (creases, folds, noise) the crease rule — d·nᵢ and d·nⱼ have opposite signs
+//                  across a convex or concave crease — where d leaves both tangent planes more
+//                  steeply than the normals agree, else copied.
+// Patches of up to 16 points grow along the first kind; every edge between two patches votes on
+// their relative orientation, and a maximum spanning tree of the patches by the summed votes
+// orients them, so that no single wrong edge turns a sheet over.
 //
 // Seeds: each part of the graph that no fixed normal reaches starts at its extreme point along
 // a coordinate axis (the largest coordinate among the points not yet oriented, over the axes,
@@ -34,6 +35,7 @@ struct NormalEstimationOptions {
   double gapSine = 0.5;      // an edge leaving a tangent plane by more than 30° crosses a gap
   double agreeCosine = 0.5;  // normals more than 60° apart are not along one sheet
   double acrossCosine = 0.85;  // across a gap: normals within 32° of parallel, d within 32° of them
+  double sheetBand = 0.3;  // × the neighbourhood radius: farther off a tangent plane is another sheet
 };
 
 // Unit normals (Dim × N) for the columns of `points` (Dim × N, N ≥ 2). InputError when N < 2.

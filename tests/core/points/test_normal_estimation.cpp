@@ -1,6 +1,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <functional>
 #include <random>
 
 #include "core/base/errors.h"
@@ -179,4 +180,71 @@ TEST_CASE("normal orientation: consistent normals pass the check and keep their 
   Points<3> withZero = inward;
   withZero.col(4).setZero();
   CHECK_THROWS_AS(orientNormalLines<3>(sphere.points, withZero), InputError);
+}
+
+// Sheets closer than the neighbourhood (docs/maths.md, Normal estimation): at 1.5 and 1.0 sample
+// spacings the 10 nearest neighbours of a point hold both sheets, often more of the other one;
+// plain PCA then tilts or lies in the plane, and one edge between two bad normals used to copy
+// an orientation across the gap and turn a whole sheet over (≈ 50 % flipped).
+TEST_CASE("normal estimation: a hollow ball whose sheets are 1.5 and 1.0 spacings apart") {
+  const int n = 20000;
+  const double spacing = std::sqrt(8 * M_PI / n);  // the two spheres' area ≈ 8π
+  for (double gap : {1.5, 1.0}) {
+    CAPTURE(gap);
+    const HermiteSamples<3> s = testing::sampleMesh(testing::hollowBall(gap * spacing), n, 11);
+    CHECK(testing::flippedFraction(estimateNormals<3>(s.points), s.normals) <= 0.005);
+  }
+}
+
+TEST_CASE("normal estimation: a slab 1.5 spacings thick keeps both sheets oriented outward") {
+  const int n = 20000;
+  const double thickness = 1.5 * std::sqrt(2.0 / n);
+  const HermiteSamples<3> s = testing::sampleMesh(testing::boxMesh(Vec<3>(0, 0, 0), Vec<3>(1, 1, thickness)), n, 7);
+  CHECK(testing::flippedFraction(estimateNormals<3>(s.points), s.normals) <= 0.005);
+}
+
+namespace {
+
+// The flipped fraction among the samples whose true normal is within 60° of `axis` (one sheet).
+double sheetFlipped(const HermiteSamples<3>& s, const Points<3>& estimated, const std::function<Vec<3>(int)>& axis) {
+  int count = 0, flipped = 0;
+  for (int i = 0; i < s.size(); ++i) {
+    if (s.normals.col(i).dot(axis(i)) < 0.5) continue;
+    ++count;
+    flipped += estimated.col(i).dot(s.normals.col(i)) < 0;
+  }
+  return count == 0 ? 1.0 : double(flipped) / count;
+}
+
+}  // namespace
+
+// Closer still, the 0.5 % target is met on the hollow ball (above) but not at 20 000 points on the
+// slab and the curled plate: their rims are faces only 1–1.5 spacings wide, whose few samples get
+// the sheets' normal line and a sign that is a coin toss (docs/performance.md: 1.0–2.3 % here,
+// ≤ 0.54 % at 200 000 points). What must hold is that no sheet turns over: each sheet, outward
+// and inward, stays within 2.5 %, and all samples within 3 %.
+TEST_CASE("normal estimation: a slab 1.0 and 1.5 spacings thick turns no sheet over") {
+  const int n = 20000;
+  for (double gap : {1.0, 1.5}) {
+    CAPTURE(gap);
+    const HermiteSamples<3> slab =
+        testing::sampleMesh(testing::boxMesh(Vec<3>(0, 0, 0), Vec<3>(1, 1, gap * std::sqrt(2.0 / n))), n, 7);
+    const Points<3> ns = estimateNormals<3>(slab.points);
+    CHECK(testing::flippedFraction(ns, slab.normals) <= 0.03);
+    CHECK(sheetFlipped(slab, ns, [](int) { return Vec<3>(0, 0, 1); }) <= 0.025);
+    CHECK(sheetFlipped(slab, ns, [](int) { return Vec<3>(0, 0, -1); }) <= 0.025);
+  }
+}
+
+TEST_CASE("normal estimation: a curled plate 1.0 and 1.5 spacings thick turns no sheet over") {
+  const int n = 20000;
+  for (double gap : {1.0, 1.5}) {
+    CAPTURE(gap);
+    const HermiteSamples<3> curl = testing::sampleMesh(testing::curledPlate(gap * std::sqrt(2.0 / n)), n, 3);
+    const Points<3> nc = estimateNormals<3>(curl.points);
+    auto radial = [&](int i) { return Vec<3>(curl.points(0, i), 0, curl.points(2, i)).normalized().eval(); };
+    CHECK(testing::flippedFraction(nc, curl.normals) <= 0.03);
+    CHECK(sheetFlipped(curl, nc, radial) <= 0.025);
+    CHECK(sheetFlipped(curl, nc, [&](int i) { return (-radial(i)).eval(); }) <= 0.025);
+  }
 }
