@@ -212,7 +212,7 @@ int dispatch(int argc, char** argv, const DisplayCommands& display) {
         ->check(CLI::Range(1, 4096));
     cmd.add_option("--chord-tolerance", a.chordTolerance,
                    "3D: split edges whose chord strays more than this many grid cells from the zero set, the new "
-                   "vertices projected onto it (default 0: off)")
+                   "vertices projected onto it (default 0.02; 0: off)")
         ->check(CLI::Range(0.0, 1.0));
     addThreads(cmd, threads);
     if (int rc = parse(cmd, argc - 1, argv + 1); rc >= 0) return rc;

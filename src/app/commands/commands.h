@@ -66,11 +66,16 @@ int runSweep(const SweepArgs& args);
 
 // "WxH" → {W, H}, each in [1, 16384]; UsageError otherwise (render, sweep).
 std::array<int, 2> parseImageSize(const std::string& text);
+// `mesh --chord-tolerance` when not given, in grid cells (docs/cli.md).
+inline constexpr double kDefaultChordTolerance = 0.02;
 struct MeshArgs {
   SceneArgs scene;
   std::string output;   // -o OUT.{glb,gltf,ply,obj} (3D) or OUT.{obj,svg} (2D), required
   int resolution = 64;  // --resolution N: cells along the longest side of view.bounds
-  double chordTolerance = 0;  // --chord-tolerance F: split edges whose chord strays > F cells (0: off)
+  // --chord-tolerance F: split edges whose chord strays > F cells (0: off). 0.02 by default: at
+  // 256³ on 200 000 scanned points it halves the mesh's mean and p99 distance to the surface
+  // (below screened Poisson's) for about a tenth of the command's time (docs/performance.md).
+  double chordTolerance = kDefaultChordTolerance;
 };
 int runMesh(const MeshArgs& args);
 // Meshes a fitted implicit's zero set over view.bounds (marching cubes / squares) into `output`

@@ -198,14 +198,26 @@ TEST_CASE("holefill: errors name the file and map to exit codes") {
   CHECK(r.rc == 4);
 }
 
-TEST_CASE("mesh --chord-tolerance: more triangles, still closed, the split edges in the summary; out of range exits 2") {
+TEST_CASE("mesh --chord-tolerance: more triangles, still closed, the split edges in the summary; 0 turns it off, "
+          "0.02 is the default; out of range exits 2") {
   const std::string scene = writeTemp("mesh_torus_chords.json", kTorusScene);
   const std::string plain = tempPath("torus_plain.ply"), refined = tempPath("torus_chords.ply");
-  const auto a = runCli("mesh " + scene + " -o " + plain + " --resolution 24");
+  const std::string byDefault = tempPath("torus_default.ply");
+  const auto a = runCli("mesh " + scene + " -o " + plain + " --resolution 24 --chord-tolerance 0");
   const auto b = runCli("mesh " + scene + " -o " + refined + " --resolution 24 --chord-tolerance 0.02");
+  const auto d = runCli("mesh " + scene + " -o " + byDefault + " --resolution 24");
   REQUIRE(a.rc == 0);
   REQUIRE(b.rc == 0);
+  REQUIRE(d.rc == 0);
   CHECK(a.out.find("chord refinement") == std::string::npos);
+  // The default is 0.02: the same split edges and the same mesh as the explicit flag.
+  const auto splitCount = [](const std::string& out) {  // N of "; N edges split by chord refinement"
+    const std::size_t end = out.find(" edges split"), begin = out.rfind("; ", end);
+    return end == std::string::npos || begin == std::string::npos ? std::string() : out.substr(begin + 2, end - begin - 2);
+  };
+  CHECK(!splitCount(d.out).empty());
+  CHECK(splitCount(d.out) == splitCount(b.out));
+  CHECK(hermite::loadMesh(byDefault).vertices == hermite::loadMesh(refined).vertices);
   CHECK(b.out.find("edges split by chord refinement") != std::string::npos);
   CHECK(b.out.find("closed manifold") != std::string::npos);
   const hermite::TriMesh m0 = hermite::loadMesh(plain), m1 = hermite::loadMesh(refined);
