@@ -208,11 +208,13 @@ int meshCommand(int argc, char** argv, const DisplayCommands& /*display*/) {
   CLI::App cmd("mesh the fitted zero set over view.bounds: marching cubes (3D), marching squares (2D)", "mesh");
   addSceneOptions(cmd, a.scene, true);
   cmd.add_option("-o,--output", a.output, "OUT.glb, .gltf, .ply or .obj (2D: .obj polylines or .svg)")->required();
-  cmd.add_option("--resolution", a.resolution, "cells along the longest side of view.bounds (default 64)")
+  cmd.add_option("--resolution", a.resolution,
+                 "cells along the longest side of view.bounds (default: 3D round(0.6*sqrt(samples)) within "
+                 "64-256, 2D 64)")
       ->check(CLI::Range(1, 4096));
   cmd.add_option("--chord-tolerance", a.chordTolerance,
                  "3D: split edges whose chord strays more than this many grid cells from the zero set, the new "
-                 "vertices projected onto it (default 0: off)")
+                 "vertices projected onto it (default 0.02; 0: off)")
       ->check(CLI::Range(0.0, 1.0));
   return parseThenRun(cmd, argc - 1, argv + 1, [&] { return runMesh(a); });
 }

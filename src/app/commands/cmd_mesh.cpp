@@ -3,6 +3,8 @@
 // closed polylines as OBJ `l` elements or SVG paths). One summary line on stdout.
 
 #include <algorithm>
+#include <climits>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -102,7 +104,20 @@ void checkMeshGrid(const Scene& scene, int resolution) {
   else checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
 }
 
+// The number of samples the fit interpolates (0 for modes without samples).
+long long fittedSamples(const FitOutcome& fit) {
+  if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) return f3->data.size();
+  if (const SceneFit<2>* f2 = fit.as<SceneFit<2>>()) return f2->data.size();
+  return 0;
+}
+
 }  // namespace
+
+int autoMeshResolution(int dimension, long long samples) {
+  if (dimension != 3) return 64;
+  const double r = std::round(0.6 * std::sqrt(double(std::max(samples, 0LL))));
+  return static_cast<int>(std::clamp(r, 64.0, double(kAutoMeshResolutionMax)));
+}
 
 // The mesh's closedness in words: a degenerate field's mesh is never called a closed manifold (its
 // components may be noise, docs/maths.md "Degenerate fields").
@@ -176,14 +191,18 @@ int runMesh(const MeshArgs& args) {
   if (scene.dimension() == 3) requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"});
   else requireExtension("mesh", args.output, {"obj", "svg"});
   requireWritableLocation("mesh", args.output);
-  if (scene.mode == SceneMode::Implicit3d) checkMeshGrid<3>(scene, args.resolution);
-  if (scene.mode == SceneMode::Implicit2d) checkMeshGrid<2>(scene, args.resolution);
+  // Before the fit the sample count is not known: the automatic resolution is checked at its largest.
+  const int planned = args.resolution > 0 ? args.resolution : autoMeshResolution(scene.dimension(), LLONG_MAX);
+  if (scene.mode == SceneMode::Implicit3d) checkMeshGrid<3>(scene, planned);
+  if (scene.mode == SceneMode::Implicit2d) checkMeshGrid<2>(scene, planned);
   std::string summary;
   std::shared_ptr<const FitOutcome> fit;
   {
     const TerminalProgress progress("fitting and meshing " + scene.sourceName);
     fit = fitOutcomeOrThrow(scene);
-    summary = exportZeroSet(*fit, args.output, args.resolution, args.chordTolerance);
+    const int resolution =
+        args.resolution > 0 ? args.resolution : autoMeshResolution(scene.dimension(), fittedSamples(*fit));
+    summary = exportZeroSet(*fit, args.output, resolution, args.chordTolerance);
   }
   writeStdout(summary + "\n");
   // A degenerate field's flat regions are left out of the mesh (no data); say why it is open.

@@ -92,24 +92,31 @@ void walkCullOctree(const MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
     }
   }
   std::vector<CullBlock<Dim>> next;
-  Points<Dim> centres;
+  Points<Dim> centres, gc;
   Eigen::VectorXd fc, radius;
   while (!level.empty()) {
     throwIfCancelled(cancel);
     const std::int64_t m = static_cast<std::int64_t>(level.size());
     centres.resize(Dim, m);
     radius.resize(m);
-#pragma omp parallel for schedule(dynamic, 4)
     for (std::int64_t i = 0; i < m; ++i) {
-      CullBlock<Dim>& b = level[static_cast<size_t>(i)];
-      const Box<Dim> box = cullBlockBox(g, b);
-      // Its own bound when large, or when the ancestor's proves nothing (∞ where the ancestor
-      // reaches the edge of a field's data, while the block may lie wholly on one side).
-      if (b.size >= kOwnBoundCells || !std::isfinite(b.lipschitz)) b.lipschitz = field.lipschitzBound(box);
+      const Box<Dim> box = cullBlockBox(g, level[static_cast<size_t>(i)]);
       centres.col(i) = box.center();
       radius[i] = 0.5 * box.extent().norm();
     }
-    field.evaluateBatch(centres, fc);
+    field.evaluateBatch(centres, fc, &gc);
+#pragma omp parallel for schedule(dynamic, 4)
+    for (std::int64_t i = 0; i < m; ++i) {
+      CullBlock<Dim>& b = level[static_cast<size_t>(i)];
+      // Its own bound when large, or when the ancestor's proves nothing (∞ where the ancestor
+      // reaches the edge of a field's data, while the block may lie wholly on one side) — unless
+      // no bound can prove it: L ≥ ‖∇f(c)‖, so |f(c)| ≤ ‖∇f(c)‖·r fails the test whatever L is
+      // (the blocks the surface crosses; their bound, over many supports, was half the culling
+      // time). Their children then compute their own bounds, which are tighter.
+      if (b.size < kOwnBoundCells && std::isfinite(b.lipschitz)) continue;
+      const bool hopeless = std::isfinite(fc[i]) && std::abs(fc[i]) <= gc.col(i).norm() * radius[i];
+      b.lipschitz = hopeless ? std::numeric_limits<double>::infinity() : field.lipschitzBound(cullBlockBox(g, b));
+    }
     next.clear();
     for (std::int64_t i = 0; i < m; ++i) {
       const CullBlock<Dim>& b = level[static_cast<size_t>(i)];

@@ -38,8 +38,8 @@ struct MarchingOptions {
   // Skip f at grid points far from the zero set (an octree, marching_cull.h): blocks of 64³, 32³,
   // …, 4³ cells are tested coarse to fine; a block with |f(c)| > L·r at its centre c (L =
   // lipschitzBound over the block, or over its 16³ ancestor for smaller blocks where that is
-  // finite; r its
-  // half-diagonal) cannot change sign, so its points only need that sign, and only the 4³ blocks
+  // finite; r its half-diagonal; L is not computed where |f(c)| ≤ ‖∇f(c)‖·r, since L ≥ ‖∇f(c)‖)
+  // cannot change sign, so its points only need that sign, and only the 4³ blocks
   // left need f at every point. Exact: the mesh is identical to the dense one (every value the mesh
   // uses — on sign-changing edges and ambiguous faces — lies in a block that is not skipped).
   bool cull = true;

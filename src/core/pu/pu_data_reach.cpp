@@ -122,7 +122,7 @@ bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y, doubl
   while (top > 0) {
     const int id = stack[--top];
     const auto& nd = nodes[static_cast<std::size_t>(id)];
-    const double r = widened(nodeRadius_[static_cast<std::size_t>(id)]);
+    const double r = widened(nodeRadius(static_cast<std::size_t>(id)));  // 0 for nodes split off later
     if (nd.begin == nd.end || nd.box.distanceTo(y) > r) continue;
     if (nd.firstChild >= 0) {
       for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;

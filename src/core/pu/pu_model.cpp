@@ -6,20 +6,17 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
-#include <functional>
 #include <limits>
 #include <map>
 #include <mutex>
 
 #include <omp.h>
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
-
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
 #include "core/base/memory_check.h"
 #include "core/base/threading.h"
+#include "core/pu/pu_local_fit.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/dense_solver.h"
 
@@ -71,80 +68,6 @@ double bump(const Box<Dim>& support, const Vec<Dim>& y, const bool* frozen, Vec<
       }
   }
   return w;
-}
-
-// Local systems up to this many unknowns are solved in-process with Eigen (LLT for the SPD case,
-// else partial-pivot LU on the whole saddle matrix): for local systems of typical size (30–200
-// unknowns) the LAPACK path of fitHrbf spends most of its time in per-call overhead (NaN checks,
-// condition estimation, workspace queries), not in the solve.
-constexpr int kInProcessUnknowns = 800;
-
-// The local HRBF fit: fitHrbf for large supports, the same system solved in-process for small
-// ones. Throws NumericalError for a singular or non-finite local system (the caller grows it).
-// The polynomial stays in box-frame coordinates (no centring: the frame already puts the data
-// near the origin, and both paths must agree).
-template <int Dim>
-HrbfModel<Dim> fitLocal(const HermiteSamples<Dim>& sub, const HrbfOptions& options, FitReport& report) {
-  const int N = sub.size();
-  const int m = monomialCount<Dim>(options.polynomial);
-  constexpr int B = Dim + 1;
-  const int n = N * B;
-  if (n + m > kInProcessUnknowns || options.solver != SolverChoice::Auto)
-    return fitHrbfAbout<Dim>(sub, options, Vec<Dim>::Zero(), &report);
-  const auto t0 = std::chrono::steady_clock::now();
-  SaddleSystem sys = assembleHrbf<Dim>(sub, options);
-  Eigen::VectorXd x, c;
-  double condition = 0;
-  bool solved = false;
-  if (m == 0 && sys.definiteSign > 0) {
-    Eigen::LLT<Eigen::MatrixXd> llt(sys.A.template selfadjointView<Eigen::Lower>());
-    if (llt.info() == Eigen::Success) {
-      x = llt.solve(sys.b);
-      c.resize(0);
-      condition = 1.0 / llt.rcond();  // Eigen's 1-norm estimate, as LAPACK's dpocon
-      solved = x.allFinite();
-      report.solver = "cholesky";
-    }
-  }
-  if (!solved) {
-    // One saddle-matrix buffer per thread, reused: fresh allocations of these sizes go to mmap
-    // and cost page faults on every local fit.
-    thread_local Eigen::MatrixXd buffer;
-    if (buffer.rows() < n + m) buffer.resize(n + m, n + m);
-    Eigen::Ref<Eigen::MatrixXd> K = buffer.topLeftCorner(n + m, n + m);
-    K.topLeftCorner(n, n) = sys.A.template selfadjointView<Eigen::Lower>();
-    if (m > 0) {
-      K.topRightCorner(n, m) = sys.P;
-      K.bottomLeftCorner(m, n) = sys.P.transpose();
-      K.bottomRightCorner(m, m).setZero();
-    }
-    Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n + m);
-    rhs.head(n) = sys.b;
-    Eigen::PartialPivLU<Eigen::Ref<Eigen::MatrixXd>> lu(K);  // in place
-    const double rcond = lu.rcond();
-    // Near-singular or non-finite: the LAPACK path decides (pivoted fallbacks, warnings, and a
-    // NumericalError only for a failed factorisation — which makes the caller grow the support).
-    if (!(rcond > 1e-15)) return fitHrbfAbout<Dim>(sub, options, Vec<Dim>::Zero(), &report);
-    const Eigen::VectorXd sol = lu.solve(rhs);
-    if (!sol.allFinite()) return fitHrbfAbout<Dim>(sub, options, Vec<Dim>::Zero(), &report);
-    x = sol.head(n);
-    c = sol.tail(m);
-    condition = 1.0 / rcond;
-    report.solver = "lu";
-  }
-  Eigen::VectorXd alpha(N);
-  Points<Dim> beta(Dim, N);
-  for (int j = 0; j < N; ++j) {
-    alpha(j) = x(Eigen::Index(j) * B);
-    beta.col(j) = x.template segment<Dim>(Eigen::Index(j) * B + 1);
-  }
-  report.nSamples = N;
-  report.nUnknowns = n + m;
-  report.conditionEstimate = condition;
-  report.warnings = polynomialOrderWarnings(options.kernel, options.polynomial);
-  if (auto warning = illConditionedWarning(condition, report.solver)) report.warnings.push_back(*warning);
-  report.fitMs = msSince(t0);
-  return HrbfModel<Dim>(options.kernel, options.polynomial, sub.points, std::move(alpha), std::move(beta), std::move(c));
 }
 
 // How many samples a local fit's support holds: at least `min` (enough for the polynomial, and
@@ -227,7 +150,7 @@ class LeafFitter {
       const int k = static_cast<int>(idx.size());
       gatherSamples(idx, scratch.sub);
       try {
-        leaf.model = fitLocal<Dim>(scratch.sub, local_, report);
+        leaf.model = fitPuLocal<Dim>(scratch.sub, local_, report);
         leaf.support = scaledBox<Dim>(box, s);
         leaf.factor = s;
         leaf.samples = k;
@@ -398,15 +321,18 @@ void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const P
 // armadillo samples: pieces of 23 and 19 triangles from a box 35 reaches wide).
 constexpr double kCoverEdge = 2.0;
 
+// Only leaves whose node id is at least `firstNode` are tested: a leaf that passed once passes
+// again (its box, the samples and their reach stay), so later passes test only the new children.
 template <int Dim>
 std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>& frameY,
-                                      const PuDataReach<Dim>& reach, const std::vector<char>& nodeBlended) {
+                                      const PuDataReach<Dim>& reach, const std::vector<char>& nodeBlended,
+                                      std::size_t firstNode) {
   const int n = tree.leafCount();
   std::vector<char> split(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
-    if (tree.leafSampleCount(i) > 0 || (node < nodeBlended.size() && nodeBlended[node])) continue;
+    if (node < firstNode || tree.leafSampleCount(i) > 0 || (node < nodeBlended.size() && nodeBlended[node])) continue;
     const Box<Dim>& b = tree.leafBox(i);
     const double edge = b.extent().maxCoeff();
     const bool coarse = someSampleReaches(tree, frameY, reach, b,
@@ -421,33 +347,33 @@ std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>
 
 // Splits the empty leaves within reach of the data that the smooth blend does not already fit
 // on their own supports (`blended`, per leaf of the tree as built) until none is wider than
-// kCoverEdge reaches of a sample reaching it (each pass halves them). Returns the reach of the
-// final tree; `blended` is carried over to its leaves (the new ones are not blended: at most
-// cover boxes, blendReachCover).
+// kCoverEdge reaches of a sample reaching it (each pass halves them). `reach` stays valid for the
+// final tree: the splits add only empty nodes (radius 0) and keep the samples' order. `blended`
+// is carried over to its leaves (the new ones are not blended: at most cover boxes,
+// blendReachCover).
 template <int Dim>
-PuDataReach<Dim> refineCover(PuTree<Dim>& tree, const Points<Dim>& frameY, PuDataReach<Dim> reach,
-                             const std::function<PuDataReach<Dim>()>& rebuild, std::vector<char>& blended,
-                             const CancelToken* cancel) {
+void refineCover(PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
+                 std::vector<char>& blended, const CancelToken* cancel) {
   std::vector<char> nodeBlended(tree.nodes().size(), 0);  // node ids survive splits; new nodes are not blended
   for (int i = 0; i < tree.leafCount(); ++i)
     nodeBlended[static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)])] = blended[static_cast<std::size_t>(i)];
   bool changed = false;
+  std::size_t firstNode = 0;  // the first pass tests every leaf, later ones the new children
   for (int pass = 0; pass < 32; ++pass) {
     throwIfCancelled(cancel);
-    const std::vector<int> coarse = oversizedCoverLeaves<Dim>(tree, frameY, reach, nodeBlended);
+    const std::vector<int> coarse = oversizedCoverLeaves<Dim>(tree, frameY, reach, nodeBlended, firstNode);
     const int before = tree.leafCount();
+    firstNode = tree.nodes().size();
     if (!coarse.empty()) tree.splitEmptyLeaves(coarse);
     if (tree.leafCount() == before) break;
     changed = true;
   }
-  if (!changed) return reach;
+  if (!changed) return;
   blended.assign(static_cast<std::size_t>(tree.leafCount()), 0);
   for (int i = 0; i < tree.leafCount(); ++i) {
     const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
     if (node < nodeBlended.size()) blended[static_cast<std::size_t>(i)] = nodeBlended[node];
   }
-  // The samples' order and radii are unchanged; the per-node bounds need the new nodes.
-  return rebuild();
 }
 
 // Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
@@ -990,11 +916,9 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
     // Normals in frame coordinates: y = R⁻¹(x − t)/q turns directions by R⁻¹ = Rᵀ.
     Points<Dim> frameN;
     if (!identity) frameN = frame.R.transpose() * samples.normals;
-    const auto reachOf = [&] {
-      return PuDataReach<Dim>(tree, frameY, options.dataReach, identity ? &samples.normals : &frameN,
-                              options.edgeShift, options.local.cancel);
-    };
-    dataReach = refineCover<Dim>(tree, frameY, reachOf(), reachOf, blended, options.local.cancel);
+    dataReach = PuDataReach<Dim>(tree, frameY, options.dataReach, identity ? &samples.normals : &frameN,
+                                 options.edgeShift, options.local.cancel);
+    refineCover<Dim>(tree, frameY, dataReach, blended, options.local.cancel);
   }
   throwIfCancelled(options.local.cancel);
   const double treeMs = msSince(t0);

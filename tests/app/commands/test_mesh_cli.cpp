@@ -1,11 +1,13 @@
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
+#include "app/commands/commands.h"
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/shapes/analytic_shapes.h"
@@ -198,14 +200,26 @@ TEST_CASE("holefill: errors name the file and map to exit codes") {
   CHECK(r.rc == 4);
 }
 
-TEST_CASE("mesh --chord-tolerance: more triangles, still closed, the split edges in the summary; out of range exits 2") {
+TEST_CASE("mesh --chord-tolerance: more triangles, still closed, the split edges in the summary; 0 turns it off, "
+          "0.02 is the default; out of range exits 2") {
   const std::string scene = writeTemp("mesh_torus_chords.json", kTorusScene);
   const std::string plain = tempPath("torus_plain.ply"), refined = tempPath("torus_chords.ply");
-  const auto a = runCli("mesh " + scene + " -o " + plain + " --resolution 24");
+  const std::string byDefault = tempPath("torus_default.ply");
+  const auto a = runCli("mesh " + scene + " -o " + plain + " --resolution 24 --chord-tolerance 0");
   const auto b = runCli("mesh " + scene + " -o " + refined + " --resolution 24 --chord-tolerance 0.02");
+  const auto d = runCli("mesh " + scene + " -o " + byDefault + " --resolution 24");
   REQUIRE(a.rc == 0);
   REQUIRE(b.rc == 0);
+  REQUIRE(d.rc == 0);
   CHECK(a.out.find("chord refinement") == std::string::npos);
+  // The default is 0.02: the same split edges and the same mesh as the explicit flag.
+  const auto splitCount = [](const std::string& out) {  // N of "; N edges split by chord refinement"
+    const std::size_t end = out.find(" edges split"), begin = out.rfind("; ", end);
+    return end == std::string::npos || begin == std::string::npos ? std::string() : out.substr(begin + 2, end - begin - 2);
+  };
+  CHECK(!splitCount(d.out).empty());
+  CHECK(splitCount(d.out) == splitCount(b.out));
+  CHECK(hermite::loadMesh(byDefault).vertices == hermite::loadMesh(refined).vertices);
   CHECK(b.out.find("edges split by chord refinement") != std::string::npos);
   CHECK(b.out.find("closed manifold") != std::string::npos);
   const hermite::TriMesh m0 = hermite::loadMesh(plain), m1 = hermite::loadMesh(refined);
@@ -216,4 +230,26 @@ TEST_CASE("mesh --chord-tolerance: more triangles, still closed, the split edges
   CHECK(m1.vertexCount() > m0.vertexCount());
   CHECK(m1.triangleCount() - m0.triangleCount() == 2 * (m1.vertexCount() - m0.vertexCount()));
   CHECK(runCli("mesh " + scene + " -o " + refined + " --chord-tolerance 2").rc == 2);
+}
+
+TEST_CASE("mesh without --resolution: 3D round(0.6·√N) cells within 64 – 256, 2D 64") {
+  CHECK(hermite::app::autoMeshResolution(3, 0) == 64);
+  CHECK(hermite::app::autoMeshResolution(3, 11000) == 64);
+  CHECK(hermite::app::autoMeshResolution(3, 20000) == 85);
+  CHECK(hermite::app::autoMeshResolution(3, 200000) == 256);
+  CHECK(hermite::app::autoMeshResolution(3, 1000000) == 256);
+  CHECK(hermite::app::autoMeshResolution(2, 1000000) == 64);
+  // 20 000 points of a sphere as a data file: partition of unity, 85 cells per side, closed.
+  std::ostringstream points;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {  // golden spiral: evenly spread, normals = positions
+    const double z = 1.0 - (2.0 * i + 1.0) / n, r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+    points << r * std::cos(phi) << ' ' << r * std::sin(phi) << ' ' << z << ' ' << r * std::cos(phi) << ' '
+           << r * std::sin(phi) << ' ' << z << '\n';
+  }
+  const std::string file = writeTemp("mesh_auto_sphere.xyzn", points.str());
+  const auto r = runCli("mesh " + file + " -o " + tempPath("mesh_auto_sphere.ply"));
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("85x85x85 cells") != std::string::npos);
+  CHECK(r.out.find("closed manifold") != std::string::npos);
 }
