@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "app/gui/background_priority.h"
 #include "app/gui/view_colours.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
@@ -200,10 +201,16 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     out.traceMode = refined_.traceMode;
     return;
   }
+  if (baked && progressive_ && progressive_->view == view) {  // its refinement fills in (takeRefinedRows)
+    out = progressive_->image;
+    return;
+  }
   if (refining_ && !(*refining_ == view)) {  // the view moved on: its refinement is of no use
     jobs_.cancel();
     refining_.reset();
   }
+  progressive_.reset();
+  rows_.clear();
   render::TraceSettings s = traceSettings(v, f, quality, tracer_->hasExactModel());
   const bool refineNow = baked && quality == ViewQuality::Settled && bakeResolution_ >= 128;
   s.refineExact = refineNow;
@@ -230,6 +237,12 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
       out.nothingYet = true;
       return;
     }
+    // The read-backs one step per frame (the 16 MB hit texture, its conversion, then colour,
+    // plane colour and depth), and finishFrame (overlays, the image's read-back) in a frame of its own.
+    if (!tracer_->readBackStep() || msSince(t0) > budget / 2) {
+      out.nothingYet = true;
+      return;
+    }
     tracing_.reset();
     r = tracer_->finishFrame(job.get());
   }
@@ -238,6 +251,9 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   // Other frames leave pixels the GPU left undecided as it drew them: a later frame replaces them.
   if (refineNow && job->camera && s.mode == render::TracerMode::Baked) {
     refining_ = view;
+    // The baked image is shown now; the refinement's rows replace its rows as they arrive.
+    progressive_ = Progressive{job, fit, view, out, ++refinements_};
+    rows_.start(progressive_->id);
     requestRefinement(std::move(job), fit);
   }
 }
@@ -250,8 +266,11 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
   const bool letRunningFinish = baking_ && baking_->resolution == 64 && resolution == 64;
   baking_ = request;
   refining_.reset();
+  progressive_.reset();
+  rows_.clear();
   jobs_.submit(
       [this, fit, bounds, boundsKey, resolution](const CancelToken& cancel) -> ViewJobRunner::Apply {
+        lowerCallingThreadPriority(viewWorkerNice());
         const SceneFit<3>& f = *fit->as<SceneFit<3>>();
         render::TracerUploadOptions uo;
         uo.bakeResolution = resolution;
@@ -270,22 +289,37 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
 
 void SceneViewRenderer::requestRefinement(std::shared_ptr<render::DeferredRefinement> job,
                                           const std::shared_ptr<const FitOutcome>& fit) {
-  const RefinedView view = *refining_;
-  jobs_.submit([this, job, fit, view](const CancelToken& cancel) -> ViewJobRunner::Apply {
+  const std::uint64_t id = refinements_;
+  jobs_.submit([this, job, fit, id](const CancelToken& cancel) -> ViewJobRunner::Apply {
+    lowerCallingThreadPriority(viewWorkerNice());
     render::refineDeferred(*job, &cancel);
-    return [this, job, fit, view] {
+    return [this, fit, id] {
       if (field_ != fit) return;  // another upload came first: the job's samples are gone
-      render::TraceResult r = tracer_->finishDeferred(*job);
-      tracing_.reset();  // finishDeferred abandoned it
-      refined_ = SceneViewResult{};
-      refined_.width = view.width;
-      refined_.height = view.height;
-      takeTrace(r, refined_);
-      refined_.traceMode = job->settings.refineExact ? "baked + refined" : "baked";
-      refinedView_ = view;
-      refining_.reset();
+      if (!progressive_ || progressive_->id != id) return;  // a newer view superseded it
+      progressive_->finished = true;
+      takeRefinedRows();  // the rows not copied yet (all are published now); adopts the image
     };
   });
+}
+
+bool SceneViewRenderer::takeRefinedRows() {
+  // A frame traced in bands uses the tracer's target, which finishDeferredRows would overwrite.
+  if (!progressive_ || tracing_ || field_ != progressive_->fit) return false;
+  Progressive& p = *progressive_;
+  const int published = p.job->rowsDone->load(std::memory_order_acquire);
+  const RowRange rows = rows_.take(p.id, published, p.view.height);
+  if (!rows.empty()) tracer_->finishDeferredRows(*p.job, rows.begin, rows.end, p.image.image, p.image.depth);
+  if (p.finished && rows_.complete(p.id, p.view.height)) {  // the refined image is whole
+    refined_ = std::move(p.image);
+    refined_.refinedPixels = p.job->result.refinedPixels;
+    refined_.traceMode = p.job->settings.refineExact ? "baked + refined" : "baked";
+    refinedView_ = p.view;
+    refining_.reset();
+    progressive_.reset();
+    rows_.clear();
+    return true;
+  }
+  return !rows.empty();
 }
 
 bool SceneViewRenderer::adoptFinished() {
@@ -298,6 +332,7 @@ bool SceneViewRenderer::adoptFinished() {
     arrived = !uploading_;  // a refined image; a bake is worth drawing once it is on the GPU
   }
   if (uploading_) arrived = continueUpload(kUploadBudgetMs) || arrived;
+  arrived = takeRefinedRows() || arrived;
   frameSpentMs_ = msSince(t0);
   return arrived || tracing_.has_value();
 }
@@ -317,6 +352,8 @@ bool SceneViewRenderer::continueUpload(double budgetMs) {
   bakedBounds_ = u.boundsKey;
   if (baking_ && baking_->fit == u.fit.get() && baking_->resolution == u.resolution) baking_.reset();
   refinedView_.reset();
+  progressive_.reset();
+  rows_.clear();
   tracing_.reset();  // the switch abandoned it
   return true;
 }
