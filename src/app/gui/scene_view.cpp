@@ -25,6 +25,23 @@ constexpr double kTraceBudgetMs = 12.0;
 // of texels: 23–32 ms in one piece on a loaded llvmpipe).
 constexpr double kUploadBudgetMs = 6.0;
 
+// This frame's share of a settled view traced over several frames (at full size the trace pass
+// alone can take several frames' time on a software rasteriser; the image on screen stays
+// meanwhile): `begin` starts the frame (the tile pass), then bands of rows within `budgetMs`,
+// then the read-backs one per frame (the 16 MB hit texture, its conversion, the trace pass).
+// A step that used half the budget leaves the next one to the next frame. True when only
+// finishFrame (overlays, the image's read-back) is left, which then gets a frame of its own.
+bool traceSettledStep(render::ImplicitTracer& tracer, bool begin, const Camera& camera,
+                      const render::TraceSettings& settings, double budgetMs) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (begin) {
+    tracer.beginFrame(camera, settings);
+    if (msSince(t0) > budgetMs / 2) return false;
+  }
+  if (!tracer.traceRows(std::max(budgetMs - msSince(t0), 1.0)) || msSince(t0) > budgetMs / 2) return false;
+  return tracer.readBackStep() && msSince(t0) <= budgetMs / 2;
+}
+
 }  // namespace
 
 // A hidden context of the render's size on the named backend (osmesa, egl).
@@ -221,25 +238,9 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     tracing_.reset();
     r = tracer_->render(camera, s, job.get());
   } else {
-    // At full size the trace pass alone can take several frames' time on a software rasteriser:
-    // it runs in bands of rows, kTraceBudgetMs per frame, and the image on screen stays meanwhile.
-    // The tile pass, the last band and the read-backs of finishFrame each take a frame's share
-    // at full size: whichever used half the budget leaves the next step to the next frame.
-    const auto t0 = std::chrono::steady_clock::now();
-    const double budget = std::max(kTraceBudgetMs - frameSpentMs_, 1.0);
     const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
-    if (begin) {
-      tracer_->beginFrame(camera, s);
-      tracing_ = view;
-    }
-    if ((begin && msSince(t0) > budget / 2) || !tracer_->traceRows(std::max(budget - msSince(t0), 1.0)) ||
-        msSince(t0) > budget / 2) {
-      out.nothingYet = true;
-      return;
-    }
-    // The read-backs one step per frame (the 16 MB hit texture, its conversion, then colour,
-    // plane colour and depth), and finishFrame (overlays, the image's read-back) in a frame of its own.
-    if (!tracer_->readBackStep() || msSince(t0) > budget / 2) {
+    if (begin) tracing_ = view;
+    if (!traceSettledStep(*tracer_, begin, camera, s, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) {
       out.nothingYet = true;
       return;
     }
