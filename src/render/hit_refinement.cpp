@@ -219,6 +219,7 @@ HitRefinement refineHits(const ImplicitField<3>& field, const Box<3>& bounds, co
     // The CPU-traced undecided pixels come before the ring, which may overwrite those next to a hit.
     refiner.traceUndecided();
     if (options.refine) out.ringHits += refiner.searchWindows(refiner.silhouetteRing());
+    if (options.onBand) options.onBand(out, j0, std::min(H, j0 + band));
   }
   return out;
 }

@@ -7,6 +7,7 @@
 // bake found, plus the one-pixel ring around it.
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "core/base/cancel_token.h"
@@ -22,6 +23,8 @@ struct GpuHits {
   const std::vector<int>& undecided; // the pixels whose march ran out of steps or loop budget
 };
 
+struct HitRefinement;
+
 struct HitRefinementOptions {
   bool refine = true;     // false: GPU hits stand as they are; only the undecided pixels are traced
   double cell = 0;        // the bake's cell diagonal: how far from the GPU's t a hit is looked for
@@ -29,6 +32,9 @@ struct HitRefinementOptions {
   // Polled between bands of rows (each a few tens of ms of work); throws Cancelled when set.
   const CancelToken* cancel = nullptr;
   int bandRows = 16;  // rows refined per band
+  // Called after each band with the refinement so far: rows [rowBegin, rowEnd) (row 0 = top) of
+  // it are final (the progressive window view publishes them); may be empty.
+  std::function<void(const HitRefinement& partial, int rowBegin, int rowEnd)> onBand;
 };
 
 // The surface per pixel after refinement, row 0 = top.

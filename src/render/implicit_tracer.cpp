@@ -473,13 +473,16 @@ int exactLoopBudget(int paddedCentres, Eigen::Index centres) {
   return budget;
 }
 
-// Reads the trace pass's hits back (GL rows bottom-up; row 0 = top from here on): the result
+// The trace pass's hit texture as read back: RGBA32F per pixel (t, GPU normal), GL rows bottom-up.
+std::vector<float> readHitTexture(const TraceTarget& target) {
+  return readTexture<float>(target.hit, GL_RGBA, GL_FLOAT, 4);
+}
+
+// The hits of `hitData` (readHitTexture of a W × H target; row 0 = top from here on): the result
 // gets each hit's depth and the GPU's normal. Returns the surface's ray parameter per pixel:
 // ≥ 0 a hit, −1 a miss, −2 where the march ran out of steps or loop budget (undecided).
-std::vector<float> readSurfaceHits(const TraceTarget& target, TraceResult& result) {
-  const int W = target.width, H = target.height;
+std::vector<float> surfaceHits(const std::vector<float>& hitData, int W, int H, TraceResult& result) {
   const std::size_t npx = std::size_t(W) * H;
-  const std::vector<float> hitData = readTexture<float>(target.hit, GL_RGBA, GL_FLOAT, 4);
   result.hit.assign(npx, 0);
   result.depth.assign(npx, std::numeric_limits<float>::infinity());
   result.normal.assign(3 * npx, 0.0f);
@@ -497,6 +500,10 @@ std::vector<float> readSurfaceHits(const TraceTarget& target, TraceResult& resul
   return surfaceT;
 }
 
+std::vector<float> readSurfaceHits(const TraceTarget& target, TraceResult& result) {
+  return surfaceHits(readHitTexture(target), target.width, target.height, result);
+}
+
 std::vector<int> undecidedPixels(const std::vector<float>& surfaceT) {
   std::vector<int> undecided;
   for (std::size_t p = 0; p < surfaceT.size(); ++p)
@@ -507,6 +514,11 @@ std::vector<int> undecidedPixels(const std::vector<float>& surfaceT) {
 // Without refinement the GPU's surface hit is the visible one unless the slice plane is nearer;
 // where the plane wins, the result records no surface there.
 void keepVisibleSurface(const TraceFrame& frame, const std::vector<float>& surfaceT, TraceResult& result) {
+  if (!frame.settings.slice.enabled) {  // no plane (planeT is +∞): every hit is visible
+    for (std::size_t p = 0; p < surfaceT.size(); ++p)
+      if (surfaceT[p] >= 0) result.hit[p] = 1;
+    return;
+  }
   for (int j = 0; j < frame.height; ++j)
     for (int i = 0; i < frame.width; ++i) {
       const std::size_t p = std::size_t(j) * frame.width + i;
@@ -541,12 +553,15 @@ float shadeRefinedHit(const TraceFrame& frame, const Ray& ray, double t, const V
 // of surface and plane wins) wherever the GPU or the refinement found a surface, into the trace
 // pass's colour and depth (GL rows bottom-up), so that the overlays are depth-tested against the
 // refined surface. Returns the pixels that show a refined hit.
+// Rows [rowBegin, rowEnd) (row 0 = top; rowEnd < 0: every row), each pixel on its own.
 int compositeRefinedPixels(const TraceFrame& frame, const HitRefinement& hits, const std::vector<std::uint8_t>& planeColor,
-                           std::vector<std::uint8_t>& color, std::vector<float>& depth, TraceResult& result) {
+                           std::vector<std::uint8_t>& color, std::vector<float>& depth, TraceResult& result,
+                           int rowBegin = 0, int rowEnd = -1) {
   const int W = frame.width, H = frame.height;
+  const int j1 = rowEnd < 0 ? H : std::min(rowEnd, H);
   int refined = 0;
 #pragma omp parallel for schedule(static) reduction(+ : refined)
-  for (int j = 0; j < H; ++j)
+  for (int j = rowBegin; j < j1; ++j)
     for (int i = 0; i < W; ++i) {
       const std::size_t p = std::size_t(j) * W + i;
       const std::size_t glIndex = std::size_t(H - 1 - j) * W + i;
@@ -649,6 +664,8 @@ struct ImplicitTracer::Gpu {
   void bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget);
   long long prepareRects(const TraceFrame& frame);
   ImageRgba8 drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples);
+  // The overlays into GL rows [glRow, glRow + rows) of the target only (a scissor).
+  void drawOverlayContent(const TraceFrame& frame, const HermiteSamples<3>* samples);
   void scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const;
 };
 
@@ -687,7 +704,12 @@ struct ImplicitTracer::Frame {
   std::optional<TraceFrame> frame;
   TraceResult result;  // sliceRange, exactDouble, tracedPixels and traceMs so far
   int nextRow = 0;     // GL rows [0, nextRow) are traced
-  double tracedMs = 0;  // wall clock of the bands so far, for the next band's height
+  double maxMsPerRow = 0;  // the costliest band's ms per row so far, for the next band's height
+  // What readBackStep read and converted so far, for finishFrame.
+  std::optional<std::vector<float>> hitData;  // readHitTexture, until converted into surfaceT
+  std::optional<std::vector<float>> surfaceT;
+  std::optional<std::vector<int>> undecided;
+  std::optional<TracePassPixels> pass;
   Frame(const Camera& c, const TraceSettings& s) : camera(c), settings(s) {}
 };
 
@@ -849,7 +871,7 @@ long long ImplicitTracer::Gpu::prepareTrace(const TraceFrame& frame, const Volum
   setTraceState();
   if (settings.mode != TracerMode::Baked) return (long long)frame.pixels();
   if (settings.showSurface) runTilePass(frame, bake);
-  return prepareRects(frame);
+  return -1;  // the rectangles are left to prepareRects
 }
 
 // The pipeline state of the trace pass: the target with all its buffers, no blending, depth
@@ -997,6 +1019,20 @@ void ImplicitTracer::Gpu::scaleMarksToSpacing(const TraceFrame& frame, OverlayCo
 // Draws the overlays (points, normals, bounds box) depth-tested against the traced depth, and
 // reads the final colour back, flipped so that row 0 = top.
 ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples) {
+  drawOverlayContent(frame, samples);
+  const std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target->color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
+  ImageRgba8 image(frame.width, frame.height);
+  const std::size_t rowBytes = std::size_t(frame.width) * 4;
+  for (int j = 0; j < frame.height; ++j)
+    std::memcpy(image.pixels.data() + std::size_t(j) * rowBytes,
+                color.data() + std::size_t(frame.height - 1 - j) * rowBytes, rowBytes);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return image;
+}
+
+// Draws the overlays into the bound target's colour (depth-tested against its depth); the
+// caller's scissor, if any, limits them.
+void ImplicitTracer::Gpu::drawOverlayContent(const TraceFrame& frame, const HermiteSamples<3>* samples) {
   const TraceSettings& settings = frame.settings;
   target->bind();
   target->setColorOnly();
@@ -1011,14 +1047,6 @@ ImageRgba8 ImplicitTracer::Gpu::drawOverlays(const TraceFrame& frame, const Herm
   scaleMarksToSpacing(frame, content);
   overlay->draw(frame.camera, frame.viewProj, content);
   target->setAllBuffers();
-  const std::vector<std::uint8_t> color = readTexture<std::uint8_t>(target->color, GL_RGBA, GL_UNSIGNED_BYTE, 4);
-  ImageRgba8 image(frame.width, frame.height);
-  const std::size_t rowBytes = std::size_t(frame.width) * 4;
-  for (int j = 0; j < frame.height; ++j)
-    std::memcpy(image.pixels.data() + std::size_t(j) * rowBytes,
-                color.data() + std::size_t(frame.height - 1 - j) * rowBytes, rowBytes);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return image;
 }
 
 // A frame in passes: the GPU trace; the CPU refinement of its hits against the true field (or,
@@ -1046,6 +1074,8 @@ void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& setti
   result.exactDouble = settings.mode == TracerMode::Exact &&
                        (settings.exactPrecision == ExactPrecision::Double ||
                         (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
+  // The baked mode's tile pass here; its read-back, the clear and the rectangles (prepareRects)
+  // open the first traceRows, within its budget.
   result.tracedPixels = gpu_->prepareTrace(frame, *bake_);
   result.traceMs = msSince(t0);
   frame_ = std::move(f);
@@ -1054,8 +1084,9 @@ void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& setti
 bool ImplicitTracer::frameStarted() const { return frame_ != nullptr; }
 
 // Bands of at least kMinBandRows rows; the first of a frame has kFirstBandRows (its time per row sizes
-// the next), later ones as many
-// as the budget left allows at the frame's average time per row so far.
+// the next), later ones as many as the budget left allows at the largest time per row of a band so
+// far (rows through the model cost several times the empty ones above it: the frame's average
+// would let a band overrun the budget).
 bool ImplicitTracer::traceRows(double budgetMs) {
   constexpr int kMinBandRows = 8, kFirstBandRows = 16;
   if (!frame_) throw InputError("implicit tracer: traceRows without beginFrame");
@@ -1063,23 +1094,44 @@ bool ImplicitTracer::traceRows(double budgetMs) {
   const TraceFrame& frame = *f.frame;
   const KeepFramebuffer keep;
   const auto t0 = Clock::now();
+  if (f.result.tracedPixels < 0) f.result.tracedPixels = gpu_->prepareRects(frame);
   if (!std::isfinite(budgetMs)) {
     gpu_->traceRows(frame, *bake_, radialSum_, f.result.exactDouble, f.nextRow, frame.height);
     f.nextRow = frame.height;
   }
   while (f.nextRow < frame.height) {
-    const double msPerRow = f.nextRow > 0 ? f.tracedMs / f.nextRow : 0.0;
+    const double msPerRow = f.maxMsPerRow;
     const double left = budgetMs - msSince(t0);
     const int wanted = msPerRow > 0 ? int(left / msPerRow) : kFirstBandRows;
     const int rows = std::clamp(wanted, std::min(kMinBandRows, frame.height - f.nextRow), frame.height - f.nextRow);
     const auto band = Clock::now();
     gpu_->traceRows(frame, *bake_, radialSum_, f.result.exactDouble, f.nextRow, f.nextRow + rows);
-    f.tracedMs += msSince(band);
+    f.maxMsPerRow = std::max(f.maxMsPerRow, msSince(band) / rows);
     f.nextRow += rows;
-    if (msSince(t0) + kMinBandRows * f.tracedMs / f.nextRow > budgetMs) break;
+    if (msSince(t0) + kMinBandRows * f.maxMsPerRow > budgetMs) break;
   }
   f.result.traceMs += msSince(t0);
   return f.nextRow >= frame.height;
+}
+
+bool ImplicitTracer::readBackStep() {
+  if (!frame_ || frame_->nextRow < frame_->frame->height)
+    throw InputError("implicit tracer: readBackStep before every row is traced");
+  Frame& f = *frame_;
+  const TraceTarget& target = *gpu_->target;
+  if (!f.surfaceT && !f.hitData) {
+    f.hitData = readHitTexture(target);
+    return false;  // its conversion is left
+  }
+  if (!f.surfaceT) {
+    f.surfaceT = surfaceHits(*f.hitData, target.width, target.height, f.result);
+    f.hitData.reset();
+    f.undecided = undecidedPixels(*f.surfaceT);
+  } else if (!f.pass) {
+    f.pass = readTracePass(target);
+  }
+  // finishFrame reads the trace pass only when it refines (or composites the undecided pixels).
+  return f.pass || !((f.settings.refineExact || !f.undecided->empty()) && f.settings.showSurface);
 }
 
 TraceResult ImplicitTracer::finishFrame(DeferredRefinement* deferred) {
@@ -1092,10 +1144,13 @@ TraceResult ImplicitTracer::finishFrame(DeferredRefinement* deferred) {
   TraceTarget& target = *gpu_->target;
   TraceResult result = std::move(f->result);
 
-  std::vector<float> surfaceT = readSurfaceHits(target, result);
-  std::vector<int> undecided = undecidedPixels(surfaceT);
+  std::vector<float> surfaceT = f->surfaceT  ? std::move(*f->surfaceT)
+                               : f->hitData ? surfaceHits(*f->hitData, target.width, target.height, result)
+                                            : readSurfaceHits(target, result);
+  std::vector<int> undecided = f->undecided ? std::move(*f->undecided) : undecidedPixels(surfaceT);
   result.cpuTracedPixels = int(undecided.size());
   const bool refine = (settings.refineExact || !undecided.empty()) && settings.showSurface;
+  const auto tracePass = [&] { return f->pass ? std::move(*f->pass) : readTracePass(target); };
   if (refine && deferred && settings.mode == TracerMode::Baked) {
     DeferredRefinement& job = *deferred;
     job = DeferredRefinement{};
@@ -1105,7 +1160,7 @@ TraceResult ImplicitTracer::finishFrame(DeferredRefinement* deferred) {
     job.depthRange = depthRange(camera);
     job.bake = bake_;
     job.field = field_;
-    TracePassPixels pass = readTracePass(target);
+    TracePassPixels pass = tracePass();
     job.color = std::move(pass.color);
     job.planeColor = std::move(pass.planeColor);
     job.depth = std::move(pass.depth);
@@ -1119,7 +1174,7 @@ TraceResult ImplicitTracer::finishFrame(DeferredRefinement* deferred) {
                                           refinementOptions(settings, *bake_, nullptr));
     result.ringHits = hits.ringHits;
     result.droppedHits = hits.droppedHits;
-    TracePassPixels pass = readTracePass(target);
+    TracePassPixels pass = tracePass();
     result.refinedPixels = compositeRefinedPixels(frame, hits, pass.planeColor, pass.color, pass.depth, result);
     writeTracePass(target, pass.color, pass.depth);
     result.refineMs = msSince(t0);
@@ -1138,12 +1193,19 @@ void refineDeferred(DeferredRefinement& job, const CancelToken* cancel) {
   const auto t0 = Clock::now();
   const TraceFrame frame(*job.camera, job.settings, job.bounds, *job.bake, job.depthRange);
   TraceResult& result = job.result;
-  const HitRefinement hits = refineHits(*job.field, job.bounds, *job.camera,
-                                        GpuHits{job.surfaceT, result.normal, job.undecided},
-                                        refinementOptions(job.settings, *job.bake, cancel));
+  // The GPU's normals as read back: refineHits reads them while the bands composite into result.
+  const std::vector<float> gpuNormal = result.normal;
+  HitRefinementOptions options = refinementOptions(job.settings, *job.bake, cancel);
+  int refined = 0;
+  options.onBand = [&](const HitRefinement& partial, int rowBegin, int rowEnd) {
+    refined += compositeRefinedPixels(frame, partial, job.planeColor, job.color, job.depth, result, rowBegin, rowEnd);
+    job.rowsDone->store(rowEnd, std::memory_order_release);
+  };
+  const HitRefinement hits =
+      refineHits(*job.field, job.bounds, *job.camera, GpuHits{job.surfaceT, gpuNormal, job.undecided}, options);
   result.ringHits = hits.ringHits;
   result.droppedHits = hits.droppedHits;
-  result.refinedPixels = compositeRefinedPixels(frame, hits, job.planeColor, job.color, job.depth, result);
+  result.refinedPixels = refined;
   result.refineMs = msSince(t0);
   job.refined = true;
 }
@@ -1159,6 +1221,43 @@ TraceResult ImplicitTracer::finishDeferred(DeferredRefinement& job) {
   result.image = gpu_->drawOverlays(frame, hasSamples_ ? &samples_ : nullptr);
   result.overlayMs = msSince(t0);
   return result;
+}
+
+void ImplicitTracer::finishDeferredRows(const DeferredRefinement& job, int rowBegin, int rowEnd, ImageRgba8& image,
+                                        std::vector<float>& depth) {
+  if (!job.camera || !job.bake) throw InputError("implicit tracer: rows of an empty refinement");
+  frame_.reset();  // the target is overwritten
+  const TraceFrame frame(*job.camera, job.settings, job.bounds, *job.bake, job.depthRange);
+  const int W = frame.width, H = frame.height;
+  rowBegin = std::clamp(rowBegin, 0, H);
+  rowEnd = std::clamp(rowEnd, rowBegin, H);
+  if (rowEnd == rowBegin) return;
+  if (image.width != W || image.height != H || depth.size() != std::size_t(W) * H)
+    throw InputError("implicit tracer: refined rows into an image of another size");
+  const TraceTarget& target = gpu_->targetFor(W, H);
+  // Top rows [rowBegin, rowEnd) are GL rows [H − rowEnd, H − rowBegin).
+  const int glRow = H - rowEnd, rows = rowEnd - rowBegin;
+  const std::size_t first = std::size_t(glRow) * W, count = std::size_t(rows) * W;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(target.color.id(), 0, 0, glRow, W, rows, GL_RGBA, GL_UNSIGNED_BYTE, &job.color[4 * first]);
+  glTextureSubImage2D(target.depth.id(), 0, 0, glRow, W, rows, GL_DEPTH_COMPONENT, GL_FLOAT, &job.depth[first]);
+  checkGl("implicit tracer refined rows upload");
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(0, glRow, W, rows);
+  gpu_->drawOverlayContent(frame, hasSamples_ ? &samples_ : nullptr);
+  glDisable(GL_SCISSOR_TEST);
+  std::vector<std::uint8_t> color(4 * count);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glGetTextureSubImage(target.color.id(), 0, 0, glRow, 0, W, rows, 1, GL_RGBA, GL_UNSIGNED_BYTE,
+                       GLsizei(color.size()), color.data());
+  checkGl("implicit tracer refined rows read-back");
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const std::size_t rowBytes = std::size_t(W) * 4;
+  for (int j = rowBegin; j < rowEnd; ++j) {
+    std::memcpy(image.pixels.data() + std::size_t(j) * rowBytes, &color[std::size_t(rowEnd - 1 - j) * rowBytes],
+                rowBytes);
+    std::memcpy(&depth[std::size_t(j) * W], &job.result.depth[std::size_t(j) * W], std::size_t(W) * sizeof(float));
+  }
 }
 
 }  // namespace hermite::render

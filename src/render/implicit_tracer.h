@@ -30,6 +30,7 @@
 // depth range. Every GL call must happen on the thread whose context is current.
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -131,7 +132,9 @@ TracerVolume prepareTracerVolume(const ImplicitField<3>& field, const Box<3>& bo
 // A settled frame whose exact refinement runs off the GL thread, in three steps:
 // ImplicitTracer::render(camera, settings, &job) returns the baked image at once (unrefined) and
 // fills `job`; refineDeferred(job) refines and composites it on any thread; on the GL thread
-// ImplicitTracer::finishDeferred(job) draws the overlays over it and reads it back.
+// ImplicitTracer::finishDeferred(job) draws the overlays over it and reads it back. Or, for an
+// image that fills in while the job runs, ImplicitTracer::finishDeferredRows(job, …) takes the rows
+// refineDeferred has published so far (rowsDone).
 struct DeferredRefinement {
   std::optional<Camera> camera;
   TraceSettings settings;
@@ -147,6 +150,10 @@ struct DeferredRefinement {
   std::vector<float> depth;
   TraceResult result;  // hit, depth and normal as read back; refined by refineDeferred
   bool refined = false;
+  // Rows [0, *rowsDone) (row 0 = top) of color, depth and result are refined and composited:
+  // refineDeferred stores it after each band (release), readers load it (acquire) and then read
+  // only those rows while the job runs. Shared so that the job stays copyable.
+  std::shared_ptr<std::atomic<int>> rowsDone = std::make_shared<std::atomic<int>>(0);
 };
 
 // The CPU step of a deferred refinement (any thread). Throws Cancelled when `cancel` is set
@@ -191,6 +198,10 @@ class ImplicitTracer {
   // beginFrame(), upload() and finishDeferred() abandon a frame in progress (they reuse its target).
   void beginFrame(const Camera& camera, const TraceSettings& settings);
   bool traceRows(double budgetMs);
+  // Optional, after the last traceRows: the next of finishFrame's read-backs (the surface hits,
+  // then the trace pass's colour, plane colour and depth), one per call, so that a caller with a
+  // frame budget spreads them over frames; true once none is left. finishFrame does the rest.
+  bool readBackStep();
   TraceResult finishFrame(DeferredRefinement* deferred = nullptr);
   // A frame was begun and is neither finished nor abandoned.
   bool frameStarted() const;
@@ -198,6 +209,13 @@ class ImplicitTracer {
   // target, the overlays over them, read back. The tracer must hold the upload the job was made
   // from (the samples the overlays draw).
   TraceResult finishDeferred(DeferredRefinement& job);
+  // Rows [rowBegin, rowEnd) (row 0 = top; within *job.rowsDone) of the job's refined image: their
+  // colour and depth into the target, the overlays drawn over them under a scissor, their pixels
+  // read back into those rows of `image` (width × height of the job's camera) and their surface
+  // depth (TraceResult::depth) into `depth`; other rows are left as they are. Over rows covering
+  // the frame, the image equals finishDeferred's byte for byte. Abandons a frame in progress.
+  void finishDeferredRows(const DeferredRefinement& job, int rowBegin, int rowEnd, ImageRgba8& image,
+                          std::vector<float>& depth);
 
   // True when exact mode is available (the uploaded field is a RadialSum<3>).
   bool hasExactModel() const;

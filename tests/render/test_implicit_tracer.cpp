@@ -5,6 +5,8 @@
 #include <cstdlib>
 #include <limits>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "core/base/errors.h"
@@ -574,6 +576,83 @@ TEST_CASE("implicit tracer: a banded frame's deferred refinement matches the who
   CHECK(banded.image == whole.image);
   CHECK(banded.depth == whole.depth);
   CHECK(banded.refinedPixels == whole.refinedPixels);
+}
+
+TEST_CASE("implicit tracer: a banded frame read back over several calls has the bytes of a whole render") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(117, 86, Projection::Perspective, {2.6, 3.1, 3.7});
+  for (bool refine : {false, true}) {
+    CAPTURE(refine);
+    TraceSettings settings;
+    settings.refineExact = refine;
+    settings.showBounds = true;
+    const TraceResult whole = tracer.render(camera, settings);
+    tracer.beginFrame(camera, settings);
+    CHECK_THROWS_AS(tracer.readBackStep(), InputError);  // rows are left to trace
+    while (!tracer.traceRows(0.0)) {
+    }
+    int steps = 1;
+    while (!tracer.readBackStep()) ++steps;
+    // The hit texture, its conversion, then (refining) the trace pass; a call after the last
+    // finds nothing left.
+    CHECK(steps == (refine ? 3 : 2));
+    CHECK(tracer.readBackStep());
+    const TraceResult banded = tracer.finishFrame();
+    CHECK(banded.image == whole.image);
+    CHECK(banded.hit == whole.hit);
+    CHECK(banded.depth == whole.depth);
+    CHECK(banded.normal == whole.normal);
+    CHECK(banded.refinedPixels == whole.refinedPixels);
+  }
+}
+
+TEST_CASE("implicit tracer: refined rows copied while the refinement publishes them give finishDeferred's image") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(121, 90, Projection::Perspective, {1.8, 2.2, 2.6});
+  TraceSettings settings;
+  settings.showBounds = true;  // overlays drawn over the rows under a scissor
+  DeferredRefinement wholeJob, rowJob;
+  tracer.render(camera, settings, &wholeJob);
+  refineDeferred(wholeJob);
+  const TraceResult whole = tracer.finishDeferred(wholeJob);
+  REQUIRE(whole.refinedPixels > 100);
+
+  TraceResult baked = tracer.render(camera, settings, &rowJob);
+  CHECK(rowJob.rowsDone->load() == 0);
+  ImageRgba8 image = baked.image;
+  std::vector<float> depth = baked.depth;
+  REQUIRE(!(image == whole.image));  // the refinement changes pixels, so the copy is seen
+  // The refinement publishes bands on a worker; this (GL) thread copies what is published.
+  std::thread worker([&] { refineDeferred(rowJob); });
+  int copied = 0, copies = 0;
+  std::vector<int> published;
+  while (copied < camera.height()) {
+    const int done = rowJob.rowsDone->load(std::memory_order_acquire);
+    if (done > copied) {
+      tracer.finishDeferredRows(rowJob, copied, done, image, depth);
+      published.push_back(done);
+      copied = done, ++copies;
+    }
+    std::this_thread::yield();
+  }
+  worker.join();
+  CHECK(std::is_sorted(published.begin(), published.end()));
+  CHECK(copies >= 1);
+  CHECK(image == whole.image);
+  CHECK(depth == whole.depth);
+  // Uneven chunks of a finished job, out of order: each row's bytes depend on that row only.
+  ImageRgba8 again = baked.image;
+  std::vector<float> againDepth = baked.depth;
+  for (const auto& [a, b] : {std::pair{40, 90}, std::pair{0, 7}, std::pair{7, 40}})
+    tracer.finishDeferredRows(rowJob, a, b, again, againDepth);
+  CHECK(again == whole.image);
+  CHECK(againDepth == whole.depth);
+  ImageRgba8 small(10, 10);
+  CHECK_THROWS_AS(tracer.finishDeferredRows(rowJob, 0, 5, small, againDepth), InputError);
 }
 
 TEST_CASE("implicit tracer: an upload or a render abandons a banded frame") {

@@ -24,6 +24,13 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The window's options (gui_window.cpp) that change what a frame costs.
+GuiOptions windowOptions() {
+  GuiOptions o;
+  o.lowPriorityFits = true;
+  return o;
+}
+
 }  // namespace
 
 DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int width, int height) {
@@ -33,7 +40,7 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
   scene.data.count = samples;
   const auto context = offscreenContext("osmesa", width, height);
   render::OffscreenTarget target(width, height, false);
-  GuiApp app(Document(scene), GuiOptions{});
+  GuiApp app(Document(scene), windowOptions());
   FrameInput in;
   in.width = width;
   in.height = height;
@@ -125,7 +132,8 @@ struct PacedApp {
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
 
   PacedApp(const Scene& scene, int width, int height)
-      : context(offscreenContext("osmesa", width, height)), target(width, height, false), app(Document(scene), {}) {
+      : context(offscreenContext("osmesa", width, height)), target(width, height, false),
+        app(Document(scene), windowOptions()) {
     in.width = width;
     in.height = height;
     if (const char* path = std::getenv("HERMITE_GUI_LOG"); path && *path) log = std::make_unique<FrameLog>(path);
@@ -185,6 +193,8 @@ struct PacedApp {
     r.height = in.height;
     r.worstPhases = worstPhases;
     r.worstPresentMs = worstPresentMs;
+    r.fitMs = app.shownFit() ? app.shownFit()->wallMs : 0.0;
+    r.over33 = double(std::count_if(frameMs.begin(), frameMs.end(), [](double ms) { return ms > 33.0; }));
     return r;
   }
 };

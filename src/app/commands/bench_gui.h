@@ -36,6 +36,8 @@ struct BusyFramesResult {
   int width = 0, height = 0;
   FramePhases worstPhases;  // where the slowest frame's time went
   double worstPresentMs = 0;  // its present (glFinish on the offscreen context)
+  double fitMs = 0;           // the shown fit's own wall clock (FitOutcome::wallMs)
+  double over33 = 0;          // frames longer than 33 ms
 };
 
 // A dense HRBF fit of the bunny preset with `samples` points submitted from a settled 50-point

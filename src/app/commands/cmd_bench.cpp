@@ -462,7 +462,8 @@ void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
     for (std::size_t k = 0; k < kFramePhaseNames.size(); ++k) phases[std::string(kFramePhaseNames[k])] = r.worstPhases.ms[k];
     phases["present"] = r.worstPresentMs;
     return json{{"samples", r.samples}, {"width", r.width}, {"height", r.height}, {"median_ms", r.medianMs},
-                {"frames", r.frames}, {"total_ms", r.totalMs}, {"worst_phases", phases}};
+                {"frames", r.frames}, {"total_ms", r.totalMs}, {"fit_ms", r.fitMs}, {"frames_over_33ms", r.over33},
+                {"worst_phases", phases}};
   };
   for (const int n : {1500, 5000}) {
     const std::string name = "gui/frames-during-dense-fit/N=" + std::to_string(n);

@@ -4,9 +4,11 @@
 #include <cmath>
 #include <type_traits>
 
+#include "app/gui/background_priority.h"
 #include "app/gui/drag_refit.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/base/threading.h"
 #include "core/points/hermite_samples.h"
 #include "scene/degenerate_check.h"
 
@@ -155,6 +157,12 @@ bool FitWorker::waitIdle(double timeoutSeconds) {
   return idle_.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), [&] { return !running_ && !pending_; });
 }
 
+void FitWorker::setBackgroundPriority(int nice, int threads) {
+  std::lock_guard lock(mutex_);
+  wantedNice_ = nice;
+  wantedThreads_ = threads;
+}
+
 bool FitWorker::busy() const {
   std::lock_guard lock(mutex_);
   return running_ || pending_.has_value();
@@ -176,6 +184,15 @@ double FitWorker::progress() const {
 std::uint64_t FitWorker::runningVersion() const {
   std::lock_guard lock(mutex_);
   return running_ ? runningVersion_ : 0;
+}
+
+void FitWorker::applyPriority(int nice, int threads) {
+  if (nice > appliedNice_) {
+    // Before the job's first parallel loop, so that the OpenMP team this thread starts inherits it.
+    appliedNice_ = lowerCallingThreadPriority(nice);
+    lowerBlasPoolPriority(nice);
+  }
+  if (threads > 0 && threads != appliedThreads_) setThreadCount(threads), appliedThreads_ = threads;
 }
 
 void FitWorker::loop() {
@@ -200,8 +217,10 @@ void FitWorker::loop() {
     runningSince_ = std::chrono::steady_clock::now();
     const double n = sampleCount(job.scene) * (job.scene.dimension() + 1);
     estimateMs_ = lastMsPerCube_ > 0 && n > 0 ? lastMsPerCube_ * n * n * n : 200.0;
+    const int nice = wantedNice_, threads = wantedThreads_;
     lock.unlock();
 
+    applyPriority(nice, threads);
     FitJobResult result;
     result.version = job.version;
     result.main = dragRefit_->fit(job.scene, [this](double) { return !abandon_; }, &cancel_);

@@ -110,6 +110,12 @@ class FitWorker {
   // Blocks until nothing is pending or running (tests, `render --ui`); true unless it timed out.
   bool waitIdle(double timeoutSeconds = 60);
 
+  // From the next job on, the worker thread, the OpenMP team it starts and OpenBLAS's pool run
+  // at nice value `nice` (background_priority.h; one-way: a lower value later changes nothing),
+  // and, with `threads` > 0, the fits use that many OpenMP and OpenBLAS threads. The window sets
+  // it (GuiApp); tests and `render --ui` leave the defaults (0: as the process started).
+  void setBackgroundPriority(int nice, int threads = 0);
+
   bool busy() const;             // a job is running or pending
   double runningMs() const;      // how long the current job has run (0 when idle)
   double progress() const;       // [0, 1) estimate of the running job
@@ -117,6 +123,7 @@ class FitWorker {
 
  private:
   void loop();
+  void applyPriority(int nice, int threads);  // on the worker thread, between jobs
 
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
@@ -144,6 +151,8 @@ class FitWorker {
   double estimateMs_ = 50;         // expected duration of the running job
   double lastMsPerCube_ = 0;       // last job: ms / (unknowns³), for the estimate
   bool stop_ = false;
+  int wantedNice_ = 0, wantedThreads_ = 0;  // setBackgroundPriority
+  int appliedNice_ = 0, appliedThreads_ = 0;  // what the worker thread applied (its own)
   std::unique_ptr<DragRefit> dragRefit_;  // used by the worker thread only
   std::thread thread_;
 };

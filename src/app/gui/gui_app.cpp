@@ -1,5 +1,7 @@
 #include "app/gui/gui_app.h"
 
+#include "app/gui/background_priority.h"
+
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>  // key codes only (FrameInput uses GLFW's numbering)
 #include <imgui.h>
@@ -59,6 +61,10 @@ GuiApp::GuiApp(Document document, GuiOptions options) : ctx_(std::move(document)
   fonts_ = render::loadUiFonts(ctx_.uiScale);
   applyUiStyle(ctx_.uiScale);
   imguiRenderer_ = std::make_unique<render::ImGuiRenderer>();
+  if (ctx_.options.lowPriorityFits && !ctx_.options.synchronousFits) {
+    const FitPriority p = windowFitPriority();
+    worker().setBackgroundPriority(p.nice, p.threads);
+  }
 }
 
 void GuiApp::applyUiScale() {

@@ -21,6 +21,9 @@ namespace hermite::app {
 struct GuiOptions {
   bool iniFile = false;             // ImGui's layout file (off in tests)
   bool synchronousFits = false;     // wait for each fit inside the frame (render --ui, tests)
+  // The window and its benches: fits run below the GUI's CPU priority (background_priority.h).
+  // Off in tests, which share OpenBLAS's pool with later work in the same process.
+  bool lowPriorityFits = false;
   std::string screenshotDirectory = ".";
   // Wall-clock figures differ run to run: `render --ui` hides them (same input → same bytes).
   bool showTimings = true;

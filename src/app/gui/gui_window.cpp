@@ -138,6 +138,7 @@ int runDefault(const SceneArgs& args, double uiScale) {
 
   GuiOptions options;
   options.iniFile = false;  // the layout is fixed; nothing worth remembering
+  options.lowPriorityFits = true;
   // The monitor's content scale (2 on a HiDPI screen) unless --ui-scale says otherwise.
   float contentScaleX = 1, contentScaleY = 1;
   glfwGetWindowContentScale(window, &contentScaleX, &contentScaleY);

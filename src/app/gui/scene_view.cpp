@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "app/gui/background_priority.h"
 #include "app/gui/view_colours.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
@@ -23,6 +24,23 @@ constexpr double kTraceBudgetMs = 12.0;
 // Wall clock per GUI frame for copying an arrived bake's slabs to the GPU (a 128³ bake is 16 MB
 // of texels: 23–32 ms in one piece on a loaded llvmpipe).
 constexpr double kUploadBudgetMs = 6.0;
+
+// This frame's share of a settled view traced over several frames (at full size the trace pass
+// alone can take several frames' time on a software rasteriser; the image on screen stays
+// meanwhile): `begin` starts the frame (the tile pass), then bands of rows within `budgetMs`,
+// then the read-backs one per frame (the 16 MB hit texture, its conversion, the trace pass).
+// A step that used half the budget leaves the next one to the next frame. True when only
+// finishFrame (overlays, the image's read-back) is left, which then gets a frame of its own.
+bool traceSettledStep(render::ImplicitTracer& tracer, bool begin, const Camera& camera,
+                      const render::TraceSettings& settings, double budgetMs) {
+  const auto t0 = std::chrono::steady_clock::now();
+  if (begin) {
+    tracer.beginFrame(camera, settings);
+    if (msSince(t0) > budgetMs / 2) return false;
+  }
+  if (!tracer.traceRows(std::max(budgetMs - msSince(t0), 1.0)) || msSince(t0) > budgetMs / 2) return false;
+  return tracer.readBackStep() && msSince(t0) <= budgetMs / 2;
+}
 
 }  // namespace
 
@@ -200,10 +218,16 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     out.traceMode = refined_.traceMode;
     return;
   }
+  if (baked && progressive_ && progressive_->view == view) {  // its refinement fills in (takeRefinedRows)
+    out = progressive_->image;
+    return;
+  }
   if (refining_ && !(*refining_ == view)) {  // the view moved on: its refinement is of no use
     jobs_.cancel();
     refining_.reset();
   }
+  progressive_.reset();
+  rows_.clear();
   render::TraceSettings s = traceSettings(v, f, quality, tracer_->hasExactModel());
   const bool refineNow = baked && quality == ViewQuality::Settled && bakeResolution_ >= 128;
   s.refineExact = refineNow;
@@ -214,19 +238,9 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     tracing_.reset();
     r = tracer_->render(camera, s, job.get());
   } else {
-    // At full size the trace pass alone can take several frames' time on a software rasteriser:
-    // it runs in bands of rows, kTraceBudgetMs per frame, and the image on screen stays meanwhile.
-    // The tile pass, the last band and the read-backs of finishFrame each take a frame's share
-    // at full size: whichever used half the budget leaves the next step to the next frame.
-    const auto t0 = std::chrono::steady_clock::now();
-    const double budget = std::max(kTraceBudgetMs - frameSpentMs_, 1.0);
     const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
-    if (begin) {
-      tracer_->beginFrame(camera, s);
-      tracing_ = view;
-    }
-    if ((begin && msSince(t0) > budget / 2) || !tracer_->traceRows(std::max(budget - msSince(t0), 1.0)) ||
-        msSince(t0) > budget / 2) {
+    if (begin) tracing_ = view;
+    if (!traceSettledStep(*tracer_, begin, camera, s, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) {
       out.nothingYet = true;
       return;
     }
@@ -238,6 +252,9 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   // Other frames leave pixels the GPU left undecided as it drew them: a later frame replaces them.
   if (refineNow && job->camera && s.mode == render::TracerMode::Baked) {
     refining_ = view;
+    // The baked image is shown now; the refinement's rows replace its rows as they arrive.
+    progressive_ = Progressive{job, fit, view, out, ++refinements_};
+    rows_.start(progressive_->id);
     requestRefinement(std::move(job), fit);
   }
 }
@@ -250,8 +267,11 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
   const bool letRunningFinish = baking_ && baking_->resolution == 64 && resolution == 64;
   baking_ = request;
   refining_.reset();
+  progressive_.reset();
+  rows_.clear();
   jobs_.submit(
       [this, fit, bounds, boundsKey, resolution](const CancelToken& cancel) -> ViewJobRunner::Apply {
+        lowerCallingThreadPriority(viewWorkerNice());
         const SceneFit<3>& f = *fit->as<SceneFit<3>>();
         render::TracerUploadOptions uo;
         uo.bakeResolution = resolution;
@@ -270,22 +290,37 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
 
 void SceneViewRenderer::requestRefinement(std::shared_ptr<render::DeferredRefinement> job,
                                           const std::shared_ptr<const FitOutcome>& fit) {
-  const RefinedView view = *refining_;
-  jobs_.submit([this, job, fit, view](const CancelToken& cancel) -> ViewJobRunner::Apply {
+  const std::uint64_t id = refinements_;
+  jobs_.submit([this, job, fit, id](const CancelToken& cancel) -> ViewJobRunner::Apply {
+    lowerCallingThreadPriority(viewWorkerNice());
     render::refineDeferred(*job, &cancel);
-    return [this, job, fit, view] {
+    return [this, fit, id] {
       if (field_ != fit) return;  // another upload came first: the job's samples are gone
-      render::TraceResult r = tracer_->finishDeferred(*job);
-      tracing_.reset();  // finishDeferred abandoned it
-      refined_ = SceneViewResult{};
-      refined_.width = view.width;
-      refined_.height = view.height;
-      takeTrace(r, refined_);
-      refined_.traceMode = job->settings.refineExact ? "baked + refined" : "baked";
-      refinedView_ = view;
-      refining_.reset();
+      if (!progressive_ || progressive_->id != id) return;  // a newer view superseded it
+      progressive_->finished = true;
+      takeRefinedRows();  // the rows not copied yet (all are published now); adopts the image
     };
   });
+}
+
+bool SceneViewRenderer::takeRefinedRows() {
+  // A frame traced in bands uses the tracer's target, which finishDeferredRows would overwrite.
+  if (!progressive_ || tracing_ || field_ != progressive_->fit) return false;
+  Progressive& p = *progressive_;
+  const int published = p.job->rowsDone->load(std::memory_order_acquire);
+  const RowRange rows = rows_.take(p.id, published, p.view.height);
+  if (!rows.empty()) tracer_->finishDeferredRows(*p.job, rows.begin, rows.end, p.image.image, p.image.depth);
+  if (p.finished && rows_.complete(p.id, p.view.height)) {  // the refined image is whole
+    refined_ = std::move(p.image);
+    refined_.refinedPixels = p.job->result.refinedPixels;
+    refined_.traceMode = p.job->settings.refineExact ? "baked + refined" : "baked";
+    refinedView_ = p.view;
+    refining_.reset();
+    progressive_.reset();
+    rows_.clear();
+    return true;
+  }
+  return !rows.empty();
 }
 
 bool SceneViewRenderer::adoptFinished() {
@@ -298,6 +333,7 @@ bool SceneViewRenderer::adoptFinished() {
     arrived = !uploading_;  // a refined image; a bake is worth drawing once it is on the GPU
   }
   if (uploading_) arrived = continueUpload(kUploadBudgetMs) || arrived;
+  arrived = takeRefinedRows() || arrived;
   frameSpentMs_ = msSince(t0);
   return arrived || tracing_.has_value();
 }
@@ -317,6 +353,8 @@ bool SceneViewRenderer::continueUpload(double budgetMs) {
   bakedBounds_ = u.boundsKey;
   if (baking_ && baking_->fit == u.fit.get() && baking_->resolution == u.resolution) baking_.reset();
   refinedView_.reset();
+  progressive_.reset();
+  rows_.clear();
   tracing_.reset();  // the switch abandoned it
   return true;
 }

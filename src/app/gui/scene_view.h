@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "app/gui/fit_worker.h"
+#include "app/gui/refined_rows.h"
 #include "app/gui/view_job_runner.h"
 #include "core/trace/image.h"
 #include "render/field2d_view.h"
@@ -128,6 +129,22 @@ class SceneViewRenderer {
   std::optional<Uploading> uploading_;
   double frameSpentMs_ = 0;  // wall clock of this frame's adoptFinished, taken from the trace budget
   SceneViewResult refined_;
+  // The settled view whose exact refinement fills in row band by row band while it runs: its
+  // baked image with the refined rows copied in so far (RefinedRows says which are new).
+  struct Progressive {
+    std::shared_ptr<render::DeferredRefinement> job;
+    std::shared_ptr<const FitOutcome> fit;
+    RefinedView view;
+    SceneViewResult image;
+    std::uint64_t id = 0;
+    bool finished = false;  // the job returned: every row is published
+  };
+  std::optional<Progressive> progressive_;
+  RefinedRows rows_;
+  std::uint64_t refinements_ = 0;  // refinement jobs submitted (RefinedRows job numbers)
+  // Copies the rows the running refinement published since the last call into progressive_'s
+  // image (GL thread); true when some arrived.
+  bool takeRefinedRows();
 };
 
 // A hidden offscreen context of the given size on a headless backend ("osmesa", "egl"),
