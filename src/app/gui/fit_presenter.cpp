@@ -13,6 +13,16 @@ bool sameCompare(const CompareSettings& a, const CompareSettings& b) {
          (!a.enabled || (a.with == b.with && a.kernel == b.kernel && a.radius == b.radius));
 }
 
+// Whether `scene` fits as many samples as `last` did. Only then is its fit expected to be as
+// quick as the last one: a drag moves samples, while opening or generating other data (50 samples
+// before, 1 500 now) changes the cost by orders of magnitude.
+bool sameSampleCount(const Scene& scene, const FitOutcome& last) {
+  const DataSpec& d = scene.data;
+  const DataSpec& l = last.scene.data;
+  if (d.isInline()) return std::int64_t(d.points.size()) == std::int64_t(last.dataCount());
+  return !l.isInline() && d.preset == l.preset && d.count == l.count && d.resolvedFile == l.resolvedFile;
+}
+
 }  // namespace
 
 std::optional<Scene> compareScene(const Scene& s, const CompareSettings& compare) {
@@ -44,7 +54,7 @@ void FitPresenter::submitIfStale(const Scene& scene, std::uint64_t version, std:
   worker_.submit(scene, version, compareScene(scene, compare));
   if (synchronous)
     worker_.waitIdle(600);
-  else if (lastWallMs_ < kSameFrameFitMs)
+  else if (lastWallMs_ < kSameFrameFitMs && lastFinished_ && sameSampleCount(scene, *lastFinished_))
     // Fits as quick as the last one (a drag's bordered refits) show in this very frame: one
     // short wait instead of a frame of latency. Slower ones stay on the worker.
     worker_.waitIdle(kSameFrameFitMs / 1000.0);
@@ -54,6 +64,7 @@ void FitPresenter::adoptFinished(GuiStatus& status) {
   std::optional<FitJobResult> r = worker_.poll();
   if (!r) return;
   lastWallMs_ = r->main->wallMs + (r->compare ? r->compare->wallMs : 0.0);
+  lastFinished_ = r->main;
   if (r->main->ok()) {
     shown_ = r->main;
     // The versions since that changed only the view show this fit too.

@@ -71,6 +71,7 @@ class FitPresenter {
   std::uint64_t shownVersion_ = 0;
   std::string lastError_;
   double lastWallMs_ = 1e9;  // wall time of the last finished job (main + compare fits)
+  std::shared_ptr<const FitOutcome> lastFinished_;  // that job's main fit (failed ones too)
   std::vector<std::string> loggedWarnings_;  // the warnings last written to the message log
 };
 
