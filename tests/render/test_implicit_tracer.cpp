@@ -132,6 +132,17 @@ HrbfModel<3> fittedTorus(int count, HermiteSamples<3>* samplesOut = nullptr) {
   return fitHrbf(samples, options);
 }
 
+// A frame traced in pieces (bands, read-back steps) against the same frame rendered whole: the
+// same bytes in every buffer and the same counts.
+void checkSameTrace(const TraceResult& pieces, const TraceResult& whole) {
+  CHECK(pieces.image == whole.image);
+  CHECK(pieces.hit == whole.hit);
+  CHECK(pieces.depth == whole.depth);
+  CHECK(pieces.normal == whole.normal);
+  CHECK(pieces.tracedPixels == whole.tracedPixels);
+  CHECK(pieces.refinedPixels == whole.refinedPixels);
+}
+
 }  // namespace
 
 TEST_CASE("implicit tracer: baked sphere and torus match the CPU reference") {
@@ -546,12 +557,7 @@ TEST_CASE("implicit tracer: a frame traced in bands of rows has the bytes of a w
       CHECK(tracer.frameStarted());
       const TraceResult banded = tracer.finishFrame();
       CHECK_FALSE(tracer.frameStarted());
-      CHECK(banded.image == whole.image);
-      CHECK(banded.hit == whole.hit);
-      CHECK(banded.depth == whole.depth);
-      CHECK(banded.normal == whole.normal);
-      CHECK(banded.tracedPixels == whole.tracedPixels);
-      CHECK(banded.refinedPixels == whole.refinedPixels);
+      checkSameTrace(banded, whole);
     }
 }
 
@@ -600,11 +606,7 @@ TEST_CASE("implicit tracer: a banded frame read back over several calls has the 
     CHECK(steps == (refine ? 3 : 2));
     CHECK(tracer.readBackStep());
     const TraceResult banded = tracer.finishFrame();
-    CHECK(banded.image == whole.image);
-    CHECK(banded.hit == whole.hit);
-    CHECK(banded.depth == whole.depth);
-    CHECK(banded.normal == whole.normal);
-    CHECK(banded.refinedPixels == whole.refinedPixels);
+    checkSameTrace(banded, whole);
   }
 }
 
