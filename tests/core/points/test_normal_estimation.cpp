@@ -221,8 +221,11 @@ double sheetFlipped(const HermiteSamples<3>& s, const Points<3>& estimated, cons
 // Closer still, the 0.5 % target is met on the hollow ball (above) but not at 20 000 points on the
 // slab and the curled plate: their rims are faces only 1–1.5 spacings wide, whose few samples get
 // the sheets' normal line and a sign that is a coin toss (docs/performance.md: 1.0–2.3 % here,
-// ≤ 0.54 % at 200 000 points). What must hold is that no sheet turns over: each sheet, outward
-// and inward, stays within 2.5 %, and all samples within 3 %.
+// ≤ 0.54 % at 200 000 points). What must hold is that no sheet turns over (a turned sheet is
+// ≥ 50 % of its samples, and about half of all): each sheet, outward and inward, and all samples
+// stay within 5 %. The rims' coin tosses move with the floating-point code of the build: at 1.0
+// spacing the curled plate is 2.33 % flipped in all (outward sheet 2.21 %) with -march=native on
+// an AMD EPYC, 2.84 % (2.55 %) in the sanitizer build without it.
 TEST_CASE("normal estimation: a slab 1.0 and 1.5 spacings thick turns no sheet over") {
   const int n = 20000;
   for (double gap : {1.0, 1.5}) {
@@ -230,9 +233,9 @@ TEST_CASE("normal estimation: a slab 1.0 and 1.5 spacings thick turns no sheet o
     const HermiteSamples<3> slab =
         testing::sampleMesh(testing::boxMesh(Vec<3>(0, 0, 0), Vec<3>(1, 1, gap * std::sqrt(2.0 / n))), n, 7);
     const Points<3> ns = estimateNormals<3>(slab.points);
-    CHECK(testing::flippedFraction(ns, slab.normals) <= 0.03);
-    CHECK(sheetFlipped(slab, ns, [](int) { return Vec<3>(0, 0, 1); }) <= 0.025);
-    CHECK(sheetFlipped(slab, ns, [](int) { return Vec<3>(0, 0, -1); }) <= 0.025);
+    CHECK(testing::flippedFraction(ns, slab.normals) <= 0.05);
+    CHECK(sheetFlipped(slab, ns, [](int) { return Vec<3>(0, 0, 1); }) <= 0.05);
+    CHECK(sheetFlipped(slab, ns, [](int) { return Vec<3>(0, 0, -1); }) <= 0.05);
   }
 }
 
@@ -243,8 +246,8 @@ TEST_CASE("normal estimation: a curled plate 1.0 and 1.5 spacings thick turns no
     const HermiteSamples<3> curl = testing::sampleMesh(testing::curledPlate(gap * std::sqrt(2.0 / n)), n, 3);
     const Points<3> nc = estimateNormals<3>(curl.points);
     auto radial = [&](int i) { return Vec<3>(curl.points(0, i), 0, curl.points(2, i)).normalized().eval(); };
-    CHECK(testing::flippedFraction(nc, curl.normals) <= 0.03);
-    CHECK(sheetFlipped(curl, nc, radial) <= 0.025);
-    CHECK(sheetFlipped(curl, nc, [&](int i) { return (-radial(i)).eval(); }) <= 0.025);
+    CHECK(testing::flippedFraction(nc, curl.normals) <= 0.05);
+    CHECK(sheetFlipped(curl, nc, radial) <= 0.05);
+    CHECK(sheetFlipped(curl, nc, [&](int i) { return (-radial(i)).eval(); }) <= 0.05);
   }
 }
