@@ -10,6 +10,7 @@
 #include "core/mesh/hole_fill.h"
 #include "core/shapes/mesh_shapes.h"
 #include "support/mesh_test_shapes.h"
+#include "support/timing_slack.h"
 
 using namespace hermite;
 using hermite::testing::smallestAngleDegrees;
@@ -58,8 +59,10 @@ TEST_CASE("hole filling at scale: a 2 000-edge non-planar hole closes, graded, w
   REQUIRE(fractions.size() >= 10);
   for (std::size_t k = 1; k < fractions.size(); ++k) CHECK(fractions[k] >= fractions[k - 1]);
   CHECK(fractions.back() == doctest::Approx(1.0));
-  CHECK(seconds < 60);      // a hang guard only; docs/performance.md has the measured time
-  CHECK(longestGap < 2.0);  // as generous, on a shared machine
+  // A hang guard only (docs/performance.md has the measured time), and as generous a bound on
+  // the gaps between reports, for a shared machine; both scaled for a sanitizer build.
+  CHECK(seconds < 60 * testing::kTimingSlack);
+  CHECK(longestGap < 2.0 * testing::kTimingSlack);
 }
 
 TEST_CASE("hole filling at scale: cancelling a large hole stops at once when progress returns false") {
