@@ -330,6 +330,34 @@ struct Body {
   std::vector<int> corners;
 };
 
+// One list property of a binary row: its count, then the items — fan-triangulated onto `corners`
+// when it is a face's vertex indices, skipped otherwise.
+void readBinaryList(BinaryReader& in, const Element& element, std::int64_t row, const Property& p, bool isFace,
+                    const std::string& path, std::vector<int>& corners) {
+  in.need(scalarSize(p.countType), element, row);
+  const std::int64_t n = in.integer(p.countType);
+  if (n < 0) throw InputError(listError(path + ": ", element, row, p, "negative length " + std::to_string(n)));
+  const std::size_t itemSize = scalarSize(p.type);
+  if (static_cast<std::uint64_t>(n) > in.remaining() / itemSize)
+    in.need(static_cast<std::size_t>(n) * itemSize, element, row);
+  if (!(isFace && isIndexList(p))) {
+    in.skip(static_cast<std::size_t>(n) * itemSize);
+    return;
+  }
+  if (n < 3)
+    throw InputError(listError(path + ": ", element, row, p, "a face needs at least 3 vertices, got " + std::to_string(n)));
+  std::int64_t first = 0, previous = 0;
+  for (std::int64_t k = 0; k < n; ++k) {
+    const std::int64_t index = in.integer(p.type);
+    if (index < 0 || index > kMaxMeshElements)
+      throw InputError(listError(path + ": ", element, row, p, "vertex index " + std::to_string(index) + " is out of range"));
+    if (k == 0) first = index;
+    if (k >= 2)
+      corners.insert(corners.end(), {static_cast<int>(first), static_cast<int>(previous), static_cast<int>(index)});
+    previous = index;
+  }
+}
+
 void readBinaryBody(std::string_view body, const Header& header, const std::string& path, Body& out) {
   BinaryReader in(body, header.format == Format::BinaryBig, path);
   for (const Element& element : header.elements) {
@@ -355,37 +383,15 @@ void readBinaryBody(std::string_view body, const Header& header, const std::stri
       double slots[6] = {0, 0, 0, 0, 0, 0};
       for (std::size_t pi = 0; pi < element.properties.size(); ++pi) {
         const Property& p = element.properties[pi];
-        if (!p.list) {
-          if (hasList) in.need(scalarSize(p.type), element, row);
-          if (isVertex && layout.slot[pi] >= 0)
-            slots[layout.slot[pi]] = in.real(p.type);
-          else
-            in.skip(scalarSize(p.type));
+        if (p.list) {
+          readBinaryList(in, element, row, p, isFace, path, out.corners);
           continue;
         }
-        in.need(scalarSize(p.countType), element, row);
-        const std::int64_t n = in.integer(p.countType);
-        if (n < 0) throw InputError(listError(path + ": ", element, row, p, "negative length " + std::to_string(n)));
-        const std::size_t itemSize = scalarSize(p.type);
-        if (static_cast<std::uint64_t>(n) > in.remaining() / itemSize)
-          in.need(static_cast<std::size_t>(n) * itemSize, element, row);
-        if (!(isFace && isIndexList(p))) {
-          in.skip(static_cast<std::size_t>(n) * itemSize);
-          continue;
-        }
-        if (n < 3)
-          throw InputError(listError(path + ": ", element, row, p, "a face needs at least 3 vertices, got " + std::to_string(n)));
-        std::int64_t first = 0, previous = 0;
-        for (std::int64_t k = 0; k < n; ++k) {
-          const std::int64_t index = in.integer(p.type);
-          if (index < 0 || index > kMaxMeshElements)
-            throw InputError(listError(path + ": ", element, row, p, "vertex index " + std::to_string(index) + " is out of range"));
-          if (k == 0) first = index;
-          if (k >= 2)
-            out.corners.insert(out.corners.end(),
-                               {static_cast<int>(first), static_cast<int>(previous), static_cast<int>(index)});
-          previous = index;
-        }
+        if (hasList) in.need(scalarSize(p.type), element, row);
+        if (isVertex && layout.slot[pi] >= 0)
+          slots[layout.slot[pi]] = in.real(p.type);
+        else
+          in.skip(scalarSize(p.type));
       }
       if (isVertex) {
         out.mesh.vertices.col(row) = Eigen::Vector3d(slots[0], slots[1], slots[2]);
