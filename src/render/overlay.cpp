@@ -20,19 +20,10 @@ void push(std::vector<OverlayVertex>& out, const Vec<3>& x, const glm::vec4& c) 
   out.push_back({{float(x.x()), float(x.y()), float(x.z())}, {c.r, c.g, c.b, c.a}});
 }
 
-}  // namespace
-
-OverlayRenderer::OverlayRenderer() : program_(buildProgram({"overlay.vert", "overlay.frag"})) {
-  vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, false, offsetof(OverlayVertex, position));
-  vertexArray_.setAttribute(1, 0, 4, GL_FLOAT, false, offsetof(OverlayVertex, color));
-}
-
-void OverlayRenderer::draw(const Camera& camera, const glm::mat4& viewProj, const OverlayContent& content) {
-  const double diagonal = content.bounds.extent().norm();
-  // Lines first (normals, box), then points, in one buffer.
-  std::vector<OverlayVertex> vertices;
+// The line segments, two vertices each: the normals, the bounds' twelve edges, the ground grid.
+void pushLines(std::vector<OverlayVertex>& vertices, const OverlayContent& content) {
   if (content.samples && content.showNormals) {
-    const double length = content.normalLength * diagonal;
+    const double length = content.normalLength * content.bounds.extent().norm();
     for (int s = 0; s < content.samples->size(); ++s) {
       const Vec<3> p = content.samples->points.col(s);
       push(vertices, p, content.normalColor);
@@ -59,6 +50,20 @@ void OverlayRenderer::draw(const Camera& camera, const glm::mat4& viewProj, cons
       push(vertices, b, content.groundColor);
     }
   }
+}
+
+}  // namespace
+
+OverlayRenderer::OverlayRenderer() : program_(buildProgram({"overlay.vert", "overlay.frag"})) {
+  vertexArray_.setAttribute(0, 0, 3, GL_FLOAT, false, offsetof(OverlayVertex, position));
+  vertexArray_.setAttribute(1, 0, 4, GL_FLOAT, false, offsetof(OverlayVertex, color));
+}
+
+void OverlayRenderer::draw(const Camera& camera, const glm::mat4& viewProj, const OverlayContent& content) {
+  const double diagonal = content.bounds.extent().norm();
+  // Lines first (normals, box, ground), then points, in one buffer.
+  std::vector<OverlayVertex> vertices;
+  pushLines(vertices, content);
   const int lineVertices = int(vertices.size());
   if (content.samples && content.showPoints)
     for (int s = 0; s < content.samples->size(); ++s) push(vertices, content.samples->points.col(s), content.pointColor);
