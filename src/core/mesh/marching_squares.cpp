@@ -10,17 +10,24 @@
 
 namespace hermite {
 
-std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box<2>& box,
-                                        const MarchingOptions& options, MarchingReport* report) {
-  const auto t0 = std::chrono::steady_clock::now();
-  detail::MarchingGrid<2> g = detail::sampleGrid<2>(field, box, options, report);
-  detail::placeEdgeVertices<2>(g, field, options, report);
-  const int V = static_cast<int>(g.edgeKeys.size());
+namespace {
 
-  // next[v]: the vertex the curve goes to from v. Cell corners counter-clockwise: (0,0), (1,0),
-  // (1,1), (0,1). A crossing is A (inside → outside along the walk) or B (outside → inside); a
-  // segment runs from an A to a B, which keeps the inside on the left (counter-clockwise curves).
-  std::vector<int> next(static_cast<size_t>(V), -1), prev(static_cast<size_t>(V), -1);
+// The curve's successor and predecessor of every edge vertex (−1: none).
+struct SegmentLinks {
+  std::vector<int> next, prev;
+};
+
+// next[v]: the vertex the curve goes to from v. Cell corners counter-clockwise: (0,0), (1,0),
+// (1,1), (0,1). A crossing is A (inside → outside along the walk) or B (outside → inside); a
+// segment runs from an A to a B, which keeps the inside on the left (counter-clockwise curves).
+SegmentLinks linkSegments(const detail::MarchingGrid<2>& g) {
+  const int V = static_cast<int>(g.edgeKeys.size());
+  SegmentLinks L{std::vector<int>(static_cast<size_t>(V), -1), std::vector<int>(static_cast<size_t>(V), -1)};
+  auto link = [&](int a, int b) {
+    if (!g.isVertexValid(a) && !g.isVertexValid(b)) return;  // no vertex with data: open here
+    L.next[static_cast<size_t>(a)] = b;
+    L.prev[static_cast<size_t>(b)] = a;
+  };
   const std::int64_t sy = g.stride[1];
   for (int j = 0; j < g.n[1]; ++j)
     for (int i = 0; i < g.n[0]; ++i) {
@@ -34,11 +41,6 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
           ids[n] = side[k];
           isA[n++] = g.inside(c[k]);
         }
-      auto link = [&](int a, int b) {
-        if (!g.isVertexValid(a) && !g.isVertexValid(b)) return;  // no vertex with data: open here
-        next[static_cast<size_t>(a)] = b;
-        prev[static_cast<size_t>(b)] = a;
-      };
       if (n == 2) {
         if (isA[0]) link(ids[0], ids[1]);
         else link(ids[1], ids[0]);
@@ -52,7 +54,13 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
         }
       }
     }
+  return L;
+}
 
+// The linked vertices as polylines: open curves first, from their start on the box boundary,
+// then the closed ones.
+std::vector<Polyline2d> chainPolylines(const detail::MarchingGrid<2>& g, const SegmentLinks& L) {
+  const int V = static_cast<int>(L.next.size());
   std::vector<Polyline2d> lines;
   std::vector<char> used(static_cast<size_t>(V), 0);
   auto trace = [&](int start) {
@@ -61,7 +69,7 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
     while (v >= 0 && !used[static_cast<size_t>(v)]) {
       used[static_cast<size_t>(v)] = 1;
       chain.push_back(v);
-      v = next[static_cast<size_t>(v)];
+      v = L.next[static_cast<size_t>(v)];
     }
     if (chain.size() < 2) return;  // a vertex whose cells all touch a no-data point
     Polyline2d line;
@@ -70,10 +78,21 @@ std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box
     for (size_t k = 0; k < chain.size(); ++k) line.points.col(static_cast<Eigen::Index>(k)) = g.vertices.col(chain[k]);
     lines.push_back(std::move(line));
   };
-  for (int v = 0; v < V; ++v)  // open curves first, from their start on the box boundary
-    if (prev[static_cast<size_t>(v)] < 0 && !used[static_cast<size_t>(v)]) trace(v);
+  for (int v = 0; v < V; ++v)
+    if (L.prev[static_cast<size_t>(v)] < 0 && !used[static_cast<size_t>(v)]) trace(v);
   for (int v = 0; v < V; ++v)
     if (!used[static_cast<size_t>(v)]) trace(v);
+  return lines;
+}
+
+}  // namespace
+
+std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box<2>& box,
+                                        const MarchingOptions& options, MarchingReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  detail::MarchingGrid<2> g = detail::sampleGrid<2>(field, box, options, report);
+  detail::placeEdgeVertices<2>(g, field, options, report);
+  std::vector<Polyline2d> lines = chainPolylines(g, linkSegments(g));
   if (report) report->totalMs = msSince(t0);
   return lines;
 }
