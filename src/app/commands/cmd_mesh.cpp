@@ -104,13 +104,6 @@ void checkMeshGrid(const Scene& scene, int resolution) {
   else checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
 }
 
-// The number of samples the fit interpolates (0 for modes without samples).
-long long fittedSamples(const FitOutcome& fit) {
-  if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) return f3->data.size();
-  if (const SceneFit<2>* f2 = fit.as<SceneFit<2>>()) return f2->data.size();
-  return 0;
-}
-
 }  // namespace
 
 int autoMeshResolution(int dimension, long long samples) {
@@ -201,7 +194,7 @@ int runMesh(const MeshArgs& args) {
     const TerminalProgress progress("fitting and meshing " + scene.sourceName);
     fit = fitOutcomeOrThrow(scene);
     const int resolution =
-        args.resolution > 0 ? args.resolution : autoMeshResolution(scene.dimension(), fittedSamples(*fit));
+        args.resolution > 0 ? args.resolution : autoMeshResolution(scene.dimension(), fit->dataCount());
     summary = exportZeroSet(*fit, args.output, resolution, args.chordTolerance);
   }
   writeStdout(summary + "\n");
