@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -109,29 +110,6 @@ int parse(CLI::App& cmd, int argc, char** argv) {
     return 2;
   }
   return -1;
-}
-
-// What the first argument asks before any command runs: help, the version, or a mistyped
-// command (a word that is no file and within two edits of a command); none to go on.
-std::optional<int> topLevel(const std::string& first) {
-  if (first == "--help" || first == "-h" || first == "help") {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  if (first == "--version" || first == "version") {
-    writeStdout("hermite-lab " HERMITE_VERSION "\n");
-    return 0;
-  }
-  if (first.empty() || first[0] == '-' || first.find_first_of("./") != std::string::npos ||
-      std::filesystem::exists(first))
-    return std::nullopt;
-  constexpr const char* kCommands[] = {"fit", "eval", "render", "sweep", "mesh", "holefill", "patch-table", "bench", "help", "version"};
-  for (const char* command : kCommands)
-    if (first == command) return std::nullopt;
-  for (const char* command : kCommands)
-    if (editDistance(first, command) <= 2)
-      throw UsageError("unknown command '" + first + "' (did you mean '" + command + "'?); 'hermite-lab --help' lists the commands");
-  return std::nullopt;
 }
 
 // The display command `name` of `display`, or a usage error when this is the headless program
@@ -263,6 +241,31 @@ constexpr std::pair<const char*, CommandFunction> kCommandFunctions[] = {
     {"patch-table", patchTableCommand},
     {"bench", benchCommand},
 };
+
+// What the first argument asks before any command runs: help, the version, or a mistyped
+// command (a word that is no file and within two edits of a command); none to go on.
+std::optional<int> topLevel(const std::string& first) {
+  if (first == "--help" || first == "-h" || first == "help") {
+    std::fputs(kUsage, stdout);
+    return 0;
+  }
+  if (first == "--version" || first == "version") {
+    writeStdout("hermite-lab " HERMITE_VERSION "\n");
+    return 0;
+  }
+  if (first.empty() || first[0] == '-' || first.find_first_of("./") != std::string::npos ||
+      std::filesystem::exists(first))
+    return std::nullopt;
+  std::vector<const char*> commands;  // in this order for the first suggestion within two edits
+  for (const auto& [name, command] : kCommandFunctions) commands.push_back(name);
+  commands.insert(commands.end(), {"help", "version"});
+  for (const char* command : commands)
+    if (first == command) return std::nullopt;
+  for (const char* command : commands)
+    if (editDistance(first, command) <= 2)
+      throw UsageError("unknown command '" + first + "' (did you mean '" + command + "'?); 'hermite-lab --help' lists the commands");
+  return std::nullopt;
+}
 
 int dispatch(int argc, char** argv, const DisplayCommands& display) {
   const std::string first = argc > 1 ? argv[1] : "";
