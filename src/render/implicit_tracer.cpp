@@ -664,7 +664,7 @@ struct ImplicitTracer::Gpu {
   void bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget);
   long long prepareRects(const TraceFrame& frame);
   ImageRgba8 drawOverlays(const TraceFrame& frame, const HermiteSamples<3>* samples);
-  // The overlays into GL rows [glRow, glRow + rows) of the target only (a scissor).
+  // The overlays into the target's colour, depth-tested; the caller's scissor limits the rows.
   void drawOverlayContent(const TraceFrame& frame, const HermiteSamples<3>* samples);
   void scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const;
 };

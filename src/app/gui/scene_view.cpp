@@ -226,8 +226,7 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     jobs_.cancel();
     refining_.reset();
   }
-  progressive_.reset();
-  rows_.clear();
+  dropProgressive();
   render::TraceSettings s = traceSettings(v, f, quality, tracer_->hasExactModel());
   const bool refineNow = baked && quality == ViewQuality::Settled && bakeResolution_ >= 128;
   s.refineExact = refineNow;
@@ -267,8 +266,7 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
   const bool letRunningFinish = baking_ && baking_->resolution == 64 && resolution == 64;
   baking_ = request;
   refining_.reset();
-  progressive_.reset();
-  rows_.clear();
+  dropProgressive();
   jobs_.submit(
       [this, fit, bounds, boundsKey, resolution](const CancelToken& cancel) -> ViewJobRunner::Apply {
         lowerCallingThreadPriority(viewWorkerNice());
@@ -316,8 +314,7 @@ bool SceneViewRenderer::takeRefinedRows() {
     refined_.traceMode = p.job->settings.refineExact ? "baked + refined" : "baked";
     refinedView_ = p.view;
     refining_.reset();
-    progressive_.reset();
-    rows_.clear();
+    dropProgressive();
     return true;
   }
   return !rows.empty();
@@ -353,8 +350,7 @@ bool SceneViewRenderer::continueUpload(double budgetMs) {
   bakedBounds_ = u.boundsKey;
   if (baking_ && baking_->fit == u.fit.get() && baking_->resolution == u.resolution) baking_.reset();
   refinedView_.reset();
-  progressive_.reset();
-  rows_.clear();
+  dropProgressive();
   tracing_.reset();  // the switch abandoned it
   return true;
 }

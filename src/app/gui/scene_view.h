@@ -145,6 +145,11 @@ class SceneViewRenderer {
   // Copies the rows the running refinement published since the last call into progressive_'s
   // image (GL thread); true when some arrived.
   bool takeRefinedRows();
+  // No refinement fills in rows any more (the view, the bake or the image moved on).
+  void dropProgressive() {
+    progressive_.reset();
+    rows_.clear();
+  }
 };
 
 // A hidden offscreen context of the given size on a headless backend ("osmesa", "egl"),
