@@ -411,7 +411,7 @@ TriMesh readGltf(std::string_view bytes, const std::string& path) {
   }
   mesh.triangles =
       Eigen::Map<const Eigen::Matrix3Xi>(out.corners.data(), 3, static_cast<Eigen::Index>(out.corners.size() / 3));
-  checkAndNormalizeMesh(mesh, path);
+  checkAndNormalizeMesh(mesh, path, ZeroNormals::Keep);
   return mesh;
 }
 

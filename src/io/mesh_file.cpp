@@ -60,7 +60,7 @@ void saveMesh(const std::string& path, const TriMesh& mesh) {
   if (mesh.triangles.cols() > 0 && mesh.vertices.cols() == 0)
     throw InputError(path + ": cannot save triangles without vertices");
   TriMesh checked = mesh;
-  checkAndNormalizeMesh(checked, path);
+  checkAndNormalizeMesh(checked, path, ZeroNormals::Reject);
 
   if (ext == ".glb" || ext == ".gltf")
     if (const auto beyond = firstBeyondFloatRange(checked.vertices)) {

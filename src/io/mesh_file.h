@@ -26,6 +26,7 @@ bool isMeshFileExtension(const std::string& path);
 
 // Like loadMesh but a file without faces is fine: a point set (PLY without a face element, OBJ
 // `v` + `vn` lines only, glTF POINTS) gives a mesh with no triangles. Used by the point loaders.
+// A zero normal in the file stays a zero column of `normals` (the point loaders estimate it).
 TriMesh loadMeshFile(const std::string& path);
 
 }  // namespace hermite

@@ -87,7 +87,7 @@ bool parseInteger(std::string_view token, std::int64_t& value) {
   return r.ec == std::errc() && r.ptr == e;
 }
 
-void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path) {
+void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path, ZeroNormals zero) {
   const Eigen::Index vertexCount = mesh.vertices.cols();
   for (Eigen::Index i = 0; i < vertexCount; ++i)
     if (!mesh.vertices.col(i).allFinite())
@@ -109,7 +109,10 @@ void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path) {
       throw InputError(path + ": the normal of vertex " + std::to_string(i) + " is not finite (NaN or infinity)");
     // Scale by the largest component first so neither tiny nor huge normals under/overflow.
     const double largest = n.cwiseAbs().maxCoeff();
-    if (largest == 0) throw InputError(path + ": the normal of vertex " + std::to_string(i) + " is zero");
+    if (largest == 0) {
+      if (zero == ZeroNormals::Keep) continue;
+      throw InputError(path + ": the normal of vertex " + std::to_string(i) + " is zero");
+    }
     n /= largest;
     n.normalize();
   }

@@ -67,8 +67,11 @@ bool isBlankChar(char c);
 // Checks and completes what every reader returns, so a caller can rely on it:
 //  - every vertex coordinate finite ("vertex I has a non-finite coordinate");
 //  - every triangle index in [0, V) ("triangle T refers to vertex I, but there are V vertices");
-//  - normals: 3 × V or 3 × 0; each finite and non-zero, then normalised to unit length.
-void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path);
+//  - normals: 3 × V or 3 × 0; each finite, then normalised to unit length. A zero normal is what
+//    `zero` says: a reader keeps it as a zero column (the file gives no direction for that vertex;
+//    readMeshFileSamples completes it), a writer refuses it ("the normal of vertex I is zero").
+enum class ZeroNormals { Keep, Reject };
+void checkAndNormalizeMesh(TriMesh& mesh, const std::string& path, ZeroNormals zero);
 
 // The first coordinate (column, row) of `points` (3 × N) that a float cannot hold (its float
 // rounding is infinite: |v| ≥ about 3.4028236e38); nullopt when all fit.

@@ -158,7 +158,7 @@ TriMesh readObj(std::string_view bytes, const std::string& path) {
       complete = faces.normalSums.col(i).cwiseAbs().maxCoeff() > 0;
     if (complete) mesh.normals = std::move(faces.normalSums);
   }
-  checkAndNormalizeMesh(mesh, path);
+  checkAndNormalizeMesh(mesh, path, ZeroNormals::Keep);
   return mesh;
 }
 

@@ -166,7 +166,7 @@ TriMesh readOff(std::string_view bytes, const std::string& path) {
     readFace(line, f, header.vertices, lines, corners);
   }
   mesh.triangles = Eigen::Map<const Eigen::Matrix3Xi>(corners.data(), 3, static_cast<Eigen::Index>(corners.size() / 3));
-  checkAndNormalizeMesh(mesh, path);
+  checkAndNormalizeMesh(mesh, path, ZeroNormals::Keep);
   return mesh;
 }
 

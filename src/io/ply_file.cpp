@@ -511,7 +511,7 @@ TriMesh readPly(std::string_view bytes, const std::string& path) {
   }
   out.mesh.triangles =
       Eigen::Map<const Eigen::Matrix3Xi>(out.corners.data(), 3, static_cast<Eigen::Index>(out.corners.size() / 3));
-  checkAndNormalizeMesh(out.mesh, path);
+  checkAndNormalizeMesh(out.mesh, path, ZeroNormals::Keep);
   return std::move(out.mesh);
 }
 

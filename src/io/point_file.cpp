@@ -268,6 +268,26 @@ void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
   writer.commit();
 }
 
+// Replaces the zero columns of a mesh file's vertex normals (3 × V, zero where the file's normal
+// is zero) by the area-weighted face normals there, with a warning saying how many; vertices on
+// no face stay zero (estimated from their neighbours afterwards).
+void completeFromFaces(const TriMesh& mesh, Points<3>& normals, const std::string& path,
+                       std::vector<std::string>& warnings) {
+  if (mesh.triangleCount() == 0) return;
+  const Eigen::Matrix3Xd fromFaces = vertexNormals(mesh, NormalWeighting::Area);
+  int taken = 0, zero = 0;
+  for (Eigen::Index i = 0; i < normals.cols(); ++i) {
+    if (!normals.col(i).isZero(0)) continue;
+    ++zero;
+    normals.col(i) = fromFaces.col(i);
+    if (!normals.col(i).isZero(0)) ++taken;
+  }
+  if (taken > 0)
+    warnings.push_back(path + ": " + std::to_string(zero) + " of " + std::to_string(normals.cols()) +
+                       " vertex normals are zero: " + std::to_string(taken) +
+                       " taken from the area-weighted face normals (oriented by the faces' winding)");
+}
+
 // The vertices and vertex normals of a mesh or point-set file (.ply, .obj, .gltf, .glb, .off),
 // faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF.
 HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings,
@@ -275,8 +295,10 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
   TriMesh mesh = loadMeshFile(path);
   if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
   HermiteSamples<3> samples;
-  if (mesh.hasNormals()) {
+  const bool given = mesh.hasNormals();
+  if (given) {
     samples.normals = std::move(mesh.normals);
+    completeFromFaces(mesh, samples.normals, path, warnings);
   } else if (mesh.triangleCount() > 0) {
     // Area-weighted face normals, oriented by the faces' winding; vertices on no face stay zero
     // and are estimated from their neighbours below.
@@ -287,9 +309,9 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
     samples.normals = Points<3>::Zero(3, mesh.vertexCount());
   }
   samples.points = std::move(mesh.vertices);
-  const int estimated = fillMissingNormals<3>(samples.points, samples.normals, path,
-                                              mesh.triangleCount() > 0 ? std::string() : std::string("positions only"),
-                                              warnings);
+  const int estimated =
+      fillMissingNormals<3>(samples.points, samples.normals, path,
+                            given || mesh.triangleCount() > 0 ? std::string() : std::string("positions only"), warnings);
   orientGivenNormals<3>(samples.points, samples.normals, estimated, path, options, warnings);
   validateSamples(samples, warnings, path);
   return samples;

@@ -233,6 +233,9 @@ TEST_CASE("mesh_io: saving never destroys an existing file, and bad meshes and e
   bad = octahedron(false);
   bad.vertices(2, 5) = std::nan("");
   CHECK_THROWS_AS(hermite::saveMesh(path, bad), InputError);
+  bad = octahedron(true);
+  bad.normals.col(4).setZero();
+  CHECK_THROWS_WITH_AS(hermite::saveMesh(path, bad), (path + ": the normal of vertex 4 is zero").c_str(), InputError);
   std::ifstream in(path);
   std::string contents((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   CHECK(contents == "precious");

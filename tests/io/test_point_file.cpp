@@ -338,6 +338,47 @@ TEST_CASE("io_points: zero normals, all or some, are estimated and oriented with
   CHECK(warnings.size() == 1);
 }
 
+// CGAL's hippo2.ply: a PLY point set whose normals are partly zero. Zero normals in mesh-format
+// files are estimated as in text files; on a mesh they come from the faces first.
+TEST_CASE("io_points: zero normals in PLY point sets and OBJ meshes are completed with a warning") {
+  TempDir dir;
+  const HermiteSamples<3> sphere = hermite::testing::goldenSphere(600, 1.0);
+  std::string ply = "ply\nformat ascii 1.0\nelement vertex " + std::to_string(sphere.size()) +
+                    "\nproperty double x\nproperty double y\nproperty double z\n"
+                    "property double nx\nproperty double ny\nproperty double nz\nend_header\n";
+  int zeroed = 0;
+  for (int i = 0; i < sphere.size(); ++i) {
+    const Vec<3> p = sphere.points.col(i);
+    const Vec<3> n = i % 5 == 0 ? Vec<3>::Zero() : Vec<3>(sphere.normals.col(i));
+    zeroed += i % 5 == 0;
+    char line[200];
+    std::snprintf(line, sizeof line, "%.17g %.17g %.17g %.17g %.17g %.17g\n", p.x(), p.y(), p.z(), n.x(), n.y(), n.z());
+    ply += line;
+  }
+  std::vector<std::string> warnings;
+  const auto points = hermite::loadPointFile3d(dir.write("hippo.ply", ply), warnings);
+  REQUIRE(points.size() == sphere.size());
+  for (int i = 0; i < points.size(); ++i) CHECK(points.normals.col(i).dot(sphere.normals.col(i)) > 0.99);
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find(std::to_string(zeroed) + " of 600 normals are zero: normals estimated for those") !=
+        std::string::npos);
+
+  // A tetrahedron-like OBJ (counter-clockwise from outside) whose vertex 0 has a zero normal: it
+  // takes the area-weighted face normal, the given ones stay as they are.
+  const std::string obj =
+      "v 1 1 1\nv -1 -1 1\nv -1 1 -1\nv 1 -1 -1\n"
+      "vn 0 0 0\nvn -1 -1 1\nvn -1 1 -1\nvn 1 -1 -1\n"
+      "f 1//1 2//2 4//4\nf 1//1 4//4 3//3\nf 1//1 3//3 2//2\nf 2//2 3//3 4//4\n";
+  warnings.clear();
+  const auto tet = hermite::loadPointFile3d(dir.write("tet.obj", obj), warnings);
+  REQUIRE(tet.size() == 4);
+  CHECK(tet.normals.col(0).dot(Vec<3>(1, 1, 1).normalized()) == doctest::Approx(1.0).epsilon(1e-12));
+  CHECK(tet.normals.col(1).dot(Vec<3>(-1, -1, 1).normalized()) == doctest::Approx(1.0).epsilon(1e-12));
+  REQUIRE(warnings.size() == 1);
+  CHECK(warnings[0].find("1 of 4 vertex normals are zero: 1 taken from the area-weighted face normals") !=
+        std::string::npos);
+}
+
 // CGAL's cube.pwn gives normal lines with arbitrary signs, half its faces inward: the loader
 // re-orients them (lines kept) with a warning; data.orient_normals false keeps them as given.
 TEST_CASE("io_points: unoriented given normals are re-oriented with a warning, unless switched off") {

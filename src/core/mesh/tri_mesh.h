@@ -13,7 +13,8 @@ namespace hermite {
 struct TriMesh {
   Eigen::Matrix3Xd vertices;   // 3 × V, one vertex per column
   Eigen::Matrix3Xi triangles;  // 3 × T, vertex indices, counter-clockwise from outside
-  Eigen::Matrix3Xd normals;    // 3 × V unit vertex normals, or 3 × 0 when the mesh has none
+  Eigen::Matrix3Xd normals;    // 3 × V unit vertex normals, or 3 × 0 when the mesh has none; a mesh
+                               // read from a file has a zero column where the file's normal is zero
 
   int vertexCount() const { return static_cast<int>(vertices.cols()); }
   int triangleCount() const { return static_cast<int>(triangles.cols()); }
