@@ -152,11 +152,9 @@ TriMesh readObj(std::string_view bytes, const std::string& path) {
                        " 'vn' lines; without faces, each point needs exactly one normal");
     if (normalCount > 0) mesh.normals = Eigen::Map<const Eigen::Matrix3Xd>(normalValues.data(), 3, normalCount);
   } else if (faces.everyCornerHasNormal) {
-    // Vertices no face uses keep a zero sum: give the mesh normals only when every vertex has one.
-    bool complete = true;
-    for (Eigen::Index i = 0; i < vertexCount && complete; ++i)
-      complete = faces.normalSums.col(i).cwiseAbs().maxCoeff() > 0;
-    if (complete) mesh.normals = std::move(faces.normalSums);
+    // A vertex no face uses, or whose corners name only zero normals, keeps a zero sum: a zero
+    // column, as a zero normal of any file (completed by the point loaders).
+    mesh.normals = std::move(faces.normalSums);
   }
   checkAndNormalizeMesh(mesh, path, ZeroNormals::Keep);
   return mesh;

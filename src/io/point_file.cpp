@@ -161,10 +161,35 @@ void orientGivenNormals(const Points<Dim>& points, Points<Dim>& normals, int est
                      "given");
 }
 
+// Whether every complete line of `text` reads "x y c nx ny 0" with the first line's c (exactly:
+// what a 2D exporter writes). `whole`: the text is the whole file; otherwise its last line may be
+// cut and is not read. A line that does not parse answers false (the loader then reports it).
+bool linesInPlaneZ(std::string_view text, bool whole, const std::string& path) {
+  if (!whole) text = text.substr(0, text.rfind('\n') == std::string_view::npos ? 0 : text.rfind('\n') + 1);
+  LineReader lines(text);
+  std::string_view line;
+  long number = 0;
+  double values[6], plane = 0;
+  bool first = true;
+  while (lines.next(line, number)) {
+    try {
+      if (parseNumbers(line, values, 6, path, number) != 6 || values[5] != 0) return false;
+    } catch (const InputError&) {
+      return false;
+    }
+    if (first) plane = values[2];
+    if (values[2] != plane) return false;
+    first = false;
+  }
+  return !first;
+}
+
+// `fileDim` 3 with Dim 2 reads a planar 3D file as 2D data (isPlanarCurveText): x y and nx ny of
+// each "x y z nx ny nz" line.
 template <int Dim>
 HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
-                                 const PointFileOptions& options) {
-  constexpr int kColumns = 2 * Dim;
+                                 const PointFileOptions& options, int fileDim = Dim) {
+  const int kColumns = 2 * fileDim;
   // Dim × N column-major: coordinates of consecutive samples are consecutive.
   std::vector<double> points, normals;
   const std::size_t estimatedLines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
@@ -174,34 +199,36 @@ HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path,
   LineReader lines(text);
   std::string_view line;
   long lineNumber = 0;
-  double values[kColumns];
+  double values[6];
   // The first data line decides: 2·Dim columns (points and normals) or Dim (positions only:
   // normals are estimated below). Every other line must have the same columns.
   int columns = 0;
   long firstLine = 0;
   while (lines.next(line, lineNumber)) {
     const int count = parseNumbers(line, values, kColumns, path, lineNumber);
-    if (columns == 0 && (count == kColumns || count == Dim)) {
+    if (columns == 0 && (count == kColumns || count == fileDim)) {
       columns = count;
       firstLine = lineNumber;
     }
     if (count != columns || columns == 0) {
-      const bool withNormals = columns != Dim;
+      const bool withNormals = columns != fileDim;
       throw InputError(path + ":" + std::to_string(lineNumber) + ": expected " +
-                       std::to_string(withNormals ? kColumns : Dim) + " numbers (" + columnNames(Dim, withNormals) +
-                       ")" + (columns != Dim ? std::string() : " like line " + std::to_string(firstLine)) + ", got " +
+                       std::to_string(withNormals ? kColumns : fileDim) + " numbers (" +
+                       columnNames(fileDim, withNormals) + ")" +
+                       (columns != fileDim ? std::string() : " like line " + std::to_string(firstLine)) + ", got " +
                        std::to_string(count));
     }
     points.insert(points.end(), values, values + Dim);
-    if (columns == kColumns) normals.insert(normals.end(), values + Dim, values + kColumns);
+    if (columns == kColumns) normals.insert(normals.end(), values + fileDim, values + fileDim + Dim);
   }
   if (points.empty()) throw InputError(path + ": no points");
   const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
-  if (columns == Dim) normals.assign(points.size(), 0.0);  // every normal missing: estimated below
+  if (columns == fileDim) normals.assign(points.size(), 0.0);  // every normal missing: estimated below
   Points<Dim> N = Eigen::Map<const Points<Dim>>(normals.data(), Dim, count);
   const Eigen::Map<const Points<Dim>> P(points.data(), Dim, count);
   const int estimated =
-      fillMissingNormals<Dim>(P, N, path, columns == Dim ? std::to_string(Dim) + " columns" : std::string(), warnings);
+      fillMissingNormals<Dim>(P, N, path, columns == fileDim ? std::to_string(fileDim) + " columns" : std::string(),
+                              warnings);
   orientGivenNormals<Dim>(P, N, estimated, path, options, warnings);
   normals.assign(N.data(), N.data() + N.size());
 
@@ -217,6 +244,14 @@ template <int Dim>
 HermiteSamples<Dim> loadSamples(const std::string& path, std::vector<std::string>& warnings,
                                 const PointFileOptions& options) {
   const int fileDim = pointFileDimension(path);
+  if (fileDim == 3 && Dim == 2 && isPlanarCurveText(path)) {
+    std::vector<std::string> own;
+    HermiteSamples<Dim> samples = parseSamples<Dim>(readWholeFile(path), path, own, options, 3);
+    warnings.push_back(path + ": every sample lies in one plane z = constant with its normal in that plane: read as "
+                              "2D curve data (x y nx ny)");
+    warnings.insert(warnings.end(), own.begin(), own.end());
+    return samples;
+  }
   if (fileDim != Dim)
     throw InputError(path + ": a " + std::to_string(fileDim) + "D point file (" + lowercaseExtension(path) +
                      (lowercaseExtension(path) == ".xyz" ? fileDim == 2 ? " with 2 or 4 numbers per line" : "" : "") +
@@ -351,6 +386,25 @@ int pointFileDimension(const std::string& path) {
   throw InputError(path + ": unsupported point file extension '" + ext +
                    "' (supported: .xyz, .pwn, .xyzn with x y z nx ny nz per line; .xyn with x y nx ny; .ply, .obj, "
                    ".gltf, .glb, .off with vertex normals)");
+}
+
+bool isPlanarCurveText(const std::string& path) {
+  const std::string ext = lowercaseExtension(path);
+  if (ext != ".pwn" && ext != ".xyzn" && !(ext == ".xyz" && xyzColumns(path) == 6)) return false;
+  std::string text;
+  try {
+    text = readInputFileHead(path, std::size_t{1} << 16);
+    if (!linesInPlaneZ(text, false, path)) return false;
+    text = readWholeFile(path);
+  } catch (const InputError&) {
+    return false;
+  }
+  return linesInPlaneZ(text, true, path);
+}
+
+int dataFileDimension(const std::string& path) {
+  const int dim = pointFileDimension(path);
+  return dim == 3 && isPlanarCurveText(path) ? 2 : dim;
 }
 
 HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings,

@@ -43,6 +43,16 @@ struct PointFileOptions {
 // supported ones.
 int pointFileDimension(const std::string& path);
 
+// Whether a 3D text file with normals (.xyz with 6 numbers per line, .pwn, .xyzn) holds curve
+// data: every sample has the same z and every normal has nz exactly 0 (CGAL's point_set_2.xyz).
+// Reads the first 64 KiB, and the whole file only while every line so far is in the plane; false
+// for anything else, malformed files included (the loader reports those).
+bool isPlanarCurveText(const std::string& path);
+
+// The dimension of the scene built around a data file: pointFileDimension, but 2 for curve data
+// written as 3D (isPlanarCurveText). loadPointFile2d reads such a file as x y nx ny.
+int dataFileDimension(const std::string& path);
+
 // Loads and validates (validateSamples) a point file; warnings are appended.
 HermiteSamples<2> loadPointFile2d(const std::string& path, std::vector<std::string>& warnings,
                                   const PointFileOptions& options = {});

@@ -44,7 +44,7 @@ bool isSceneFilePath(const std::string& path) {
 }
 
 DataFileScene dataFileScene(const std::string& path, const std::vector<std::string>& overrides) {
-  const int dim = pointFileDimension(path);
+  const int dim = dataFileDimension(path);
   nlohmann::json doc = {{"version", 1},
                         {"mode", dim == 2 ? "implicit2d" : "implicit3d"},
                         {"data", {{"file", path}}},

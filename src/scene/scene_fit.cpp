@@ -250,7 +250,7 @@ HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& w
     }
   }
   if (!d.file.empty()) {
-    if (pointFileDimension(d.resolvedFile) != Dim)
+    if (pointFileDimension(d.resolvedFile) != Dim && dataFileDimension(d.resolvedFile) != Dim)
       throw InputError(scene.sourceName + ": data.file: '" + d.file + "' holds " +
                        std::to_string(pointFileDimension(d.resolvedFile)) + "D points, the scene's mode '" +
                        std::string(sceneModeName(scene.mode)) + "' needs " + std::to_string(Dim) + "D");

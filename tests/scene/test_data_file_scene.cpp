@@ -85,6 +85,43 @@ TEST_CASE("data files as scenes: the default scene around a point file") {
   CHECK_THROWS_AS(dataFileScene(dir.write("bad.xyz", "1 2\n")), InputError);
 }
 
+// CGAL's point_set_2.xyz: six columns, every z 0 and every nz 0 — a curve's samples written as
+// 3D. A 3D fit has no surface there (the mesh came out empty); the default scene is 2D.
+TEST_CASE("data files as scenes: a 3D text file of curve samples in one plane z = c makes a 2D scene") {
+  testing::TempDir dir("hermite_data_scene");
+  std::string text = "# a circle of radius 2 in the plane z = 0.25\n";
+  for (int i = 0; i < 64; ++i) {
+    const double a = 2 * M_PI * i / 64;
+    char line[160];
+    std::snprintf(line, sizeof line, "%.17g %.17g 0.25 %.17g %.17g 0\n", 2 * std::cos(a), 2 * std::sin(a), std::cos(a),
+                  std::sin(a));
+    text += line;
+  }
+  const std::string path = dir.write("curve.xyz", text);
+  const DataFileScene d = dataFileScene(path);
+  CHECK(d.scene.mode == SceneMode::Implicit2d);
+  CHECK(d.samples == 64);
+  REQUIRE(d.warnings.size() == 1);
+  CHECK(d.warnings[0] == path + ": every sample lies in one plane z = constant with its normal in that plane: read as "
+                                "2D curve data (x y nx ny)");
+  const SceneFit<2> fit = fitScene<2>(d.scene);
+  Eigen::VectorXd f;
+  fit.field().evaluateBatch(Points<2>(Vec<2>(0, 0)), f, nullptr);
+  CHECK(f(0) < 0);  // inside the circle, normals outward
+
+  // A scene file that names it in 3D keeps reading it as 3D, as before.
+  nlohmann::json doc = {{"version", 1}, {"mode", "implicit3d"}, {"data", {{"file", path}}}};
+  const Scene s3 = parseScene(doc, dir.file("s.json"), "");
+  std::vector<std::string> warnings;
+  CHECK(sceneSamples<3>(s3, warnings).size() == 64);
+
+  // One sample off the plane, or one normal out of it: 3D data.
+  const std::string off = dir.write("off.xyz", text + "0 0 0.5 0 1 0\n");
+  CHECK(dataFileScene(off).scene.mode == SceneMode::Implicit3d);
+  const std::string tilted = dir.write("tilted.pwn", text + "0 0 0.25 0 0.6 0.8\n");
+  CHECK(dataFileScene(tilted).scene.mode == SceneMode::Implicit3d);
+}
+
 TEST_CASE("data files as scenes: a saved scene names its data relative to its own folder") {
   testing::TempDir dir("hermite_data_scene_save");
   const std::string data = dir.write("scans/cloud.xyzn", sphereText(50, true));
