@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/base/errors.h"
+#include "core/points/fold_normals.h"
 #include "core/points/neighbour_graph.h"
 #include "core/points/normal_orientation.h"
 #include "core/points/sheet_fit.h"
@@ -19,6 +20,7 @@ using detail::EdgeRule;
 using detail::KdTree;
 using detail::NeighbourGraph;
 using detail::edgeRule;
+using detail::foldNormals;
 using detail::followGivenMajority;
 using detail::neighbourGraph;
 using detail::orientNormals;
@@ -48,7 +50,8 @@ int completeNormals(const Points<Dim>& points, Points<Dim>& normals, const Norma
       normals.col(i) = sheetNormal<Dim>(points, g, i, band[i], c);
       second.col(i) = c;
     }
-  orientNormals<Dim>(points, normals, std::move(known), g, band, second, options);
+  orientNormals<Dim>(points, normals, known, g, band, second, options);
+  foldNormals<Dim>(points, normals, known, g, band, options.sheetBand);
   return missing;
 }
 

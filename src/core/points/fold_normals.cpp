@@ -1,0 +1,158 @@
+#include "core/points/fold_normals.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include <Eigen/Eigenvalues>
+
+namespace hermite::detail {
+
+namespace {
+
+constexpr double kCos30 = 0.8660254037844386;
+constexpr double kEndFraction = 0.2;  // × the radius: the sheets' centroid this far aside, i is at their end
+
+// The two opposite-facing sheets of a neighbourhood (foldNormals, step 1), relative to pᵢ.
+template <int Dim>
+struct SheetPair {
+  Vec<Dim> axis;             // e, unit
+  Vec<Dim> normal[2];        // mean unit normal of sheet "−" and sheet "+"
+  double offset[2] = {0, 0};  // h₋, h₊: mean offset along e of each sheet from pᵢ
+  Vec<Dim> centroid;         // of both sheets' points, minus pᵢ
+};
+
+// Whether pᵢ's neighbourhood may hold two opposite-facing sheets, or pᵢ's normal disagrees with
+// its neighbours' (a cheap test on the k − 1 unit normals `m` of the neighbours that skips every
+// point of a consistently oriented single sheet): two of them more than 150° apart, or `own`
+// within 30° of fewer than half of them.
+template <int Dim>
+bool worthALook(const Points<Dim>& m, const Vec<Dim>& own) {
+  int agree = 0;
+  for (Eigen::Index a = 0; a < m.cols(); ++a) {
+    agree += m.col(a).dot(own) >= kCos30;
+    for (Eigen::Index b = a + 1; b < m.cols(); ++b)
+      if (m.col(a).dot(m.col(b)) < -kCos30) return true;
+  }
+  return 2 * agree < m.cols();
+}
+
+// The main axis (unit) of the lines `m` whose columns `use` selects: the largest eigenvector of Σ mⱼ mⱼᵀ.
+template <int Dim>
+Vec<Dim> mainAxis(const Points<Dim>& m, const std::vector<char>& use) {
+  Mat<Dim> C = Mat<Dim>::Zero();
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    if (use[static_cast<std::size_t>(j)]) C += m.col(j) * m.col(j).transpose();
+  Eigen::SelfAdjointEigenSolver<Mat<Dim>> eig(C);
+  return eig.eigenvectors().col(Dim - 1);  // largest eigenvalue last
+}
+
+// The median of `h` (not empty; reordered).
+double median(std::vector<double>& h) {
+  const auto mid = h.begin() + static_cast<std::ptrdiff_t>(h.size() / 2);
+  std::nth_element(h.begin(), mid, h.end());
+  return *mid;
+}
+
+// Step 1 of foldNormals over the ring of points around pᵢ (`m`: their unit normals, `d`: their
+// positions minus pᵢ): the two sheets, or false when there are not two of at least 3 points
+// each, `band` or more apart. The axis is refitted once to the lines within 30° of the first
+// (the rim's own lines and bad lines out); the offsets are medians (a sign error stays out).
+template <int Dim>
+bool sheetPair(const Points<Dim>& m, const Points<Dim>& d, double band, SheetPair<Dim>& s) {
+  const std::size_t count = static_cast<std::size_t>(m.cols());
+  std::vector<char> use(count, 1);
+  s.axis = mainAxis<Dim>(m, use);
+  int along = 0;
+  for (std::size_t j = 0; j < count; ++j) along += use[j] = std::abs(m.col(Eigen::Index(j)).dot(s.axis)) >= kCos30;
+  if (along >= Dim + 1) s.axis = mainAxis<Dim>(m, use);
+  if (!s.axis.allFinite()) return false;
+  Vec<Dim> sum[2] = {Vec<Dim>::Zero(), Vec<Dim>::Zero()}, at = Vec<Dim>::Zero();
+  std::vector<double> h[2];
+  for (std::size_t j = 0; j < count; ++j) {
+    const Eigen::Index c = static_cast<Eigen::Index>(j);
+    const double cosine = m.col(c).dot(s.axis);
+    if (std::abs(cosine) < kCos30) continue;
+    const int side = cosine > 0 ? 1 : 0;
+    sum[side] += m.col(c);
+    at += d.col(c);
+    h[side].push_back(s.axis.dot(d.col(c)));
+  }
+  if (h[0].size() < 3 || h[1].size() < 3) return false;
+  for (int side = 0; side < 2; ++side) {
+    s.normal[side] = sum[side].normalized();
+    s.offset[side] = median(h[side]);
+  }
+  s.centroid = at / double(h[0].size() + h[1].size());
+  return std::abs(s.offset[1] - s.offset[0]) >= band;
+}
+
+// Steps 2–4 of foldNormals: pᵢ's normal from the sheet pair (`own`: its oriented estimate,
+// `radius`: its neighbourhood radius).
+template <int Dim>
+Vec<Dim> foldNormal(const SheetPair<Dim>& s, const Vec<Dim>& own, double radius) {
+  const double sep = s.offset[1] - s.offset[0];
+  const double f = std::clamp(-s.offset[0] / sep, 0.0, 1.0);
+  const Vec<Dim>& near = s.normal[f > 0.5 ? 1 : 0];
+  const Vec<Dim> sheet = own.dot(near) >= kCos30 ? own : near;
+  const Vec<Dim> aside = s.centroid - s.axis * s.axis.dot(s.centroid);  // ⊥ e
+  const double w = std::clamp((std::min(f, 1 - f) - 0.05) / 0.2, 0.0, 1.0);
+  if (w == 0 || aside.norm() < kEndFraction * radius) return sheet;
+  const Vec<Dim> fold = aside.normalized() * (sep > 0 ? -1.0 : 1.0);  // convex: away from the sheets
+  return (w * fold + (1 - w) * sheet).normalized();
+}
+
+// The ring around pᵢ: its neighbours and theirs (pᵢ excluded), about three neighbourhoods' worth
+// of points: enough sheet points beyond a rim's cluster of bad lines to say where the sheets are.
+void ringOf(const NeighbourGraph& g, int i, std::vector<std::uint32_t>& ring) {
+  ring.clear();
+  for (int a = 0; a < g.k; ++a)
+    for (int b = 0; b < g.k; ++b) ring.push_back(g.of(static_cast<int>(g.of(i)[a]))[b]);
+  std::sort(ring.begin(), ring.end());
+  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+  ring.erase(std::remove(ring.begin(), ring.end(), static_cast<std::uint32_t>(i)), ring.end());
+}
+
+}  // namespace
+
+template <int Dim>
+int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& fixed, const NeighbourGraph& g,
+                const std::vector<double>& band, double sheetBand) {
+  const int n = static_cast<int>(P.cols());
+  Points<Dim> out = N;
+  int changed = 0;
+#pragma omp parallel reduction(+ : changed)
+  {
+    Points<Dim> m(Dim, g.k), d;
+    std::vector<std::uint32_t> ring;
+#pragma omp for schedule(dynamic, 1024)
+    for (int i = 0; i < n; ++i) {
+      if (fixed[i]) continue;
+      const Vec<Dim> own = N.col(i).normalized();
+      Eigen::Index c = 0;
+      for (int j = 0; j < g.k; ++j)
+        if (static_cast<int>(g.of(i)[j]) != i) m.col(c++) = N.col(g.of(i)[j]).normalized();
+      if (!worthALook<Dim>(m.leftCols(c), own)) continue;
+      ringOf(g, i, ring);
+      Points<Dim> rm(Dim, static_cast<Eigen::Index>(ring.size()));
+      d.resize(Dim, rm.cols());
+      for (Eigen::Index j = 0; j < rm.cols(); ++j) {
+        rm.col(j) = N.col(ring[static_cast<std::size_t>(j)]).normalized();
+        d.col(j) = P.col(ring[static_cast<std::size_t>(j)]) - P.col(i);
+      }
+      SheetPair<Dim> s;
+      if (!sheetPair<Dim>(rm, d, band[i], s)) continue;
+      const Vec<Dim> nrm = foldNormal<Dim>(s, own, band[i] / sheetBand);
+      if (nrm.allFinite() && nrm != own) out.col(i) = nrm, ++changed;
+    }
+  }
+  N = out;
+  return changed;
+}
+
+template int foldNormals<2>(const Points<2>&, Points<2>&, const std::vector<char>&, const NeighbourGraph&,
+                            const std::vector<double>&, double);
+template int foldNormals<3>(const Points<3>&, Points<3>&, const std::vector<char>&, const NeighbourGraph&,
+                            const std::vector<double>&, double);
+
+}  // namespace hermite::detail
