@@ -43,7 +43,8 @@ Vec<Dim> mainAxis(const Points<Dim>& m, const std::vector<char>& use) {
   Mat<Dim> C = Mat<Dim>::Zero();
   for (Eigen::Index j = 0; j < m.cols(); ++j)
     if (use[static_cast<std::size_t>(j)]) C += m.col(j) * m.col(j).transpose();
-  Eigen::SelfAdjointEigenSolver<Mat<Dim>> eig(C);
+  Eigen::SelfAdjointEigenSolver<Mat<Dim>> eig;
+  eig.computeDirect(C);  // closed form: the axis of a neighbourhood needs no more precision
   return eig.eigenvectors().col(Dim - 1);  // largest eigenvalue last
 }
 
@@ -54,18 +55,31 @@ double median(std::vector<double>& h) {
   return *mid;
 }
 
+// The sheets' axis among the lines `m` (unit columns): their main axis, refitted once to the
+// lines within 30° of it (the rim's own lines and bad lines out); `use` receives which lines lie
+// within 30° of the result.
+template <int Dim>
+Vec<Dim> sheetAxis(const Points<Dim>& m, std::vector<char>& use) {
+  const std::size_t count = static_cast<std::size_t>(m.cols());
+  use.assign(count, 1);
+  Vec<Dim> axis = mainAxis<Dim>(m, use);
+  for (int pass = 0; pass < 2; ++pass) {
+    int along = 0;
+    for (std::size_t j = 0; j < count; ++j)
+      along += use[j] = std::abs(m.col(static_cast<Eigen::Index>(j)).dot(axis)) >= kCos30;
+    if (pass == 0 && along >= Dim + 1) axis = mainAxis<Dim>(m, use);
+  }
+  return axis;
+}
+
 // Step 1 of foldNormals over the ring of points around pᵢ (`m`: their unit normals, `d`: their
 // positions minus pᵢ): the two sheets, or false when there are not two of at least 3 points
-// each, `band` or more apart. The axis is refitted once to the lines within 30° of the first
-// (the rim's own lines and bad lines out); the offsets are medians (a sign error stays out).
+// each, `band` or more apart. The offsets are medians (a sign error stays out).
 template <int Dim>
 bool sheetPair(const Points<Dim>& m, const Points<Dim>& d, double band, SheetPair<Dim>& s) {
   const std::size_t count = static_cast<std::size_t>(m.cols());
-  std::vector<char> use(count, 1);
-  s.axis = mainAxis<Dim>(m, use);
-  int along = 0;
-  for (std::size_t j = 0; j < count; ++j) along += use[j] = std::abs(m.col(Eigen::Index(j)).dot(s.axis)) >= kCos30;
-  if (along >= Dim + 1) s.axis = mainAxis<Dim>(m, use);
+  std::vector<char> use;
+  s.axis = sheetAxis<Dim>(m, use);
   if (!s.axis.allFinite()) return false;
   Vec<Dim> sum[2] = {Vec<Dim>::Zero(), Vec<Dim>::Zero()}, at = Vec<Dim>::Zero();
   std::vector<double> h[2];
@@ -104,16 +118,83 @@ Vec<Dim> foldNormal(const SheetPair<Dim>& s, const Vec<Dim>& own, double radius)
 
 // The ring around pᵢ: its neighbours and theirs (pᵢ excluded), about three neighbourhoods' worth
 // of points: enough sheet points beyond a rim's cluster of bad lines to say where the sheets are.
-void ringOf(const NeighbourGraph& g, int i, std::vector<std::uint32_t>& ring) {
+void ringOf(const NeighbourGraph& g, int i, std::vector<std::uint32_t>& ring, std::vector<int>& stamp) {
   ring.clear();
+  stamp[static_cast<std::size_t>(i)] = i;  // `stamp` (N entries) marks the points listed for i
   for (int a = 0; a < g.k; ++a)
-    for (int b = 0; b < g.k; ++b) ring.push_back(g.of(static_cast<int>(g.of(i)[a]))[b]);
-  std::sort(ring.begin(), ring.end());
-  ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
-  ring.erase(std::remove(ring.begin(), ring.end(), static_cast<std::uint32_t>(i)), ring.end());
+    for (int b = 0; b < g.k; ++b) {
+      const std::uint32_t o = g.of(static_cast<int>(g.of(i)[a]))[b];
+      if (stamp[o] != i) stamp[o] = i, ring.push_back(o);
+    }
+}
+
+// Whether pᵢ lies between two sheets of its ring, from lines alone (betweenSheets): the offsets
+// e·(pⱼ − pᵢ) of the ring's lines along the sheets' axis e, split at their widest gap into two
+// levels of at least 3 each, their medians at least `band` apart, pᵢ 15 % or more of the way
+// from each (curvature lifts a sheet's own ring to one side, by ≈ 7 % at a spacing from a curl of
+// radius 20 spacings).
+template <int Dim>
+bool liesBetween(const Points<Dim>& m, const Points<Dim>& d, double band) {
+  std::vector<char> use;
+  const Vec<Dim> axis = sheetAxis<Dim>(m, use);
+  std::vector<double> h;
+  for (Eigen::Index j = 0; j < m.cols(); ++j)
+    if (use[static_cast<std::size_t>(j)]) h.push_back(axis.dot(d.col(j)));
+  if (h.size() < 6 || !axis.allFinite()) return false;
+  std::sort(h.begin(), h.end());
+  std::size_t cut = 0;
+  double widest = 0;
+  for (std::size_t a = 3; a + 3 <= h.size(); ++a)
+    if (h[a] - h[a - 1] > widest) widest = h[a] - h[a - 1], cut = a;
+  if (cut == 0) return false;
+  const double lo = h[(cut - 1) / 2], hi = h[cut + (h.size() - cut - 1) / 2];
+  if (hi - lo < band) return false;
+  const double f = -lo / (hi - lo);
+  return f >= 0.15 && f <= 0.85;
+}
+
+// The unit normals (columns of `m`) and offsets from pᵢ (columns of `d`) of the points `ring`.
+template <int Dim>
+void gather(const Points<Dim>& P, const Points<Dim>& N, int i, const std::vector<std::uint32_t>& ring, Points<Dim>& m,
+            Points<Dim>& d) {
+  m.resize(Dim, static_cast<Eigen::Index>(ring.size()));
+  d.resize(Dim, m.cols());
+  for (Eigen::Index j = 0; j < m.cols(); ++j) {
+    m.col(j) = N.col(ring[static_cast<std::size_t>(j)]).normalized();
+    d.col(j) = P.col(ring[static_cast<std::size_t>(j)]) - P.col(i);
+  }
 }
 
 }  // namespace
+
+template <int Dim>
+std::vector<char> betweenSheets(const Points<Dim>& P, const Points<Dim>& N, const NeighbourGraph& g,
+                                const std::vector<double>& band) {
+  const int n = static_cast<int>(P.cols());
+  std::vector<char> between(static_cast<std::size_t>(n), 0);
+#pragma omp parallel
+  {
+    Points<Dim> m, d;
+    std::vector<std::uint32_t> ring;
+    std::vector<int> stamp(static_cast<std::size_t>(n), -1);
+#pragma omp for schedule(dynamic, 1024)
+    for (int i = 0; i < n; ++i) {
+      // Cheap test first: the k neighbours' offsets along pᵢ's line span a band or more (a rim
+      // sample whose line is not the sheets' is no bridge between them: no edge along a sheet).
+      const Vec<Dim> own = N.col(i).normalized();
+      double lo = 0, hi = 0;
+      for (int j = 0; j < g.k; ++j) {
+        const double h = own.dot(P.col(g.of(i)[j]) - P.col(i));
+        lo = std::min(lo, h), hi = std::max(hi, h);
+      }
+      if (!(hi - lo >= band[i])) continue;
+      ringOf(g, i, ring, stamp);
+      gather<Dim>(P, N, i, ring, m, d);
+      between[static_cast<std::size_t>(i)] = liesBetween<Dim>(m, d, band[i]);
+    }
+  }
+  return between;
+}
 
 template <int Dim>
 int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& fixed, const NeighbourGraph& g,
@@ -125,6 +206,7 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
   {
     Points<Dim> m(Dim, g.k), d;
     std::vector<std::uint32_t> ring;
+    std::vector<int> stamp(static_cast<std::size_t>(n), -1);
 #pragma omp for schedule(dynamic, 1024)
     for (int i = 0; i < n; ++i) {
       if (fixed[i]) continue;
@@ -133,13 +215,9 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
       for (int j = 0; j < g.k; ++j)
         if (static_cast<int>(g.of(i)[j]) != i) m.col(c++) = N.col(g.of(i)[j]).normalized();
       if (!worthALook<Dim>(m.leftCols(c), own)) continue;
-      ringOf(g, i, ring);
-      Points<Dim> rm(Dim, static_cast<Eigen::Index>(ring.size()));
-      d.resize(Dim, rm.cols());
-      for (Eigen::Index j = 0; j < rm.cols(); ++j) {
-        rm.col(j) = N.col(ring[static_cast<std::size_t>(j)]).normalized();
-        d.col(j) = P.col(ring[static_cast<std::size_t>(j)]) - P.col(i);
-      }
+      ringOf(g, i, ring, stamp);
+      Points<Dim> rm;
+      gather<Dim>(P, N, i, ring, rm, d);
       SheetPair<Dim> s;
       if (!sheetPair<Dim>(rm, d, band[i], s)) continue;
       const Vec<Dim> nrm = foldNormal<Dim>(s, own, band[i] / sheetBand);
@@ -150,6 +228,10 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
   return changed;
 }
 
+template std::vector<char> betweenSheets<2>(const Points<2>&, const Points<2>&, const NeighbourGraph&,
+                                            const std::vector<double>&);
+template std::vector<char> betweenSheets<3>(const Points<3>&, const Points<3>&, const NeighbourGraph&,
+                                            const std::vector<double>&);
 template int foldNormals<2>(const Points<2>&, Points<2>&, const std::vector<char>&, const NeighbourGraph&,
                             const std::vector<double>&, double);
 template int foldNormals<3>(const Points<3>&, Points<3>&, const std::vector<char>&, const NeighbourGraph&,

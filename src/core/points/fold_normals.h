@@ -14,6 +14,17 @@
 
 namespace hermite::detail {
 
+// Which points lie between two sheets of a thin part, from their normal lines alone (before any
+// orientation; `N` Dim × N, any sign, `band` the sheet bands): among the lines of the ring around
+// pᵢ (its neighbours and theirs) within 30° of their main axis e, the offsets e·(pⱼ − pᵢ) form two
+// levels (split at their widest gap, at least 3 points each) at least bandᵢ apart, and pᵢ lies 15 %
+// or more of the way from each. Such a point (a rim's sample) takes the sheets' line in the sheet
+// fit and sits within a band of both sheets: an edge "along a sheet" to it would join the two
+// sheets in one patch, so the orientation does not trust it (orientNormals).
+template <int Dim>
+std::vector<char> betweenSheets(const Points<Dim>& P, const Points<Dim>& N, const NeighbourGraph& g,
+                                const std::vector<double>& band);
+
 // Re-estimates, after orientation, the normals of the points (`N`, Dim × N, unit, oriented) whose
 // k neighbours hold two opposite-facing sheets, points with `fixed` set excepted. Per point i
 // (neighbours j ≠ i, unit normals mⱼ):

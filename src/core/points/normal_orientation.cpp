@@ -8,6 +8,8 @@
 #include <queue>
 #include <utility>
 
+#include "core/points/fold_normals.h"
+
 namespace hermite::detail {
 
 template <int Dim>
@@ -171,7 +173,9 @@ void orientNormals(const Points<Dim>& P, Points<Dim>& N, std::vector<char> done,
                    const std::vector<double>& band, const Points<Dim>& second, const NormalEstimationOptions& o,
                    std::vector<int>* part) {
   const int n = static_cast<int>(P.cols());
-  const std::vector<char> trusted = agreesWithNeighbours<Dim>(N, g);
+  std::vector<char> trusted = agreesWithNeighbours<Dim>(N, g);
+  const std::vector<char> between = betweenSheets<Dim>(P, N, g, band);
+  for (int i = 0; i < n; ++i) trusted[i] = trusted[i] && !between[i];
   int patches = 0;
   const int maxPatch = 16;  // points per patch: a neighbourhood or two across (see growPatches)
   const std::vector<int> patch = growPatches<Dim>(P, N, done, g, band, second, trusted, o, maxPatch, patches);
