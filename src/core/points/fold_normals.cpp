@@ -11,6 +11,10 @@ namespace hermite::detail {
 namespace {
 
 constexpr double kCos30 = 0.8660254037844386;
+// A view of some columns of a Dim × N matrix (the ring's buffers: no copy, no allocation).
+template <int Dim>
+using ColumnsRef = Eigen::Ref<const Points<Dim>>;
+
 constexpr double kEndFraction = 0.2;  // × the radius: the sheets' centroid this far aside, i is at their end
 
 // The two opposite-facing sheets of a neighbourhood (foldNormals, step 1), relative to pᵢ.
@@ -27,7 +31,7 @@ struct SheetPair {
 // point of a consistently oriented single sheet): two of them more than 150° apart, or `own`
 // within 30° of fewer than half of them.
 template <int Dim>
-bool worthALook(const Points<Dim>& m, const Vec<Dim>& own) {
+bool worthALook(const ColumnsRef<Dim>& m, const Vec<Dim>& own) {
   int agree = 0;
   for (Eigen::Index a = 0; a < m.cols(); ++a) {
     agree += m.col(a).dot(own) >= kCos30;
@@ -39,7 +43,7 @@ bool worthALook(const Points<Dim>& m, const Vec<Dim>& own) {
 
 // The main axis (unit) of the lines `m` whose columns `use` selects: the largest eigenvector of Σ mⱼ mⱼᵀ.
 template <int Dim>
-Vec<Dim> mainAxis(const Points<Dim>& m, const std::vector<char>& use) {
+Vec<Dim> mainAxis(const ColumnsRef<Dim>& m, const std::vector<char>& use) {
   Mat<Dim> C = Mat<Dim>::Zero();
   for (Eigen::Index j = 0; j < m.cols(); ++j)
     if (use[static_cast<std::size_t>(j)]) C += m.col(j) * m.col(j).transpose();
@@ -59,7 +63,7 @@ double median(std::vector<double>& h) {
 // lines within 30° of it (the rim's own lines and bad lines out); `use` receives which lines lie
 // within 30° of the result.
 template <int Dim>
-Vec<Dim> sheetAxis(const Points<Dim>& m, std::vector<char>& use) {
+Vec<Dim> sheetAxis(const ColumnsRef<Dim>& m, std::vector<char>& use) {
   const std::size_t count = static_cast<std::size_t>(m.cols());
   use.assign(count, 1);
   Vec<Dim> axis = mainAxis<Dim>(m, use);
@@ -76,7 +80,7 @@ Vec<Dim> sheetAxis(const Points<Dim>& m, std::vector<char>& use) {
 // positions minus pᵢ): the two sheets, or false when there are not two of at least 3 points
 // each, `band` or more apart. The offsets are medians (a sign error stays out).
 template <int Dim>
-bool sheetPair(const Points<Dim>& m, const Points<Dim>& d, double band, SheetPair<Dim>& s) {
+bool sheetPair(const ColumnsRef<Dim>& m, const ColumnsRef<Dim>& d, double band, SheetPair<Dim>& s) {
   const std::size_t count = static_cast<std::size_t>(m.cols());
   std::vector<char> use;
   s.axis = sheetAxis<Dim>(m, use);
@@ -134,7 +138,7 @@ void ringOf(const NeighbourGraph& g, int i, std::vector<std::uint32_t>& ring, st
 // from each (curvature lifts a sheet's own ring to one side, by ≈ 7 % at a spacing from a curl of
 // radius 20 spacings).
 template <int Dim>
-bool liesBetween(const Points<Dim>& m, const Points<Dim>& d, double band) {
+bool liesBetween(const ColumnsRef<Dim>& m, const ColumnsRef<Dim>& d, double band) {
   std::vector<char> use;
   const Vec<Dim> axis = sheetAxis<Dim>(m, use);
   std::vector<double> h;
@@ -153,16 +157,18 @@ bool liesBetween(const Points<Dim>& m, const Points<Dim>& d, double band) {
   return f >= 0.15 && f <= 0.85;
 }
 
-// The unit normals (columns of `m`) and offsets from pᵢ (columns of `d`) of the points `ring`.
+// The unit normals (the first columns of `m`) and offsets from pᵢ (of `d`) of the points `ring`;
+// the buffers grow to the largest ring (k² columns at most). Returns the count.
 template <int Dim>
-void gather(const Points<Dim>& P, const Points<Dim>& N, int i, const std::vector<std::uint32_t>& ring, Points<Dim>& m,
-            Points<Dim>& d) {
-  m.resize(Dim, static_cast<Eigen::Index>(ring.size()));
-  d.resize(Dim, m.cols());
-  for (Eigen::Index j = 0; j < m.cols(); ++j) {
+Eigen::Index gather(const Points<Dim>& P, const Points<Dim>& N, int i, const std::vector<std::uint32_t>& ring,
+                    Points<Dim>& m, Points<Dim>& d) {
+  const Eigen::Index count = static_cast<Eigen::Index>(ring.size());
+  if (m.cols() < count) m.resize(Dim, count), d.resize(Dim, count);
+  for (Eigen::Index j = 0; j < count; ++j) {
     m.col(j) = N.col(ring[static_cast<std::size_t>(j)]).normalized();
     d.col(j) = P.col(ring[static_cast<std::size_t>(j)]) - P.col(i);
   }
+  return count;
 }
 
 }  // namespace
@@ -189,8 +195,8 @@ std::vector<char> betweenSheets(const Points<Dim>& P, const Points<Dim>& N, cons
       }
       if (!(hi - lo >= band[i])) continue;
       ringOf(g, i, ring, stamp);
-      gather<Dim>(P, N, i, ring, m, d);
-      between[static_cast<std::size_t>(i)] = liesBetween<Dim>(m, d, band[i]);
+      const Eigen::Index count = gather<Dim>(P, N, i, ring, m, d);
+      between[static_cast<std::size_t>(i)] = liesBetween<Dim>(m.leftCols(count), d.leftCols(count), band[i]);
     }
   }
   return between;
@@ -204,7 +210,7 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
   int changed = 0;
 #pragma omp parallel reduction(+ : changed)
   {
-    Points<Dim> m(Dim, g.k), d;
+    Points<Dim> m(Dim, g.k), rm, d;
     std::vector<std::uint32_t> ring;
     std::vector<int> stamp(static_cast<std::size_t>(n), -1);
 #pragma omp for schedule(dynamic, 1024)
@@ -216,10 +222,9 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
         if (static_cast<int>(g.of(i)[j]) != i) m.col(c++) = N.col(g.of(i)[j]).normalized();
       if (!worthALook<Dim>(m.leftCols(c), own)) continue;
       ringOf(g, i, ring, stamp);
-      Points<Dim> rm;
-      gather<Dim>(P, N, i, ring, rm, d);
+      const Eigen::Index count = gather<Dim>(P, N, i, ring, rm, d);
       SheetPair<Dim> s;
-      if (!sheetPair<Dim>(rm, d, band[i], s)) continue;
+      if (!sheetPair<Dim>(rm.leftCols(count), d.leftCols(count), band[i], s)) continue;
       const Vec<Dim> nrm = foldNormal<Dim>(s, own, band[i] / sheetBand);
       if (nrm.allFinite() && nrm != own) out.col(i) = nrm, ++changed;
     }
