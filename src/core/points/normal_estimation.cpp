@@ -20,6 +20,7 @@ using detail::EdgeRule;
 using detail::KdTree;
 using detail::NeighbourGraph;
 using detail::edgeRule;
+using detail::betweenSheets;
 using detail::foldNormals;
 using detail::followGivenMajority;
 using detail::neighbourGraph;
@@ -50,7 +51,9 @@ int completeNormals(const Points<Dim>& points, Points<Dim>& normals, const Norma
       normals.col(i) = sheetNormal<Dim>(points, g, i, band[i], c);
       second.col(i) = c;
     }
-  orientNormals<Dim>(points, normals, known, g, band, second, options);
+  // Estimated lines of samples between two sheets (a rim's) take the sheets' line: no bridge.
+  const std::vector<char> between = betweenSheets<Dim>(points, normals, g, band);
+  orientNormals<Dim>(points, normals, known, g, band, second, options, nullptr, &between);
   foldNormals<Dim>(points, normals, known, g, band, options.sheetBand);
   return missing;
 }
