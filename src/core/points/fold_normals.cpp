@@ -120,6 +120,24 @@ Vec<Dim> foldNormal(const SheetPair<Dim>& s, const Vec<Dim>& own, double radius)
   return (w * fold + (1 - w) * sheet).normalized();
 }
 
+// Whether pᵢ lies on a sheet of its own: at least 3 of its k neighbours lie within a tenth of a
+// band of its tangent plane (`own`: its unit normal) with lines within 30° of its line (of its
+// sign too, when `sameSign`). Then pᵢ lies at a sheet's level of any pair of sheets around it
+// (f ≈ 0: not between them, no fold direction to blend in) and agrees with that sheet's
+// normal: the ring need not be looked at. Most samples of a thin part pass, the rims' do not.
+template <int Dim>
+bool onItsSheet(const Points<Dim>& P, const Points<Dim>& N, const NeighbourGraph& g, int i, const Vec<Dim>& own,
+                double band, bool sameSign) {
+  int level = 0;
+  for (int j = 0; j < g.k; ++j) {
+    const int o = static_cast<int>(g.of(i)[j]);
+    if (o == i || std::abs(own.dot(P.col(o) - P.col(i))) > 0.1 * band) continue;
+    const double c = own.dot(N.col(o).normalized());
+    level += (sameSign ? c : std::abs(c)) >= kCos30;
+  }
+  return level >= 3;
+}
+
 // The ring around pᵢ: its neighbours and theirs (pᵢ excluded), about three neighbourhoods' worth
 // of points: enough sheet points beyond a rim's cluster of bad lines to say where the sheets are.
 void ringOf(const NeighbourGraph& g, int i, std::vector<std::uint32_t>& ring, std::vector<int>& stamp) {
@@ -220,7 +238,7 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
       Eigen::Index c = 0;
       for (int j = 0; j < g.k; ++j)
         if (static_cast<int>(g.of(i)[j]) != i) m.col(c++) = N.col(g.of(i)[j]).normalized();
-      if (!worthALook<Dim>(m.leftCols(c), own)) continue;
+      if (!worthALook<Dim>(m.leftCols(c), own) || onItsSheet<Dim>(P, N, g, i, own, band[i], true)) continue;
       ringOf(g, i, ring, stamp);
       const Eigen::Index count = gather<Dim>(P, N, i, ring, rm, d);
       SheetPair<Dim> s;
