@@ -31,7 +31,8 @@ std::vector<char> betweenSheets(const Points<Dim>& P, const Points<Dim>& N, cons
 // neighbourhood holds two opposite-facing sheets, points with `fixed` set excepted. Per point i,
 // over the ring around pᵢ (its k neighbours and theirs, pᵢ excluded; unit normals mⱼ), looked at
 // only where two of its k neighbours' normals lie more than 150° apart or pᵢ's lies within 30° of
-// fewer than half of them:
+// fewer than half of them, and not where pᵢ lies on its sheet (3 of its neighbours within a tenth
+// of bandᵢ of its tangent plane with normals within 30° of its own: f ≈ 0 below, nothing to change):
 //   1. two sheets: e is the main axis of the lines (Σ mⱼ mⱼᵀ, refitted once to the lines within
 //      30° of it); the normals within 30° of +e form sheet "+", those within 30° of −e sheet "−",
 //      each of at least 3, the medians h± of their offsets e·(pⱼ − pᵢ) at least bandᵢ apart (the
