@@ -11,18 +11,18 @@ namespace hermite::detail {
 namespace {
 
 constexpr double kCos30 = 0.8660254037844386;
+constexpr double kEndFraction = 0.2;  // × the radius: the sheets' centroid this far aside, i is at their end
+
 // A view of some columns of a Dim × N matrix (the ring's buffers: no copy, no allocation).
 template <int Dim>
 using ColumnsRef = Eigen::Ref<const Points<Dim>>;
-
-constexpr double kEndFraction = 0.2;  // × the radius: the sheets' centroid this far aside, i is at their end
 
 // The two opposite-facing sheets of a neighbourhood (foldNormals, step 1), relative to pᵢ.
 template <int Dim>
 struct SheetPair {
   Vec<Dim> axis;             // e, unit
   Vec<Dim> normal[2];        // mean unit normal of sheet "−" and sheet "+"
-  double offset[2] = {0, 0};  // h₋, h₊: mean offset along e of each sheet from pᵢ
+  double offset[2] = {0, 0};  // h₋, h₊: median offset along e of each sheet from pᵢ
   Vec<Dim> centroid;         // of both sheets' points, minus pᵢ
 };
 
@@ -102,7 +102,7 @@ bool sheetPair(const ColumnsRef<Dim>& m, const ColumnsRef<Dim>& d, double band, 
     s.offset[side] = median(h[side]);
   }
   s.centroid = at / double(h[0].size() + h[1].size());
-  return std::abs(s.offset[1] - s.offset[0]) >= band;
+  return std::abs(s.offset[1] - s.offset[0]) >= band && s.offset[1] != s.offset[0];
 }
 
 // Steps 2–4 of foldNormals: pᵢ's normal from the sheet pair (`own`: its oriented estimate,
@@ -121,19 +121,18 @@ Vec<Dim> foldNormal(const SheetPair<Dim>& s, const Vec<Dim>& own, double radius)
 }
 
 // Whether pᵢ lies on a sheet of its own: at least 3 of its k neighbours lie within a tenth of a
-// band of its tangent plane (`own`: its unit normal) with lines within 30° of its line (of its
-// sign too, when `sameSign`). Then pᵢ lies at a sheet's level of any pair of sheets around it
-// (f ≈ 0: not between them, no fold direction to blend in) and agrees with that sheet's
-// normal: the ring need not be looked at. Most samples of a thin part pass, the rims' do not.
+// band of its tangent plane (`own`: its oriented unit normal) with normals within 30° of it.
+// Then pᵢ lies at a sheet's level of any pair of sheets around it (f ≈ 0: not between them, no
+// fold direction to blend in) and agrees with that sheet's normal: the ring need not be looked
+// at. Most samples of a thin part pass, the rims' do not.
 template <int Dim>
 bool onItsSheet(const Points<Dim>& P, const Points<Dim>& N, const NeighbourGraph& g, int i, const Vec<Dim>& own,
-                double band, bool sameSign) {
+                double band) {
   int level = 0;
   for (int j = 0; j < g.k; ++j) {
     const int o = static_cast<int>(g.of(i)[j]);
     if (o == i || std::abs(own.dot(P.col(o) - P.col(i))) > 0.1 * band) continue;
-    const double c = own.dot(N.col(o).normalized());
-    level += (sameSign ? c : std::abs(c)) >= kCos30;
+    level += own.dot(N.col(o).normalized()) >= kCos30;
   }
   return level >= 3;
 }
@@ -238,7 +237,7 @@ int foldNormals(const Points<Dim>& P, Points<Dim>& N, const std::vector<char>& f
       Eigen::Index c = 0;
       for (int j = 0; j < g.k; ++j)
         if (static_cast<int>(g.of(i)[j]) != i) m.col(c++) = N.col(g.of(i)[j]).normalized();
-      if (!worthALook<Dim>(m.leftCols(c), own) || onItsSheet<Dim>(P, N, g, i, own, band[i], true)) continue;
+      if (!worthALook<Dim>(m.leftCols(c), own) || onItsSheet<Dim>(P, N, g, i, own, band[i])) continue;
       ringOf(g, i, ring, stamp);
       const Eigen::Index count = gather<Dim>(P, N, i, ring, rm, d);
       SheetPair<Dim> s;
