@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/base/errors.h"
+#include "core/points/fold_normals.h"
 #include "core/points/neighbour_graph.h"
 #include "core/points/normal_orientation.h"
 #include "core/points/sheet_fit.h"
@@ -19,6 +20,8 @@ using detail::EdgeRule;
 using detail::KdTree;
 using detail::NeighbourGraph;
 using detail::edgeRule;
+using detail::betweenSheets;
+using detail::foldNormals;
 using detail::followGivenMajority;
 using detail::neighbourGraph;
 using detail::orientNormals;
@@ -48,7 +51,10 @@ int completeNormals(const Points<Dim>& points, Points<Dim>& normals, const Norma
       normals.col(i) = sheetNormal<Dim>(points, g, i, band[i], c);
       second.col(i) = c;
     }
-  orientNormals<Dim>(points, normals, std::move(known), g, band, second, options);
+  // Estimated lines of samples between two sheets (a rim's) take the sheets' line: no bridge.
+  const std::vector<char> between = betweenSheets<Dim>(points, normals, g, band);
+  orientNormals<Dim>(points, normals, known, g, band, second, options, nullptr, &between);
+  foldNormals<Dim>(points, normals, known, g, band, options.sheetBand);
   return missing;
 }
 

@@ -19,7 +19,12 @@
 //                  steeply than the normals agree, else copied.
 // Patches of up to 16 points grow along the first kind; every edge between two patches votes on
 // their relative orientation, and a maximum spanning tree of the patches by the summed votes
-// orients them, so that no single wrong edge turns a sheet over.
+// orients them, so that no single wrong edge turns a sheet over. Estimated lines of samples
+// between two sheets (a rim's) are not trusted, so no patch joins the sheets through them.
+//
+// Folds: after the orientation, the normals around the rim that joins two close sheets are
+// re-estimated from the two oriented sheets (fold_normals.h): between them the rim's direction,
+// away from the sheets at a convex rim, towards them at a concave one.
 //
 // Seeds: each part of the graph that no fixed normal reaches starts at its extreme point along
 // a coordinate axis (the largest coordinate among the points not yet oriented, over the axes,

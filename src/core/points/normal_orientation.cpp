@@ -169,9 +169,11 @@ std::vector<std::vector<std::pair<int, double>>> patchVotes(const Points<Dim>& P
 template <int Dim>
 void orientNormals(const Points<Dim>& P, Points<Dim>& N, std::vector<char> done, const NeighbourGraph& g,
                    const std::vector<double>& band, const Points<Dim>& second, const NormalEstimationOptions& o,
-                   std::vector<int>* part) {
+                   std::vector<int>* part, const std::vector<char>* untrusted) {
   const int n = static_cast<int>(P.cols());
-  const std::vector<char> trusted = agreesWithNeighbours<Dim>(N, g);
+  std::vector<char> trusted = agreesWithNeighbours<Dim>(N, g);
+  if (untrusted)
+    for (int i = 0; i < n; ++i) trusted[i] = trusted[i] && !(*untrusted)[i];
   int patches = 0;
   const int maxPatch = 16;  // points per patch: a neighbourhood or two across (see growPatches)
   const std::vector<int> patch = growPatches<Dim>(P, N, done, g, band, second, trusted, o, maxPatch, patches);
@@ -246,10 +248,10 @@ template EdgeRule edgeRule<3>(const Points<3>&, const Points<3>&, int, int, cons
                               double, const Vec<3>&, const Vec<3>&, bool);
 template void orientNormals<2>(const Points<2>&, Points<2>&, std::vector<char>, const NeighbourGraph&,
                                const std::vector<double>&, const Points<2>&, const NormalEstimationOptions&,
-                               std::vector<int>*);
+                               std::vector<int>*, const std::vector<char>*);
 template void orientNormals<3>(const Points<3>&, Points<3>&, std::vector<char>, const NeighbourGraph&,
                                const std::vector<double>&, const Points<3>&, const NormalEstimationOptions&,
-                               std::vector<int>*);
+                               std::vector<int>*, const std::vector<char>*);
 template void followGivenMajority<2>(Points<2>&, const Points<2>&, const std::vector<int>&);
 template void followGivenMajority<3>(Points<3>&, const Points<3>&, const std::vector<int>&);
 

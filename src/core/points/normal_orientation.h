@@ -53,11 +53,13 @@ EdgeRule edgeRule(const Points<Dim>& P, const Points<Dim>& N, int i, int j, cons
 // than maxPatch / 2 points: rims, creases, clumps of outlier lines, whose normals are least
 // sure) pass their orientation on only when no whole patch or given normal reaches further.
 // `part` (when given, N entries) receives each point's tree: −1 for the trees grown from the
-// points already done, else the index of its seed in seeding order.
+// points already done, else the index of its seed in seeding order. The points with `untrusted`
+// set (when given, N entries: estimated lines of samples between two sheets, betweenSheets) are
+// not trusted, like the outlier lines.
 template <int Dim>
 void orientNormals(const Points<Dim>& P, Points<Dim>& N, std::vector<char> done, const NeighbourGraph& g,
                    const std::vector<double>& band, const Points<Dim>& second, const NormalEstimationOptions& o,
-                   std::vector<int>* part = nullptr);
+                   std::vector<int>* part = nullptr, const std::vector<char>* untrusted = nullptr);
 
 // Per tree (`part`, from orientNormals), the sign that makes the oriented normals agree with
 // the most given ones (`given`, same shape): turns the tree over when at most a third of its
