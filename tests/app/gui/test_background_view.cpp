@@ -69,17 +69,17 @@ TEST_CASE("UI: a drag's refit shows in the frame it arrives in, coarse, and the 
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   REQUIRE(a.app->viewIsCurrent());
-  const int i = 7;
+  const int i = 13;
   const Vec<2> at = *a.app->sampleScreenPosition(i) + a.app->viewOrigin();
-  a.click(at.x(), at.y());  // selects it; a press on the selection grabs it
-  REQUIRE(a.app->selectedSample() == i);
   a.moveTo(at.x(), at.y());
+  a.input.ctrl = a.input.shift = true;  // Ctrl+Shift grabs any sample
   a.input.mouseDown[0] = true;
   a.frame();
+  REQUIRE(a.app->selectedSample() == i);
   int adopted = 0, shownWithFit = 0, coarse = 0;
   for (int m = 1; m <= 4; ++m) {
-    a.moveTo(at.x() + 3 * m, at.y() - 2 * m);
     const std::uint64_t lastShown = a.app->shownVersion();
+    a.moveTo(at.x() + 3 * m, at.y() - 2 * m);
     // Frames until the refit of this move is adopted (the fit worker takes a few ms).
     for (int k = 0; k < 2000 && a.app->shownVersion() != a.app->document().version(); ++k) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -101,5 +101,6 @@ TEST_CASE("UI: a drag's refit shows in the frame it arrives in, coarse, and the 
   }
   CHECK(a.app->viewIsCurrent());
   a.input.mouseDown[0] = false;
+  a.input.ctrl = a.input.shift = false;
   a.frame();
 }
