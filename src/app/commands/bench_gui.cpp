@@ -33,78 +33,119 @@ GuiOptions windowOptions() {
 
 }  // namespace
 
+namespace {
+
+// GuiApp on an OSMesa context drawing frames as the window does: draw, present (offscreen:
+// glFinish, so frames do not queue up in the GL pipeline) and keep to 60 frames per second (the
+// window's vsync), leaving the cores to the fit.
+struct DragBench {
+  std::unique_ptr<render::RenderContext> context;
+  render::OffscreenTarget target;
+  GuiApp app;
+  FrameInput in;
+  std::chrono::steady_clock::time_point lastFrame = std::chrono::steady_clock::now() - std::chrono::milliseconds(17);
+
+  DragBench(const Scene& scene, int width, int height)
+      : context(offscreenContext("osmesa", width, height)), target(width, height, false),
+        app(Document(scene), windowOptions()) {
+    in.width = width;
+    in.height = height;
+  }
+  void waitForFrameSlot() {
+    std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
+    lastFrame = std::chrono::steady_clock::now();
+  }
+  void drawFrame() {
+    target.bind();
+    app.frame(in);
+    context->present();
+  }
+  void frame() {
+    waitForFrameSlot();
+    drawFrame();
+  }
+  bool settled() { return app.viewIsCurrent() && !app.worker().busy(); }
+  // Frames until the first fit and its view are on screen.
+  void settle() {
+    for (int k = 0; k < 2000 && !settled(); ++k) {
+      frame();
+      std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    }
+    if (!settled()) throw EnvironmentError("bench: the first fit never arrived: " + app.status().message);
+  }
+  // Presses on sample `i` twice: a click selects it, then a press on the selection grabs it.
+  // Returns the window position of the press.
+  Vec<2> grab(int i) {
+    const auto p = app.sampleScreenPosition(i);
+    if (!p) throw EnvironmentError("bench: sample not visible");
+    const Vec<2> start = *p + app.viewOrigin();
+    in.mouseX = start.x();
+    in.mouseY = start.y();
+    frame();
+    in.mouseDown[0] = true;
+    frame();
+    in.mouseDown[0] = false;
+    frame();
+    in.mouseDown[0] = true;
+    frame();
+    return start;
+  }
+};
+
+struct MoveTimes {
+  double shownMs = 0, finalMs = 0, sinceMoveMs = 0;
+  int frames = 0;
+};
+
+// One move of the grabbed sample to `to`, timed until the view shows the refit (at any quality)
+// and until it shows it at its final quality. The mouse moves just after a frame began (the worst
+// phase): the move waits for the next frame slot, and that frame is the first to read it.
+MoveTimes timeMove(DragBench& b, const Vec<2>& to) {
+  MoveTimes t;
+  const auto moved = std::chrono::steady_clock::now();
+  b.in.mouseX = to.x();
+  b.in.mouseY = to.y();
+  b.waitForFrameSlot();
+  const auto t0 = std::chrono::steady_clock::now();
+  b.drawFrame();
+  int count = 1;
+  for (; count < 100000 && !b.app.viewShowsCurrentFit(); ++count) b.frame();
+  t.shownMs = msSince(t0);
+  t.sinceMoveMs = msSince(moved);
+  t.frames = count;
+  for (; count < 100000 && !b.app.viewIsCurrent(); ++count) b.frame();
+  t.finalMs = msSince(t0);
+  return t;
+}
+
+}  // namespace
+
 DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int width, int height) {
   Scene scene;
   scene.mode = dimension == 2 ? SceneMode::Implicit2d : SceneMode::Implicit3d;
   scene.data.preset = dimension == 2 ? "curve2d" : "bunny";
   scene.data.count = samples;
-  const auto context = offscreenContext("osmesa", width, height);
-  render::OffscreenTarget target(width, height, false);
-  GuiApp app(Document(scene), windowOptions());
-  FrameInput in;
-  in.width = width;
-  in.height = height;
-  // As the window does: draw, present (offscreen: glFinish, so frames do not queue up in the GL
-  // pipeline) and keep to 60 frames per second (the window's vsync), leaving the cores to the fit.
-  auto lastFrame = std::chrono::steady_clock::now() - std::chrono::milliseconds(17);
-  const auto waitForFrameSlot = [&] {
-    std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
-    lastFrame = std::chrono::steady_clock::now();
-  };
-  const auto drawFrame = [&] {
-    target.bind();
-    app.frame(in);
-    context->present();
-  };
-  const auto frame = [&] {
-    waitForFrameSlot();
-    drawFrame();
-  };
-  const auto settled = [&] { return app.viewIsCurrent() && !app.worker().busy(); };
-  for (int k = 0; k < 2000 && !settled(); ++k) {
-    frame();
-    std::this_thread::sleep_for(std::chrono::milliseconds(1));
-  }
-  if (!settled()) throw EnvironmentError("bench: the first fit never arrived: " + app.status().message);
-
+  DragBench b(scene, width, height);
+  b.settle();
   // Grab a sample and move it a few pixels per step, like a slow drag.
-  const int i = samples / 3;
-  const auto p = app.sampleScreenPosition(i);
-  if (!p) throw EnvironmentError("bench: sample not visible");
-  const Vec<2> start = *p + app.viewOrigin();
-  in.mouseX = start.x();
-  in.mouseY = start.y();
-  frame();
-  in.mouseDown[0] = true;  // a click selects it, then a press on the selection grabs it
-  frame();
-  in.mouseDown[0] = false;
-  frame();
-  in.mouseDown[0] = true;
-  frame();
-  std::vector<double> latency, withWait, frames, fit, view;
+  const Vec<2> start = b.grab(samples / 3);
+  std::vector<double> latency, finalLatency, withWait, frames, fit, view;
   for (int m = 1; m <= moves; ++m) {
-    // The mouse moves just after a frame began (the worst phase): the move waits for the next
-    // frame slot, and that frame is the first to read it.
-    const auto moved = std::chrono::steady_clock::now();
-    in.mouseX = start.x() + 2.0 * m;
-    in.mouseY = start.y() - 1.0 * m;
-    waitForFrameSlot();
-    const auto t0 = std::chrono::steady_clock::now();
-    drawFrame();
-    int count = 1;
-    for (; count < 100000 && !app.viewIsCurrent(); ++count) frame();
-    latency.push_back(msSince(t0));
-    withWait.push_back(msSince(moved));
-    frames.push_back(count);
-    fit.push_back(app.shownFit()->implicitFit()->report.fitMs);
-    view.push_back(app.viewResult().ms);
+    const MoveTimes t = timeMove(b, start + Vec<2>(2.0 * m, -1.0 * m));
+    latency.push_back(t.shownMs);
+    finalLatency.push_back(t.finalMs);
+    withWait.push_back(t.sinceMoveMs);
+    frames.push_back(t.frames);
+    fit.push_back(b.app.shownFit()->implicitFit()->report.fitMs);
+    view.push_back(b.app.viewResult().ms);
   }
-  in.mouseDown[0] = false;
-  frame();
+  b.in.mouseDown[0] = false;
+  b.frame();
 
   DragLatencyResult r;
   r.medianMs = median(latency);
   r.maxMs = *std::max_element(latency.begin(), latency.end());
+  r.finalMs = median(finalLatency);
   r.withFrameWaitMs = median(withWait);
   r.frames = median(frames);
   r.fitMs = median(fit);

@@ -3,7 +3,8 @@
 // mouse input in the real application (GuiApp on an OSMesa context, fits on the worker thread as
 // in the window), timed from the start of the frame whose input moved the sample to the end of
 // the frame that shows the view refitted to the new position ("within one 60 Hz frame": frames
-// = 1 and at most 16.7 ms). Frames keep to 60 per second as under vsync.
+// = 1 and at most 16.7 ms) — in 3D the refit's first, coarse bake; finalMs waits for the view's
+// finer bake too. Frames keep to 60 per second as under vsync.
 
 #include "app/gui/frame_phases.h"
 
@@ -12,6 +13,7 @@ namespace hermite::app {
 struct DragLatencyResult {
   double medianMs = 0;  // start of the frame reading the input → updated image presented
   double maxMs = 0;
+  double finalMs = 0;   // median until the view shows the refit at its final (drag) quality
   double withFrameWaitMs = 0;  // median from the mouse move, incl. the wait for the frame slot
   double frames = 0;           // median frames from the input to the updated image (1: the same)
   double fitMs = 0;     // median fit time inside it

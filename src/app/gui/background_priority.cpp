@@ -1,5 +1,6 @@
 #include "app/gui/background_priority.h"
 
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstdlib>
+#include <cstring>
 #include <mutex>
 
 // OpenBLAS's pthread_create-like entry (driver/others/blas_server.c): runs function(args + k·stride)
@@ -22,13 +24,17 @@ namespace {
 
 struct PoolCall {
   int nice = 0;
+  bool idle = false;  // SCHED_IDLE instead of the nice value
   std::mutex mutex;
   std::vector<pid_t> reached;
 };
 
 void lowerOnPoolThread(void* arg) {
   auto* call = static_cast<PoolCall*>(arg);
-  lowerCallingThreadPriority(call->nice);
+  if (call->idle)
+    idleCallingThread();
+  else
+    lowerCallingThreadPriority(call->nice);
   std::lock_guard lock(call->mutex);
   const pid_t tid = currentThreadId();
   if (std::find(call->reached.begin(), call->reached.end(), tid) == call->reached.end()) call->reached.push_back(tid);
@@ -49,8 +55,20 @@ FitPriority windowFitPriority() {
   FitPriority p;
   p.nice = envInt("HERMITE_FIT_NICE", 0, 19, kFitNice);
   p.threads = envInt("HERMITE_FIT_THREADS", 0, 1024, 0);
+  const char* sched = std::getenv("HERMITE_FIT_SCHED");
+  p.idle = sched != nullptr && std::strcmp(sched, "idle") == 0      ? true
+           : sched != nullptr && std::strcmp(sched, "normal") == 0 ? false
+                                                                    : kFitIdle;
   return p;
 }
+
+bool idleCallingThread() {
+  sched_param param{};
+  param.sched_priority = 0;
+  return sched_setscheduler(currentThreadId(), SCHED_IDLE, &param) == 0;
+}
+
+bool threadIsIdle(pid_t tid) { return sched_getscheduler(tid) == SCHED_IDLE; }
 
 int viewWorkerNice() {
   static const int nice = envInt("HERMITE_VIEW_NICE", 0, 19, kViewWorkerNice);
@@ -73,15 +91,30 @@ int lowerCallingThreadPriority(int nice) {
   return threadNice(tid);
 }
 
-std::vector<pid_t> lowerBlasPoolPriority(int nice) {
+namespace {
+
+// Runs lowerOnPoolThread on the caller and on every thread of OpenBLAS's pool.
+std::vector<pid_t> onBlasPool(PoolCall& call) {
   // Without a pool (one thread) OpenBLAS would hand the second call to a thread that does not
   // exist and wait for it forever.
   if (gotoblas_pthread == nullptr || &blas_num_threads == nullptr || blas_num_threads < 2) return {};
-  PoolCall call;
-  call.nice = nice;
   // One call for the caller and one per pool thread; stride 0: every call gets the same argument.
   gotoblas_pthread(blas_num_threads, reinterpret_cast<void*>(&lowerOnPoolThread), &call, 0);
   return call.reached;
+}
+
+}  // namespace
+
+std::vector<pid_t> lowerBlasPoolPriority(int nice) {
+  PoolCall call;
+  call.nice = nice;
+  return onBlasPool(call);
+}
+
+std::vector<pid_t> idleBlasPool() {
+  PoolCall call;
+  call.idle = true;
+  return onBlasPool(call);
 }
 
 }  // namespace hermite::app

@@ -27,13 +27,26 @@ int lowerCallingThreadPriority(int nice);
 // a new one from the calling thread, with that thread's nice value.
 std::vector<pid_t> lowerBlasPoolPriority(int nice);
 
+// The calling thread moves to the SCHED_IDLE policy (sched(7)): it runs only on a core no
+// normal thread wants, and a waking normal thread (the GUI thread, llvmpipe's rasteriser threads)
+// preempts it at once, whatever the nice values. Threads it creates later inherit the policy.
+// Needs no privilege; leaving it again does (one-way, like the nice value). False when refused.
+bool idleCallingThread();
+// The same for every thread of OpenBLAS's pool and the caller (see lowerBlasPoolPriority).
+std::vector<pid_t> idleBlasPool();
+// The calling thread or `tid` runs under SCHED_IDLE (tests).
+bool threadIsIdle(pid_t tid);
+
 // What the window's fits run at (FitWorker::setBackgroundPriority): nice kFitNice and every core,
-// unless the environment says otherwise (docs/cli.md, Environment): HERMITE_FIT_NICE (0..19) and
-// HERMITE_FIT_THREADS (≥ 1; 0 or unset: the process's count).
+// unless the environment says otherwise (docs/cli.md, Environment): HERMITE_FIT_NICE (0..19),
+// HERMITE_FIT_THREADS (≥ 1; 0 or unset: the process's count) and HERMITE_FIT_SCHED ("idle":
+// SCHED_IDLE besides the nice value; "normal": the nice value alone; unset: kFitIdle).
 struct FitPriority {
   int nice = 0;
   int threads = 0;
+  bool idle = false;
 };
+inline constexpr bool kFitIdle = false;
 inline constexpr int kFitNice = 10;
 FitPriority windowFitPriority();
 

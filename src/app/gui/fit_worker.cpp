@@ -157,10 +157,11 @@ bool FitWorker::waitIdle(double timeoutSeconds) {
   return idle_.wait_for(lock, std::chrono::duration<double>(timeoutSeconds), [&] { return !running_ && !pending_; });
 }
 
-void FitWorker::setBackgroundPriority(int nice, int threads) {
+void FitWorker::setBackgroundPriority(int nice, int threads, bool idle) {
   std::lock_guard lock(mutex_);
   wantedNice_ = nice;
   wantedThreads_ = threads;
+  wantedIdle_ = idle;
 }
 
 bool FitWorker::busy() const {
@@ -186,11 +187,15 @@ std::uint64_t FitWorker::runningVersion() const {
   return running_ ? runningVersion_ : 0;
 }
 
-void FitWorker::applyPriority(int nice, int threads) {
+void FitWorker::applyPriority(int nice, int threads, bool idle) {
   if (nice > appliedNice_) {
     // Before the job's first parallel loop, so that the OpenMP team this thread starts inherits it.
     appliedNice_ = lowerCallingThreadPriority(nice);
     lowerBlasPoolPriority(nice);
+  }
+  if (idle && !appliedIdle_) {
+    appliedIdle_ = idleCallingThread();
+    idleBlasPool();
   }
   if (threads > 0 && threads != appliedThreads_) setThreadCount(threads), appliedThreads_ = threads;
 }
@@ -218,9 +223,10 @@ void FitWorker::loop() {
     const double n = sampleCount(job.scene) * (job.scene.dimension() + 1);
     estimateMs_ = lastMsPerCube_ > 0 && n > 0 ? lastMsPerCube_ * n * n * n : 200.0;
     const int nice = wantedNice_, threads = wantedThreads_;
+    const bool idle = wantedIdle_;
     lock.unlock();
 
-    applyPriority(nice, threads);
+    applyPriority(nice, threads, idle);
     FitJobResult result;
     result.version = job.version;
     result.main = dragRefit_->fit(job.scene, [this](double) { return !abandon_; }, &cancel_);

@@ -114,7 +114,8 @@ class FitWorker {
   // at nice value `nice` (background_priority.h; one-way: a lower value later changes nothing),
   // and, with `threads` > 0, the fits use that many OpenMP and OpenBLAS threads. The window sets
   // it (GuiApp); tests and `render --ui` leave the defaults (0: as the process started).
-  void setBackgroundPriority(int nice, int threads = 0);
+  // idle: SCHED_IDLE besides the nice value (idleCallingThread; one-way too).
+  void setBackgroundPriority(int nice, int threads = 0, bool idle = false);
 
   bool busy() const;             // a job is running or pending
   double runningMs() const;      // how long the current job has run (0 when idle)
@@ -123,7 +124,7 @@ class FitWorker {
 
  private:
   void loop();
-  void applyPriority(int nice, int threads);  // on the worker thread, between jobs
+  void applyPriority(int nice, int threads, bool idle);  // on the worker thread, between jobs
 
   mutable std::mutex mutex_;
   std::condition_variable wake_, idle_;
@@ -152,7 +153,9 @@ class FitWorker {
   double lastMsPerCube_ = 0;       // last job: ms / (unknowns³), for the estimate
   bool stop_ = false;
   int wantedNice_ = 0, wantedThreads_ = 0;  // setBackgroundPriority
+  bool wantedIdle_ = false;
   int appliedNice_ = 0, appliedThreads_ = 0;  // what the worker thread applied (its own)
+  bool appliedIdle_ = false;
   std::unique_ptr<DragRefit> dragRefit_;  // used by the worker thread only
   std::thread thread_;
 };

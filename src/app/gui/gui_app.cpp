@@ -63,7 +63,7 @@ GuiApp::GuiApp(Document document, GuiOptions options) : ctx_(std::move(document)
   imguiRenderer_ = std::make_unique<render::ImGuiRenderer>();
   if (ctx_.options.lowPriorityFits && !ctx_.options.synchronousFits) {
     const FitPriority p = windowFitPriority();
-    worker().setBackgroundPriority(p.nice, p.threads);
+    worker().setBackgroundPriority(p.nice, p.threads, p.idle);
   }
 }
 

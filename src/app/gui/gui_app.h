@@ -68,6 +68,11 @@ class GuiApp {
   bool viewIsCurrent() const {
     return shownFit() && shownVersion() == ctx_.document.version() && ctx_.image.shows(shownFit());
   }
+  // The view on screen shows the fit of the document's current version at some quality (a
+  // drag's coarse bake counts; its finer bake may still be on its way).
+  bool viewShowsCurrentFit() const {
+    return shownFit() && shownVersion() == ctx_.document.version() && viewResult().drawnFrom == shownFit();
+  }
   int selectedSample() const { return ctx_.selected; }
   bool quitRequested() const { return quit_; }
   // The view image last drawn (without panels) and how long it took.

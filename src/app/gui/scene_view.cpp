@@ -91,6 +91,7 @@ SceneViewResult SceneViewRenderer::render(const std::shared_ptr<const FitOutcome
   } else {
     throw InputError("nothing to draw: the fit has no model");
   }
+  if (!out.nothingYet) out.drawnFrom = field_.get();
   out.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
   return out;
 }
@@ -201,7 +202,10 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   const Box<3> bounds = viewBounds<3>(v, f.data.points);
   const std::vector<double> boundsKey = boxKey(bounds);
   const int wanted = quality == ViewQuality::Interactive ? 64 : 128;
-  const bool baked = field_ == fit && bakedBounds_ == boundsKey;
+  bool baked = field_ == fit && bakedBounds_ == boundsKey;
+  // A drag's refit: a coarse bake in this very frame when it is cheap, the worker's 64³ one later.
+  if (!baked && quality == ViewQuality::Interactive)
+    if (const int r = inFrameBake_.resolutionFor(f.field()); r > 0) baked = bakeInFrame(fit, f, bounds, boundsKey, r);
   if (!baked) requestBake(fit, bounds, boundsKey, 64);  // the coarse bake first, the fine one when settled
   else if (bakeResolution_ < wanted) requestBake(fit, bounds, boundsKey, wanted);
   if (!field_) {
@@ -256,6 +260,24 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     rows_.start(progressive_->id);
     requestRefinement(std::move(job), fit);
   }
+}
+
+// The in-frame coarse bake of `fit`, uploaded at once; what the worker did for an older field
+// (a bake running, one being uploaded, a refinement) is dropped: the newest fit wins.
+bool SceneViewRenderer::bakeInFrame(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
+                                    const Box<3>& bounds, const std::vector<double>& boundsKey, int resolution) {
+  jobs_.cancel();
+  baking_.reset();
+  refining_.reset();
+  uploading_.reset();
+  dropProgressive();
+  tracer_->upload(inFrameBake_.bake(f.field(), bounds, resolution), f.field(), &f.data);
+  field_ = fit;
+  bakeResolution_ = resolution;
+  bakedBounds_ = boundsKey;
+  refinedView_.reset();
+  tracing_.reset();
+  return true;
 }
 
 void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit, const Box<3>& bounds,

@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "app/gui/fit_worker.h"
+#include "app/gui/in_frame_bake.h"
 #include "app/gui/refined_rows.h"
 #include "app/gui/view_job_runner.h"
 #include "core/trace/image.h"
@@ -44,6 +45,9 @@ struct SceneViewResult {
   // bake runs) or for this settled view (its rows are traced over several frames); the image on
   // screen stays until one arrives.
   bool nothingYet = false;
+  // The fit whose field the pixels show (background 3D renders: an older one until the new fit's
+  // first bake is on the GPU); null with nothingYet.
+  const FitOutcome* drawnFrom = nullptr;
 };
 
 class SceneViewRenderer {
@@ -98,6 +102,9 @@ class SceneViewRenderer {
                    const std::vector<double>& boundsKey, int resolution);
   void requestRefinement(std::shared_ptr<render::DeferredRefinement> job, const std::shared_ptr<const FitOutcome>& fit);
   bool continueUpload(double budgetMs);
+  bool bakeInFrame(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f, const Box<3>& bounds,
+                   const std::vector<double>& boundsKey, int resolution);
+  InFrameBake inFrameBake_;
   int bakeResolution_ = 0;
   std::optional<std::vector<double>> bakedBounds_;
 

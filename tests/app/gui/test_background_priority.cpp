@@ -51,3 +51,38 @@ TEST_CASE("background priority: every OpenBLAS pool thread is lowered (child pro
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 0);
 }
+
+TEST_CASE("background priority: a thread moves itself to SCHED_IDLE, not its creator; its children inherit it") {
+  const pid_t self = currentThreadId();
+  REQUIRE(!threadIsIdle(self));
+  bool moved = false, idle = false, childIdle = false;
+  std::thread t([&] {
+    moved = idleCallingThread();
+    idle = threadIsIdle(currentThreadId());
+    std::thread child([&] { childIdle = threadIsIdle(currentThreadId()); });
+    child.join();
+  });
+  t.join();
+  CHECK(moved);
+  CHECK(idle);
+  CHECK(childIdle);
+  CHECK(!threadIsIdle(self));
+}
+
+TEST_CASE("background priority: every OpenBLAS pool thread moves to SCHED_IDLE (child process)") {
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    // 0: pass; 1: no pool thread reached although OpenBLAS runs a pool; 2: a reached thread is not idle.
+    const std::vector<pid_t> reached = idleBlasPool();
+    int code = 0;
+    if (hermite::blasThreadCount() > 1 && reached.size() < 2) code = 1;
+    for (pid_t tid : reached)
+      if (!threadIsIdle(tid)) code = 2;
+    _exit(code);
+  }
+  int status = 0;
+  REQUIRE(waitpid(child, &status, 0) == child);
+  REQUIRE(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+}
