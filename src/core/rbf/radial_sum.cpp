@@ -95,8 +95,7 @@ template <int Dim, KernelType T, bool B, bool WG>
 void fusedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
   const Eigen::Index m = X.cols();
   const double r = t.kernel.radius;
-#pragma omp parallel for schedule(dynamic, 64)
-  for (Eigen::Index i = 0; i < m; ++i) {
+  const auto point = [&](Eigen::Index i) {
     Vec<Dim> gp;
     const Vec<Dim> xi = X.col(i);
     double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, xi - t.origin, WG ? &gp : nullptr, nullptr);
@@ -105,7 +104,15 @@ void fusedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd&
     f(i) = fv;
     if constexpr (WG)
       for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + g[k];
+  };
+  // Inside a parallel region (the PU blend's runs) on the calling thread: a nested region would
+  // allocate its team on every call (blockedBatch).
+  if (omp_in_parallel()) {
+    for (Eigen::Index i = 0; i < m; ++i) point(i);
+    return;
   }
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Eigen::Index i = 0; i < m; ++i) point(i);
 }
 
 // The fused loop of kernel T for the β and gradient flags at hand.
