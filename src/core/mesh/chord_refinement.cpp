@@ -136,46 +136,57 @@ void splitTriangle(const std::array<int, 3>& v, const std::array<int, 3>& m, con
   }
 }
 
-}  // namespace
+constexpr double kCos60 = 0.5;  // beyond 60° between the end normals the sagitta is no estimate
 
-TriMesh refineChords(const TriMesh& mesh, const ImplicitField<3>& field, const ChordRefinementOptions& options,
-                     ChordRefinementReport* report) {
-  const auto t0 = std::chrono::steady_clock::now();
-  ChordRefinementReport local;
-  ChordRefinementReport& r = report ? *report : local;
-  r = ChordRefinementReport{};
-  if (!mesh.hasNormals() || mesh.triangleCount() == 0 || !(options.tolerance > 0)) return mesh;
-  const EdgeTable edges = buildEdges(mesh);
-  const int V = mesh.vertexCount();
+// The edges whose chord strays more than `tolerance` from the surface — sagitta (n_j − n_i)·(p_j − p_i)/8
+// from the end normals — or whose end normals are more than 60° apart.
+std::vector<int> candidateEdges(const TriMesh& mesh, const EdgeTable& edges, double tolerance) {
+  std::vector<int> candidates;
   const int E = static_cast<int>(edges.ends.size());
-  constexpr double kCos60 = 0.5;  // beyond 60° between the end normals the sagitta is no estimate
-  std::vector<int> candidates;  // edges whose chord strays more than the tolerance
   for (int e = 0; e < E; ++e) {
     const int i = edges.ends[e][0], j = edges.ends[e][1];
     const double s = (mesh.normals.col(j) - mesh.normals.col(i)).dot(mesh.vertices.col(j) - mesh.vertices.col(i)) / 8;
-    if (std::abs(s) > options.tolerance || mesh.normals.col(i).dot(mesh.normals.col(j)) < kCos60) candidates.push_back(e);
+    if (std::abs(s) > tolerance || mesh.normals.col(i).dot(mesh.normals.col(j)) < kCos60) candidates.push_back(e);
   }
+  return candidates;
+}
+
+// Per candidate edge (3 × C each): the start X (the chord's midpoint moved by the sagitta along the
+// mean normal when the normals are within 60°), the chord's midpoint, the mean normal N, and the
+// reach (half the chord) projectOntoZeroSet allows.
+struct ChordStarts {
+  Points<3> X, chordMid, N;
+  Eigen::VectorXd reach;
+};
+
+ChordStarts chordStarts(const TriMesh& mesh, const EdgeTable& edges, const std::vector<int>& candidates) {
   const Eigen::Index C = static_cast<Eigen::Index>(candidates.size());
-  Points<3> X(3, C), chordMid(3, C), N(3, C);
-  Eigen::VectorXd reach(C);
+  ChordStarts c{Points<3>(3, C), Points<3>(3, C), Points<3>(3, C), Eigen::VectorXd(C)};
   for (Eigen::Index k = 0; k < C; ++k) {
     const int i = edges.ends[candidates[k]][0], j = edges.ends[candidates[k]][1];
     const Vec<3> pi = mesh.vertices.col(i), pj = mesh.vertices.col(j);
     const Vec<3> ni = mesh.normals.col(i), nj = mesh.normals.col(j);
-    chordMid.col(k) = 0.5 * (pi + pj);
-    reach[k] = 0.5 * (pj - pi).norm();
+    c.chordMid.col(k) = 0.5 * (pi + pj);
+    c.reach[k] = 0.5 * (pj - pi).norm();
     const Vec<3> nSum = ni + nj;
-    N.col(k) = nSum.norm() > 0 ? Vec<3>(nSum.normalized()) : ni;
-    X.col(k) = chordMid.col(k);
-    if (ni.dot(nj) >= kCos60) X.col(k) += ((nj - ni).dot(pj - pi) / 8) * N.col(k);
+    c.N.col(k) = nSum.norm() > 0 ? Vec<3>(nSum.normalized()) : ni;
+    c.X.col(k) = c.chordMid.col(k);
+    if (ni.dot(nj) >= kCos60) c.X.col(k) += ((nj - ni).dot(pj - pi) / 8) * c.N.col(k);
   }
-  const std::vector<char> ok = projectOntoZeroSet(field, X, N, chordMid, reach, options, r);
-  std::vector<int> newVertex(static_cast<std::size_t>(E), -1);
+  return c;
+}
+
+// The mesh with a new vertex (position X, normal N) on every candidate edge that projected (`ok`),
+// appended after the old vertices in candidate order, and every triangle split at its new vertices.
+TriMesh splitEdges(const TriMesh& mesh, const EdgeTable& edges, const std::vector<int>& candidates,
+                   const ChordStarts& c, const std::vector<char>& ok) {
+  const int V = mesh.vertexCount();
+  std::vector<int> newVertex(edges.ends.size(), -1);
   std::vector<Eigen::Index> kept;
-  for (Eigen::Index k = 0; k < C; ++k)
-    if (ok[static_cast<std::size_t>(k)]) {
+  for (std::size_t k = 0; k < candidates.size(); ++k)
+    if (ok[k]) {
       newVertex[static_cast<std::size_t>(candidates[k])] = V + static_cast<int>(kept.size());
-      kept.push_back(k);
+      kept.push_back(static_cast<Eigen::Index>(k));
     }
   const Eigen::Index S = static_cast<Eigen::Index>(kept.size());
   TriMesh out;
@@ -184,8 +195,8 @@ TriMesh refineChords(const TriMesh& mesh, const ImplicitField<3>& field, const C
   out.normals.resize(3, V + S);
   out.normals.leftCols(V) = mesh.normals;
   for (Eigen::Index k = 0; k < S; ++k) {
-    out.vertices.col(V + k) = X.col(kept[static_cast<std::size_t>(k)]);
-    out.normals.col(V + k) = N.col(kept[static_cast<std::size_t>(k)]);
+    out.vertices.col(V + k) = c.X.col(kept[static_cast<std::size_t>(k)]);
+    out.normals.col(V + k) = c.N.col(kept[static_cast<std::size_t>(k)]);
   }
   std::vector<std::array<int, 3>> tris;
   tris.reserve(static_cast<std::size_t>(mesh.triangleCount()) + 3 * static_cast<std::size_t>(S));
@@ -200,7 +211,24 @@ TriMesh refineChords(const TriMesh& mesh, const ImplicitField<3>& field, const C
   out.triangles.resize(3, static_cast<Eigen::Index>(tris.size()));
   for (std::size_t t = 0; t < tris.size(); ++t)
     for (int k = 0; k < 3; ++k) out.triangles(k, Eigen::Index(t)) = tris[t][k];
-  r.splitEdges = static_cast<int>(S);
+  return out;
+}
+
+}  // namespace
+
+TriMesh refineChords(const TriMesh& mesh, const ImplicitField<3>& field, const ChordRefinementOptions& options,
+                     ChordRefinementReport* report) {
+  const auto t0 = std::chrono::steady_clock::now();
+  ChordRefinementReport local;
+  ChordRefinementReport& r = report ? *report : local;
+  r = ChordRefinementReport{};
+  if (!mesh.hasNormals() || mesh.triangleCount() == 0 || !(options.tolerance > 0)) return mesh;
+  const EdgeTable edges = buildEdges(mesh);
+  const std::vector<int> candidates = candidateEdges(mesh, edges, options.tolerance);
+  ChordStarts starts = chordStarts(mesh, edges, candidates);
+  const std::vector<char> ok = projectOntoZeroSet(field, starts.X, starts.N, starts.chordMid, starts.reach, options, r);
+  TriMesh out = splitEdges(mesh, edges, candidates, starts, ok);
+  r.splitEdges = out.vertexCount() - mesh.vertexCount();
   r.ms = msSince(t0);
   return out;
 }

@@ -63,23 +63,14 @@ struct LayerOutput {
   std::vector<std::vector<int>> centres;
 };
 
-void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutput& out) {
+// Directed face segments of a cube with corner values v (insideMask: bit c set ⇔ v[c] < 0):
+// next[e] = the edge the contour goes to from edge e (−1: none). On a face walked
+// counter-clockwise about its outward normal, a crossing is A (inside → outside) or B
+// (outside → inside); each segment runs from a B to an A, which orients the polygon so its fan
+// triangles are counter-clockwise seen from outside (+∇f).
+std::array<int, 24> faceSegments(const std::array<double, 8>& v, int insideMask) {
   const CubeTables& T = tables();
-  std::array<double, 8> v;
-  int insideMask = 0;
-  for (int c = 0; c < 8; ++c) {
-    const std::int64_t idx = origin + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
-    if (!g.isValid(idx)) return;  // no data at a corner: no geometry in the cube
-    v[c] = g.values[idx];
-    if (v[c] < 0) insideMask |= 1 << c;
-  }
-  if (insideMask == 0 || insideMask == 255) return;
   auto in = [&](int c) { return (insideMask >> c) & 1; };
-
-  // Directed face segments: next[e] = the edge the contour goes to from edge e. On a face walked
-  // counter-clockwise about its outward normal, a crossing is A (inside → outside) or B
-  // (outside → inside); each segment runs from a B to an A, which orients the polygon so its fan
-  // triangles are counter-clockwise seen from outside (+∇f).
   std::array<int, 24> next;
   next.fill(-1);
   for (int f = 0; f < 6; ++f) {
@@ -105,7 +96,54 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
       }
     }
   }
+  return next;
+}
 
+// The triangles of one contour polygon of the cube at `origin`: its n local edge ids in `loop`,
+// in order. None when no vertex of it has data (the surface is open there); a fan whose
+// diagonals never lie on a cube face, else a fan around a centre vertex.
+void emitPolygon(const detail::MarchingGrid<3>& g, std::int64_t origin, const int* loop, int n, LayerOutput& out) {
+  const CubeTables& T = tables();
+  int ids[12];
+  bool withData = false;
+  for (int i = 0; i < n; ++i) {
+    const int c = loop[i] / 3, axis = loop[i] % 3;
+    const std::int64_t idx = origin + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
+    ids[i] = g.vertexOn(idx, axis);
+    withData = withData || g.isVertexValid(ids[i]);
+  }
+  if (!withData) return;
+  if (n == 3) {
+    out.triangles.push_back({ids[0], ids[1], ids[2]});
+    return;
+  }
+  int fanStart = -1;
+  for (int s = 0; s < n && fanStart < 0; ++s) {
+    bool ok = true;
+    for (int j = 2; j <= n - 2 && ok; ++j) ok = !T.shareFace[loop[s]][loop[(s + j) % n]];
+    if (ok) fanStart = s;
+  }
+  if (fanStart >= 0) {
+    for (int j = 1; j <= n - 2; ++j)
+      out.triangles.push_back({ids[fanStart], ids[(fanStart + j) % n], ids[(fanStart + j + 1) % n]});
+  } else {
+    const int centre = -1 - static_cast<int>(out.centres.size());
+    out.centres.emplace_back(ids, ids + n);
+    for (int i = 0; i < n; ++i) out.triangles.push_back({centre, ids[i], ids[(i + 1) % n]});
+  }
+}
+
+void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutput& out) {
+  std::array<double, 8> v;
+  int insideMask = 0;
+  for (int c = 0; c < 8; ++c) {
+    const std::int64_t idx = origin + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
+    if (!g.isValid(idx)) return;  // no data at a corner: no geometry in the cube
+    v[c] = g.values[idx];
+    if (v[c] < 0) insideMask |= 1 << c;
+  }
+  if (insideMask == 0 || insideMask == 255) return;
+  const std::array<int, 24> next = faceSegments(v, insideMask);
   std::array<bool, 24> seen{};
   for (int start = 0; start < 24; ++start) {
     if (next[start] < 0 || seen[start]) continue;
@@ -114,38 +152,7 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
       seen[e] = true;
       loop[n++] = e;
     }
-    const std::int64_t corner0 = origin;
-    auto globalVertex = [&](int local) {
-      const int c = local / 3, axis = local % 3;
-      const std::int64_t idx = corner0 + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
-      return g.vertexOn(idx, axis);
-    };
-    int ids[12];
-    bool withData = false;
-    for (int i = 0; i < n; ++i) {
-      ids[i] = globalVertex(loop[i]);
-      withData = withData || g.isVertexValid(ids[i]);
-    }
-    if (!withData) continue;  // no vertex with data: the surface is open here
-    if (n == 3) {
-      out.triangles.push_back({ids[0], ids[1], ids[2]});
-      continue;
-    }
-    // A fan from loop[s] whose diagonals never lie on a cube face.
-    int fanStart = -1;
-    for (int s = 0; s < n && fanStart < 0; ++s) {
-      bool ok = true;
-      for (int j = 2; j <= n - 2 && ok; ++j) ok = !T.shareFace[loop[s]][loop[(s + j) % n]];
-      if (ok) fanStart = s;
-    }
-    if (fanStart >= 0) {
-      for (int j = 1; j <= n - 2; ++j)
-        out.triangles.push_back({ids[fanStart], ids[(fanStart + j) % n], ids[(fanStart + j + 1) % n]});
-    } else {
-      const int centre = -1 - static_cast<int>(out.centres.size());
-      out.centres.emplace_back(ids, ids + n);
-      for (int i = 0; i < n; ++i) out.triangles.push_back({centre, ids[i], ids[(i + 1) % n]});
-    }
+    emitPolygon(g, origin, loop, n, out);
   }
 }
 

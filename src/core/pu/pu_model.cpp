@@ -712,76 +712,76 @@ struct PuRunScratch {
 };
 
 template <int Dim>
+void PuModel<Dim>::evaluateRun(const Points<Dim>& X, Eigen::Index begin, Eigen::Index count, Eigen::VectorXd& f,
+                               Points<Dim>* G, PuRunScratch<Dim>& sc) const {
+  const bool frozen[Dim] = {};
+  const double invQ = 1.0 / frame_.q;
+  Box<Dim> bb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
+              Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
+  for (Eigen::Index j = 0; j < count; ++j) {
+    sc.y[j] = identityFrame_ ? Vec<Dim>(X.col(begin + j)) : frame_.applyInverse(X.col(begin + j));
+    bb.lo = bb.lo.cwiseMin(sc.y[j]);
+    bb.hi = bb.hi.cwiseMax(sc.y[j]);
+    sc.S[j] = sc.N[j] = 0;
+    sc.gS[j].setZero();
+    sc.gN[j].setZero();
+  }
+  sc.leaves.clear();
+  forSupportsTouching(bb, [&](int i) { sc.leaves.push_back(i); });
+  for (int i : sc.leaves) {
+    const Leaf& leaf = leaves_[i];
+    int m = 0;
+    for (Eigen::Index j = 0; j < count; ++j) {
+      if (!leaf.support.contains(sc.y[j])) continue;
+      const double wj = bump<Dim>(leaf.support, sc.y[j], frozen, G ? &sc.gw[m] : nullptr, nullptr);
+      if (wj == 0.0) continue;
+      if (G && !identityFrame_) sc.gw[m] = invQ * (frame_.R * sc.gw[m]);
+      sc.w[m] = wj;
+      sc.members[m++] = static_cast<int>(j);
+    }
+    if (m == 0) continue;
+    sc.Xi.resize(Dim, m);
+    for (int k = 0; k < m; ++k) sc.Xi.col(k) = X.col(begin + sc.members[k]);
+    leaf.model.evaluateBatch(sc.Xi, sc.fi, G ? &sc.Gi : nullptr);
+    for (int k = 0; k < m; ++k) {
+      const int j = sc.members[k];
+      sc.S[j] += sc.w[k];
+      sc.N[j] += sc.w[k] * sc.fi[k];
+      if (G) {
+        sc.gS[j] += sc.gw[k];
+        sc.gN[j] += sc.fi[k] * sc.gw[k] + sc.w[k] * sc.Gi.col(k);
+      }
+    }
+  }
+  for (Eigen::Index j = 0; j < count; ++j) {
+    Vec<Dim> g;
+    if (!(sc.S[j] > 0)) {
+      f(begin + j) = evaluateUncovered(X.col(begin + j), sc.y[j], G ? &g : nullptr, nullptr, nullptr);
+    } else {
+      f(begin + j) = sc.N[j] / sc.S[j];
+      if (G) g = (sc.gN[j] - f(begin + j) * sc.gS[j]) / sc.S[j];
+    }
+    if (G) G->col(begin + j) = g;
+  }
+}
+
+template <int Dim>
 void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
   const Eigen::Index n = X.cols();
+  f.resize(n);
+  if (G) G->resize(Dim, n);
   if (options_.blend == PuBlend::Smooth) {
     using Scratch = PuRunScratch<Dim>;
-    f.resize(n);
-    if (G) G->resize(Dim, n);
-    const bool frozen[Dim] = {};
-    const double invQ = 1.0 / frame_.q;
-    // One run: the supports touching its bounding box, each local fit at the run's points inside.
-    auto run = [&](Eigen::Index begin, Eigen::Index count, Scratch& sc) {
-      Box<Dim> bb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
-                  Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
-      for (Eigen::Index j = 0; j < count; ++j) {
-        sc.y[j] = identityFrame_ ? Vec<Dim>(X.col(begin + j)) : frame_.applyInverse(X.col(begin + j));
-        bb.lo = bb.lo.cwiseMin(sc.y[j]);
-        bb.hi = bb.hi.cwiseMax(sc.y[j]);
-        sc.S[j] = sc.N[j] = 0;
-        sc.gS[j].setZero();
-        sc.gN[j].setZero();
-      }
-      sc.leaves.clear();
-      forSupportsTouching(bb, [&](int i) { sc.leaves.push_back(i); });
-      for (int i : sc.leaves) {
-        const Leaf& leaf = leaves_[i];
-        int m = 0;
-        for (Eigen::Index j = 0; j < count; ++j) {
-          if (!leaf.support.contains(sc.y[j])) continue;
-          const double wj = bump<Dim>(leaf.support, sc.y[j], frozen, G ? &sc.gw[m] : nullptr, nullptr);
-          if (wj == 0.0) continue;
-          if (G && !identityFrame_) sc.gw[m] = invQ * (frame_.R * sc.gw[m]);
-          sc.w[m] = wj;
-          sc.members[m++] = static_cast<int>(j);
-        }
-        if (m == 0) continue;
-        sc.Xi.resize(Dim, m);
-        for (int k = 0; k < m; ++k) sc.Xi.col(k) = X.col(begin + sc.members[k]);
-        leaf.model.evaluateBatch(sc.Xi, sc.fi, G ? &sc.Gi : nullptr);
-        for (int k = 0; k < m; ++k) {
-          const int j = sc.members[k];
-          sc.S[j] += sc.w[k];
-          sc.N[j] += sc.w[k] * sc.fi[k];
-          if (G) {
-            sc.gS[j] += sc.gw[k];
-            sc.gN[j] += sc.fi[k] * sc.gw[k] + sc.w[k] * sc.Gi.col(k);
-          }
-        }
-      }
-      for (Eigen::Index j = 0; j < count; ++j) {
-        Vec<Dim> g;
-        if (!(sc.S[j] > 0)) {
-          f(begin + j) = evaluateUncovered(X.col(begin + j), sc.y[j], G ? &g : nullptr, nullptr, nullptr);
-        } else {
-          f(begin + j) = sc.N[j] / sc.S[j];
-          if (G) g = (sc.gN[j] - f(begin + j) * sc.gS[j]) / sc.S[j];
-        }
-        if (G) G->col(begin + j) = g;
-      }
-    };
     const Eigen::Index runs = (n + Scratch::kRun - 1) / Scratch::kRun;
 #pragma omp parallel
     {
       Scratch sc;
 #pragma omp for schedule(dynamic, 4)
       for (Eigen::Index r = 0; r < runs; ++r)
-        run(r * Scratch::kRun, std::min(Scratch::kRun, n - r * Scratch::kRun), sc);
+        evaluateRun(X, r * Scratch::kRun, std::min(Scratch::kRun, n - r * Scratch::kRun), f, G, sc);
     }
     return;
   }
-  f.resize(n);
-  if (G) G->resize(Dim, n);
 #pragma omp parallel for schedule(dynamic, 256)
   for (Eigen::Index i = 0; i < n; ++i) {
     if (G) {

@@ -78,6 +78,9 @@ struct PuReport {
 };
 
 template <int Dim>
+struct PuRunScratch;  // evaluateBatch's per-thread buffers (pu_model.cpp)
+
+template <int Dim>
 class PuModel : public ImplicitField<Dim> {
  public:
   struct Leaf {
@@ -138,6 +141,10 @@ class PuModel : public ImplicitField<Dim> {
   // f and derivatives where no support reaches y: the own data box's fit (overlap 1 on a shared
   // face), else the no-data constant.
   double evaluateUncovered(const Vec<Dim>& x, const Vec<Dim>& y, Vec<Dim>* g, Mat<Dim>* H, bool* valid) const;
+  // The smooth blend's f (and ∇f) at columns begin … begin + count − 1 of X (count ≤ the scratch's
+  // run length): the supports touching their bounding box, each local fit at the points inside.
+  void evaluateRun(const Points<Dim>& X, Eigen::Index begin, Eigen::Index count, Eigen::VectorXd& f, Points<Dim>* G,
+                   PuRunScratch<Dim>& sc) const;
   // evaluate(), also saying whether x has data when `valid` is not null.
   double evaluateValid(const Vec<Dim>& x, Vec<Dim>* g, Mat<Dim>* H, bool* valid) const;
 

@@ -54,44 +54,47 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
   nodes_.reserve(2 * static_cast<std::size_t>(n / std::max(1, options.maxPointsPerBox) + 1) * kChildren);
   nodes_.push_back(Node{root, -1, -1, 0, n, 0});
   std::vector<int> scratch;
-  // Splits node `id` into kChildren children (its samples bucketed by child); returns the first.
-  auto splitNode = [&](int id) {
-    const Node nd = nodes_[id];
-    // Bucket the node's samples by child: child bit k set ⇔ coordinate k ≥ the centre's.
-    const Vec<Dim> c = nd.box.center();
-    int counts[kChildren] = {};
-    auto childOf = [&](int s) {
-      int ch = 0;
-      for (int k = 0; k < Dim; ++k)
-        if (points(k, s) >= c(k)) ch |= 1 << k;
-      return ch;
-    };
-    for (int i = nd.begin; i < nd.end; ++i) ++counts[childOf(order_[i])];
-    int offsets[kChildren];
-    offsets[0] = nd.begin;
-    for (int ch = 1; ch < kChildren; ++ch) offsets[ch] = offsets[ch - 1] + counts[ch - 1];
-    scratch.assign(order_.begin() + nd.begin, order_.begin() + nd.end);
-    int fill[kChildren];
-    std::copy(offsets, offsets + kChildren, fill);
-    for (int s : scratch) order_[fill[childOf(s)]++] = s;
-    const int first = static_cast<int>(nodes_.size());
-    nodes_[id].firstChild = first;
-    for (int ch = 0; ch < kChildren; ++ch) {
-      Node child;
-      child.box = childBox(nd.box, c, ch);
-      child.begin = offsets[ch];
-      child.end = offsets[ch] + counts[ch];
-      child.depth = nd.depth + 1;
-      nodes_.push_back(child);
-    }
-    return first;
+  splitByRules(points, options, scratch);
+  if (options.maxSupportSamples > 0) splitCrowdedSupports(points, options, scratch);
+  listLeaves();
+}
+
+template <int Dim>
+int PuTree<Dim>::splitNode(const Points<Dim>& points, int id, std::vector<int>& scratch) {
+  const Node nd = nodes_[id];
+  const Vec<Dim> c = nd.box.center();
+  int counts[kChildren] = {};
+  auto childOf = [&](int s) {
+    int ch = 0;
+    for (int k = 0; k < Dim; ++k)
+      if (points(k, s) >= c(k)) ch |= 1 << k;
+    return ch;
   };
-  int splits = 0;
-  const auto poll = [&] {
-    if (++splits % 256 == 0) throwIfCancelled(options.cancel);
-  };
-  // Pass 1: the `fit.partition` rules (docs/scene-format.md).
+  for (int i = nd.begin; i < nd.end; ++i) ++counts[childOf(order_[i])];
+  int offsets[kChildren];
+  offsets[0] = nd.begin;
+  for (int ch = 1; ch < kChildren; ++ch) offsets[ch] = offsets[ch - 1] + counts[ch - 1];
+  scratch.assign(order_.begin() + nd.begin, order_.begin() + nd.end);
+  int fill[kChildren];
+  std::copy(offsets, offsets + kChildren, fill);
+  for (int s : scratch) order_[fill[childOf(s)]++] = s;
+  const int first = static_cast<int>(nodes_.size());
+  nodes_[id].firstChild = first;
+  for (int ch = 0; ch < kChildren; ++ch) {
+    Node child;
+    child.box = childBox(nd.box, c, ch);
+    child.begin = offsets[ch];
+    child.end = offsets[ch] + counts[ch];
+    child.depth = nd.depth + 1;
+    nodes_.push_back(child);
+  }
+  return first;
+}
+
+template <int Dim>
+void PuTree<Dim>::splitByRules(const Points<Dim>& points, const PuTreeOptions& options, std::vector<int>& scratch) {
   std::vector<int> stack{0};
+  int splits = 0;
   while (!stack.empty()) {
     const int id = stack.back();
     stack.pop_back();
@@ -100,27 +103,30 @@ PuTree<Dim>::PuTree(const Points<Dim>& points, const PuTreeOptions& options) {
     const bool tooMany = count > options.maxPointsPerBox;
     const bool tooBig = options.boxSize > 0 && nd.box.extent().maxCoeff() > options.boxSize;
     if (count == 0 || !(tooMany || tooBig) || nd.depth >= options.maxDepth) continue;
-    poll();
-    const int first = splitNode(id);
+    if (++splits % 256 == 0) throwIfCancelled(options.cancel);
+    const int first = splitNode(points, id, scratch);
     for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
   }
-  // Pass 2, on the complete tree (so support queries are fast): crowded supports split further.
-  if (options.maxSupportSamples > 0) {
-    for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
-      if (nodes_[id].firstChild < 0) stack.push_back(id);
-    const int limit = options.maxSupportSamples;
-    while (!stack.empty()) {
-      const int id = stack.back();
-      stack.pop_back();
-      if (nodes_[id].depth >= options.maxDepth) continue;
-      if (!options.splitEmpty && nodes_[id].begin == nodes_[id].end) continue;
-      poll();  // before the count, which is most of this pass's work
-      if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
-      const int first = splitNode(id);
-      for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
-    }
+}
+
+template <int Dim>
+void PuTree<Dim>::splitCrowdedSupports(const Points<Dim>& points, const PuTreeOptions& options,
+                                       std::vector<int>& scratch) {
+  std::vector<int> stack;
+  for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
+    if (nodes_[id].firstChild < 0) stack.push_back(id);
+  const int limit = options.maxSupportSamples;
+  int polls = 0;
+  while (!stack.empty()) {
+    const int id = stack.back();
+    stack.pop_back();
+    if (nodes_[id].depth >= options.maxDepth) continue;
+    if (!options.splitEmpty && nodes_[id].begin == nodes_[id].end) continue;
+    if (++polls % 256 == 0) throwIfCancelled(options.cancel);  // before the count, most of this pass's work
+    if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
+    const int first = splitNode(points, id, scratch);
+    for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
   }
-  listLeaves();
 }
 
 template <int Dim>

@@ -86,6 +86,14 @@ class PuTree {
 
  private:
   void listLeaves();  // leaves_ in depth-first order
+  // Splits node `id` into kChildren children, its samples bucketed by child (bit k set ⇔
+  // coordinate k ≥ the centre's); returns the first child. `scratch` is reused between calls.
+  int splitNode(const Points<Dim>& points, int id, std::vector<int>& scratch);
+  // Pass 1: the `fit.partition` rules (docs/scene-format.md) from the root.
+  void splitByRules(const Points<Dim>& points, const PuTreeOptions& options, std::vector<int>& scratch);
+  // Pass 2, on the complete tree (so support queries are fast): leaves whose support at
+  // `overlap` holds more than maxSupportSamples samples split further.
+  void splitCrowdedSupports(const Points<Dim>& points, const PuTreeOptions& options, std::vector<int>& scratch);
 
   std::vector<Node> nodes_;
   std::vector<int> leaves_;

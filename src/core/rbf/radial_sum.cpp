@@ -6,6 +6,8 @@
 #include <cmath>
 #include <type_traits>
 
+#include <omp.h>
+
 namespace hermite {
 
 namespace {
@@ -93,8 +95,7 @@ template <int Dim, KernelType T, bool B, bool WG>
 void fusedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
   const Eigen::Index m = X.cols();
   const double r = t.kernel.radius;
-#pragma omp parallel for schedule(dynamic, 64)
-  for (Eigen::Index i = 0; i < m; ++i) {
+  const auto point = [&](Eigen::Index i) {
     Vec<Dim> gp;
     const Vec<Dim> xi = X.col(i);
     double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, xi - t.origin, WG ? &gp : nullptr, nullptr);
@@ -103,7 +104,15 @@ void fusedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd&
     f(i) = fv;
     if constexpr (WG)
       for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + g[k];
+  };
+  // Inside a parallel region (the PU blend's runs) on the calling thread: a nested region would
+  // allocate its team on every call (blockedBatch).
+  if (omp_in_parallel()) {
+    for (Eigen::Index i = 0; i < m; ++i) point(i);
+    return;
   }
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Eigen::Index i = 0; i < m; ++i) point(i);
 }
 
 // The fused loop of kernel T for the β and gradient flags at hand.
@@ -198,29 +207,38 @@ void addBlock(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::Index xi, i
   if constexpr (Dim == 3) gacc[2] += g2;
 }
 
-// f (and G) at every column of X, kBlock centres at a time through the buffers: the portable
-// loop, for builds without AVX-512.
+// f (and G) at columns begin … end − 1 of X, kBlock centres at a time through the buffers.
+template <int Dim>
+void blockedRange(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::Index begin, Eigen::Index end,
+                  Eigen::VectorXd& f, Points<Dim>* G) {
+  const bool wantG = G != nullptr;
+  // Separate arrays rather than members of one struct: GCC's vector loops over them are faster.
+  alignas(64) double d[Dim][kBlock];
+  alignas(64) double x2[kBlock], phi[kBlock], a[kBlock], e[kBlock];
+  for (Eigen::Index i = begin; i < end; ++i) {
+    Vec<Dim> gp;
+    double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, X.col(i) - t.origin, wantG ? &gp : nullptr, nullptr);
+    double gacc[Dim] = {};
+    for (int start = 0; start < t.padded; start += kBlock)
+      addBlock<Dim>(t, X, i, start, std::min(kBlock, t.padded - start), wantG, d, x2, phi, a, e, fv, gacc);
+    f(i) = fv;
+    if (wantG)
+      for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + gacc[k];
+  }
+}
+
+// f (and G) at every column of X: the portable loop, for builds without AVX-512. Threaded in
+// chunks of 16 points, except inside a parallel region (the PU blend's runs, the mesher): there
+// a nested region would only run on the calling thread, and entering one allocates its team —
+// a malloc and free per call, per local fit, in the blend's hot loop.
 template <int Dim>
 void blockedBatch(const BatchTerms<Dim>& t, const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) {
+  constexpr Eigen::Index kChunk = 16;
   const Eigen::Index m = X.cols();
-  const bool wantG = G != nullptr;
-#pragma omp parallel
-  {
-    // Separate arrays rather than members of one struct: GCC's vector loops over them are faster.
-    alignas(64) double d[Dim][kBlock];
-    alignas(64) double x2[kBlock], phi[kBlock], a[kBlock], e[kBlock];
-#pragma omp for schedule(dynamic, 16)
-    for (Eigen::Index i = 0; i < m; ++i) {
-      Vec<Dim> gp;
-      double fv = evaluatePolynomial<Dim>(t.polynomial, *t.poly, X.col(i) - t.origin, wantG ? &gp : nullptr, nullptr);
-      double gacc[Dim] = {};
-      for (int start = 0; start < t.padded; start += kBlock)
-        addBlock<Dim>(t, X, i, start, std::min(kBlock, t.padded - start), wantG, d, x2, phi, a, e, fv, gacc);
-      f(i) = fv;
-      if (wantG)
-        for (int k = 0; k < Dim; ++k) (*G)(k, i) = gp(k) + gacc[k];
-    }
-  }
+  if (omp_in_parallel() || m <= kChunk) return blockedRange<Dim>(t, X, 0, m, f, G);
+  const Eigen::Index chunks = (m + kChunk - 1) / kChunk;
+#pragma omp parallel for schedule(dynamic, 1)
+  for (Eigen::Index c = 0; c < chunks; ++c) blockedRange<Dim>(t, X, c * kChunk, std::min(m, (c + 1) * kChunk), f, G);
 }
 
 }  // namespace

@@ -100,3 +100,29 @@ TEST_CASE("every kernel of the table: the grid bake equals the reference terms a
         }
   }
 }
+
+TEST_CASE("batch evaluation inside a parallel region (the PU blend's runs) equals the threaded one bit for bit") {
+  // Inside a parallel region the batch loop runs on the calling thread instead of entering a
+  // nested region; each f(i) and ∇f(i) must not depend on which path or thread computed it.
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-1.3, 1.3);
+  for (const KernelInfo& info : kKernelTable) {
+    CAPTURE(info.name);
+    const RadialSum<3> s = randomSum<3>(Kernel{info.type, 0.8}, true, rng);
+    Points<3> X(3, 101);  // more than one chunk of 16 points
+    for (Eigen::Index i = 0; i < X.cols(); ++i)
+      for (int k = 0; k < 3; ++k) X(k, i) = u(rng);
+    Eigen::VectorXd f;
+    Points<3> G;
+    s.evaluateBatch(X, f, &G);
+    int mismatches = 0;
+#pragma omp parallel reduction(+ : mismatches)
+    {
+      Eigen::VectorXd fi;
+      Points<3> Gi;
+      s.evaluateBatch(X, fi, &Gi);
+      mismatches += (fi.array() != f.array()).count() + (Gi.array() != G.array()).count();
+    }
+    CHECK(mismatches == 0);
+  }
+}
