@@ -5,6 +5,7 @@
 #include "core/base/errors.h"
 #include "io/mesh_file.h"
 #include "io/point_file.h"
+#include "scene/loaded_samples_handoff.h"
 #include "scene/scene_fit.h"
 
 namespace hermite {
@@ -17,6 +18,7 @@ namespace fs = std::filesystem;
 template <int Dim>
 void measureSamples(const Scene& scene, DataFileScene& out) {
   const HermiteSamples<Dim> s = sceneSamples<Dim>(scene, out.warnings);
+  keepLoadedSamples<Dim>(scene.data.resolvedFile, PointFileOptions{scene.data.orientNormals}, s, out.warnings);
   out.samples = s.size();
   out.spacing = meanSampleSpacing<Dim>(s.points);
   out.points = s.points;

@@ -10,6 +10,7 @@
 #include "core/base/ms_since.h"
 #include "core/shapes/presets.h"
 #include "io/point_file.h"
+#include "scene/loaded_samples_handoff.h"
 #include "scene/scene_fit_memory.h"
 
 namespace hermite {
@@ -254,7 +255,10 @@ HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& w
       throw InputError(scene.sourceName + ": data.file: '" + d.file + "' holds " +
                        std::to_string(pointFileDimension(d.resolvedFile)) + "D points, the scene's mode '" +
                        std::string(sceneModeName(scene.mode)) + "' needs " + std::to_string(Dim) + "D");
-    return loadFile<Dim>(d.resolvedFile, warnings, PointFileOptions{d.orientNormals});
+    const PointFileOptions options{d.orientNormals};
+    if (std::optional<HermiteSamples<Dim>> kept = takeLoadedSamples<Dim>(d.resolvedFile, options, warnings))
+      return std::move(*kept);
+    return loadFile<Dim>(d.resolvedFile, warnings, options);
   }
   HermiteSamples<Dim> s;
   const int n = static_cast<int>(d.points.size());
