@@ -165,7 +165,10 @@ void orientGivenNormals(const Points<Dim>& points, Points<Dim>& normals, int est
 // what a 2D exporter writes). `whole`: the text is the whole file; otherwise its last line may be
 // cut and is not read. A line that does not parse answers false (the loader then reports it).
 bool linesInPlaneZ(std::string_view text, bool whole, const std::string& path) {
-  if (!whole) text = text.substr(0, text.rfind('\n') == std::string_view::npos ? 0 : text.rfind('\n') + 1);
+  if (!whole) {
+    const std::size_t lastEnd = text.rfind('\n');
+    text = text.substr(0, lastEnd == std::string_view::npos ? 0 : lastEnd + 1);
+  }
   LineReader lines(text);
   std::string_view line;
   long number = 0;

@@ -251,13 +251,15 @@ HermiteSamples<Dim> sceneSamples(const Scene& scene, std::vector<std::string>& w
     }
   }
   if (!d.file.empty()) {
-    if (pointFileDimension(d.resolvedFile) != Dim && dataFileDimension(d.resolvedFile) != Dim)
-      throw InputError(scene.sourceName + ": data.file: '" + d.file + "' holds " +
-                       std::to_string(pointFileDimension(d.resolvedFile)) + "D points, the scene's mode '" +
-                       std::string(sceneModeName(scene.mode)) + "' needs " + std::to_string(Dim) + "D");
+    // Samples handed off by the default scene's read were read for this dimension already.
     const PointFileOptions options{d.orientNormals};
     if (std::optional<HermiteSamples<Dim>> kept = takeLoadedSamples<Dim>(d.resolvedFile, options, warnings))
       return std::move(*kept);
+    const int fileDim = pointFileDimension(d.resolvedFile);
+    if (fileDim != Dim && !(Dim == 2 && isPlanarCurveText(d.resolvedFile)))
+      throw InputError(scene.sourceName + ": data.file: '" + d.file + "' holds " + std::to_string(fileDim) +
+                       "D points, the scene's mode '" + std::string(sceneModeName(scene.mode)) + "' needs " +
+                       std::to_string(Dim) + "D");
     return loadFile<Dim>(d.resolvedFile, warnings, options);
   }
   HermiteSamples<Dim> s;
