@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "app/gui/frame_log.h"
+#include "app/gui/frame_pacing.h"
 #include "app/gui/gui_app.h"
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
@@ -159,18 +160,21 @@ DragLatencyResult benchDragLatency(int dimension, int samples, int moves, int wi
 
 namespace {
 
-// GuiApp on an OSMesa context, frames paced at 60 Hz as under vsync, each timed.
+// GuiApp on an OSMesa context, frames paced at 60 Hz as under vsync, each timed. As in the
+// window (frame_pacing.h), a frame without input is drawn only when it would show something new.
 struct PacedApp {
   std::unique_ptr<render::RenderContext> context;
   render::OffscreenTarget target;
   GuiApp app;
   FrameInput in;
   std::chrono::steady_clock::time_point lastFrame = std::chrono::steady_clock::now();
+  std::chrono::steady_clock::time_point slot = lastFrame;  // the last 60 Hz slot
   std::vector<double> frameMs;
   FramePhases worstPhases;
   double worstPresentMs = 0;
   std::unique_ptr<FrameLog> log;  // HERMITE_GUI_LOG, as in the window: every frame with its steps
   std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  FramePacing pacing;
 
   PacedApp(const Scene& scene, int width, int height)
       : context(offscreenContext("osmesa", width, height)), target(width, height, false),
@@ -179,11 +183,24 @@ struct PacedApp {
     in.height = height;
     if (const char* path = std::getenv("HERMITE_GUI_LOG"); path && *path) log = std::make_unique<FrameLog>(path);
   }
+  double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
+  // The next 60 Hz slot; a frame there when the window would draw one (no input arrives here).
+  void tick() {
+    std::this_thread::sleep_until(slot + std::chrono::microseconds(16667));
+    slot = std::chrono::steady_clock::now();
+    if (pacing.due(seconds(), false, app.wantsFrame(), app.busy())) draw(false);
+  }
+  // A frame with the input in `in`, at the next 60 Hz slot.
   void frame() {
-    std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
+    std::this_thread::sleep_until(slot + std::chrono::microseconds(16667));
+    slot = std::chrono::steady_clock::now();
+    draw(true);
+  }
+  void draw(bool input) {
     lastFrame = std::chrono::steady_clock::now();
     target.bind();
     app.frame(in);
+    pacing.drawn(seconds(), input);
     const auto presented = std::chrono::steady_clock::now();
     context->present();
     frameMs.push_back(msSince(lastFrame));
@@ -215,12 +232,12 @@ struct PacedApp {
   // arrive from the view worker: the frames before it count, and so do those until it is on screen.
   void settle(double limitSeconds) {
     const auto t0 = std::chrono::steady_clock::now();
-    for (int k = 0; k < 6; ++k) frame();
+    for (int k = 0; k < 6; ++k) tick();
     while (!settled()) {
       if (msSince(t0) > limitSeconds * 1000)
         throw EnvironmentError("bench: the view did not settle in " + std::to_string(limitSeconds) +
                                " s: " + app.status().message);
-      frame();
+      tick();
     }
   }
   BusyFramesResult result(int samples, double totalMs) const {

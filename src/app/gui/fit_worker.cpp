@@ -169,6 +169,11 @@ bool FitWorker::busy() const {
   return running_ || pending_.has_value();
 }
 
+bool FitWorker::hasResult() const {
+  std::lock_guard lock(mutex_);
+  return done_.has_value();
+}
+
 double FitWorker::runningMs() const {
   std::lock_guard lock(mutex_);
   return running_ ? msSince(runningSince_) : 0.0;

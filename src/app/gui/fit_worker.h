@@ -118,6 +118,7 @@ class FitWorker {
   void setBackgroundPriority(int nice, int threads = 0, bool idle = false);
 
   bool busy() const;             // a job is running or pending
+  bool hasResult() const;        // a finished job waits for poll()
   double runningMs() const;      // how long the current job has run (0 when idle)
   double progress() const;       // [0, 1) estimate of the running job
   std::uint64_t runningVersion() const;

@@ -89,6 +89,8 @@ std::optional<std::array<float, 4>> GuiApp::widgetRect(const std::string& name) 
   return it->second;
 }
 
+bool GuiApp::busy() { return worker().busy() || viewPending() || explorer().running(); }
+
 void GuiApp::frame(const FrameInput& in) {
   FramePhaseTimer timer(phases_);
   ImGui::SetCurrentContext(imgui_);
@@ -131,6 +133,7 @@ void GuiApp::frame(const FrameInput& in) {
   }
   prevMouseDown_ = in.mouseDown;
   prevKeys_ = in.keysDown;
+  framedVersion_ = ctx_.document.version();
 }
 
 // What is drawn over the view image: the selection, patch handles, hole labels, partition

@@ -64,6 +64,14 @@ class GuiApp {
   std::optional<Vec<2>> patchHandleScreenPosition(const PatchHandle& h) const { return patch_.handlePosition(h); }
   // Work for the view (bakes, refinement) runs in the background: the window keeps drawing frames.
   bool viewPending() const { return ctx_.image.pending(); }
+  // A frame drawn now would show something new without input: a document changed since the last
+  // frame (by a caller between frames), a finished fit to adopt, the view settling after a
+  // gesture, or background view work for the GL thread (frame_pacing.h).
+  bool wantsFrame() const {
+    return ctx_.document.version() != framedVersion_ || ctx_.fits.worker().hasResult() || ctx_.image.wantsFrame();
+  }
+  // A fit, a view job or a radius sweep runs: the window draws a few frames a second for progress.
+  bool busy();
   // The view on screen shows the fit of the document's current version, at its final quality.
   bool viewIsCurrent() const {
     return shownFit() && shownVersion() == ctx_.document.version() && ctx_.image.shows(shownFit());
@@ -137,6 +145,7 @@ class GuiApp {
   DataPanel data_{ctx_};
   ViewPanel view_{ctx_, camera_};
   ExplorePanel explore_{ctx_};
+  std::uint64_t framedVersion_ = 0;  // the document version at the end of the last frame
   PatchEditor patch_{ctx_};
   HoleFillPanel holeFill_{ctx_};
 

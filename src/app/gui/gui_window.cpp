@@ -18,6 +18,7 @@
 #include "app/commands/commands.h"
 #include "app/gui/camera_framing.h"
 #include "app/gui/frame_log.h"
+#include "app/gui/frame_pacing.h"
 #include "app/gui/gui_app.h"
 #include "app/gui/input_queue.h"
 #include "app/gui/scene_loading.h"
@@ -33,6 +34,7 @@ namespace {
 struct InputCollector {
   InputQueue queue;
   double scaleX = 1, scaleY = 1;  // framebuffer pixels per window unit (high-DPI screens)
+  bool refresh = true;  // the window was resized or uncovered: its contents need a frame
 
   void push(InputEvent e) {
     e.time = glfwGetTime();
@@ -87,6 +89,8 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
     e.code = int(codepoint);
     collector(w).push(std::move(e));
   });
+  glfwSetWindowRefreshCallback(window, [](GLFWwindow* w) { collector(w).refresh = true; });
+  glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { collector(w).refresh = true; });
   glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
     for (int i = 0; i < count; ++i) {
       InputEvent e;
@@ -153,12 +157,15 @@ int runDefault(const SceneArgs& args, double uiScale) {
   FrameInput previous;
   double last = glfwGetTime();
   std::string title = documentTitle(app.document());
+  FramePacing pacing;
   while (!glfwWindowShouldClose(window) && !app.quitRequested()) {
-    // Wait for events while nothing is moving; poll while a fit, a sweep or a redraw is pending,
-    // and do not wait at all while events recorded earlier still wait for their frames.
+    // Wait for events (at most 1/60 s while anything runs), and not at all while events recorded
+    // earlier still wait for their frames; then draw only a frame that shows something new.
+    const bool busy = app.busy();
     if (input.queue.pending() > 0) glfwPollEvents();
-    else if (app.worker().busy() || app.viewPending() || app.explorer().running()) glfwWaitEventsTimeout(1.0 / 60.0);
-    else glfwWaitEventsTimeout(0.1);
+    else glfwWaitEventsTimeout(pacing.waitSeconds(busy));
+    const bool hasInput = input.queue.pending() > 0 || input.refresh;
+    if (!pacing.due(glfwGetTime(), hasInput, app.wantsFrame(), busy)) continue;
     int ww = 0, wh = 0;
     glfwGetWindowSize(window, &ww, &wh);
     const render::FramebufferSize fb = context->framebufferSize();
@@ -170,6 +177,8 @@ int runDefault(const SceneArgs& args, double uiScale) {
     in.deltaSeconds = now - last;
     last = now;
     app.frame(in);
+    pacing.drawn(now, hasInput);
+    input.refresh = false;
     if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frameDelayMs));
     context->present();
     if (log) {

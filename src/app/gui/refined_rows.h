@@ -26,6 +26,8 @@ class RefinedRows {
   RowRange take(std::uint64_t job, int published, int height);
   // Every row of job `job`'s image (`height` rows) is shown.
   bool complete(std::uint64_t job, int height) const { return job == current_ && active_ && shown_ >= height; }
+  // Job `job` has published rows that take() would return.
+  bool waiting(std::uint64_t job, int published) const { return job == current_ && active_ && published > shown_; }
   // No refinement is shown in rows any more (the view moved on).
   void clear() { active_ = false; }
   bool active() const { return active_; }

@@ -342,6 +342,13 @@ bool SceneViewRenderer::takeRefinedRows() {
   return !rows.empty();
 }
 
+bool SceneViewRenderer::hasFrameWork() const {
+  if (!background_) return false;
+  if (jobs_.hasFinished() || tracing_ || uploading_) return true;
+  return progressive_ && !progressive_->finished &&
+         rows_.waiting(progressive_->id, progressive_->job->rowsDone->load(std::memory_order_acquire));
+}
+
 bool SceneViewRenderer::adoptFinished() {
   if (!background_) return false;
   const auto t0 = std::chrono::steady_clock::now();

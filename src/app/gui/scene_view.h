@@ -79,6 +79,9 @@ class SceneViewRenderer {
   // Background work for the last render still runs or waits to be adopted, or its settled view
   // is being traced in bands.
   bool pending() const { return background_ && (jobs_.busy() || tracing_ || uploading_); }
+  // Background work waits for the GL thread: a finished job, slabs to upload, bands to trace,
+  // refined rows to copy. A frame drawn now shows something new (frame_pacing.h).
+  bool hasFrameWork() const;
 
   // 2D heat map range ±colourRange (0: max |f| over the view) — the View panel's setting.
   double colourRange = 0;

@@ -139,6 +139,10 @@ void ViewImage::drawCompareLabels(const GuiContext& ctx, float x0, float w) cons
 }
 
 
+bool ViewImage::wantsFrame() const {
+  return interactFrames_ <= kSettleFrames || renderer_.hasFrameWork() || compareRenderer_.hasFrameWork();
+}
+
 ImageRgba8 ViewImage::pixels() const { return view_.gpuImage ? renderer_.readGpuImage() : view_.image; }
 
 }  // namespace hermite::app

@@ -29,6 +29,10 @@ class ViewImage {
   bool shows(const FitOutcome* fit) const { return drawn_ && drawn_->fit == fit && !pending(); }
   // Bakes or refinement for the view run on the renderer's worker (scene_view.h).
   bool pending() const { return renderer_.pending(); }
+  // The next frame would draw something new: the view has not settled since the last gesture
+  // (the settled quality starts a few frames after it), or background work waits for the GL
+  // thread (frame_pacing.h).
+  bool wantsFrame() const;
 
  private:
   // What the images on screen were drawn from.

@@ -49,6 +49,11 @@ bool ViewJobRunner::busy() const {
   return running_ || waiting_ || finished_;
 }
 
+bool ViewJobRunner::hasFinished() const {
+  std::lock_guard lock(mutex_);
+  return bool(finished_);
+}
+
 void ViewJobRunner::cancel() {
   std::lock_guard lock(mutex_);
   waiting_ = nullptr;

@@ -35,6 +35,8 @@ class ViewJobRunner {
   Apply takeFinished();
   // A job runs or waits, or its result waits to be taken.
   bool busy() const;
+  // A finished job's GL step waits to be taken.
+  bool hasFinished() const;
   // Cancels the running job and drops the waiting one and any untaken result.
   void cancel();
   // Waits until no job runs or waits (tests); false on timeout.
