@@ -27,16 +27,17 @@ constexpr double kUploadBudgetMs = 6.0;
 
 // This frame's share of a settled view traced over several frames (at full size the trace pass
 // alone can take several frames' time on a software rasteriser; the image on screen stays
-// meanwhile): `begin` starts the frame (the tile pass), then bands of rows within `budgetMs`,
-// then the read-backs one per frame (the 16 MB hit texture, its conversion, the trace pass).
-// A step that used half the budget leaves the next one to the next frame. True when only
-// finishFrame (overlays, the image's read-back) is left, which then gets a frame of its own.
+// meanwhile): `begin` starts the frame (the tile pass, which the GL runs by the end of this
+// frame: its read-back opens the next one), then bands of rows within `budgetMs`, then the
+// read-backs one per frame (the 16 MB hit texture, its conversion, the trace pass). A step that
+// used half the budget leaves the next one to the next frame. True when only finishFrame
+// (overlays, the image's read-back) is left, which then gets a frame of its own.
 bool traceSettledStep(render::ImplicitTracer& tracer, bool begin, const Camera& camera,
                       const render::TraceSettings& settings, double budgetMs) {
   const auto t0 = std::chrono::steady_clock::now();
   if (begin) {
     tracer.beginFrame(camera, settings);
-    if (msSince(t0) > budgetMs / 2) return false;
+    return false;
   }
   if (!tracer.traceRows(std::max(budgetMs - msSince(t0), 1.0)) || msSince(t0) > budgetMs / 2) return false;
   return tracer.readBackStep() && msSince(t0) <= budgetMs / 2;
@@ -190,8 +191,8 @@ void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& f
   out.traceMode = s.mode == render::TracerMode::Exact ? "exact" : s.refineExact ? "baked + refined" : "baked";
 }
 
-// The same without waiting. A fit without a bake yet keeps the bake of the fit before it on
-// screen (nothingYet when there is none) while a 64³ bake runs; a settled view traces the bake it
+// The same without waiting. A fit without a bake yet keeps the image of the fit before it on
+// screen (nothingYet; a gesture traces that fit's bake) while a 64³ bake runs; a settled view traces the bake it
 // has (64³ until the 128³ one arrives) and, on the 128³ bake, leaves the exact refinement to the
 // worker; the refined image replaces the baked one when it arrives, unless the view changed
 // meanwhile (a gesture cancels its job).
@@ -208,7 +209,10 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     if (const int r = inFrameBake_.resolutionFor(f.field()); r > 0) baked = bakeInFrame(fit, f, bounds, boundsKey, r);
   if (!baked) requestBake(fit, bounds, boundsKey, 64);  // the coarse bake first, the fine one when settled
   else if (bakeResolution_ < wanted) requestBake(fit, bounds, boundsKey, wanted);
-  if (!field_) {
+  // Without a gesture, tracing the previous fit's bake again would show nothing new (its surface
+  // with the new fit's marks) at the price of a whole trace: the image on screen stays until the
+  // new fit's bake arrives. A gesture still traces it, so that the camera follows the mouse.
+  if (!field_ || (!baked && quality == ViewQuality::Settled)) {
     out.nothingYet = true;
     return;
   }
@@ -243,6 +247,12 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   } else {
     const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
     if (begin) tracing_ = view;
+    // A frame that already spent half the budget on arrivals (a bake's last slabs) begins the
+    // trace in the next one.
+    if (begin && frameSpentMs_ > kTraceBudgetMs / 2) {
+      out.nothingYet = true;
+      return;
+    }
     if (!traceSettledStep(*tracer_, begin, camera, s, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) {
       out.nothingYet = true;
       return;
