@@ -200,15 +200,7 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
                                                   const Scene& viewScene, ViewQuality quality, SceneViewResult& out) {
   const ViewSpec& v = viewScene.view;
   if (!tracer_) tracer_ = std::make_unique<render::ImplicitTracer>();
-  const Box<3> bounds = viewBounds<3>(v, f.data.points);
-  const std::vector<double> boundsKey = boxKey(bounds);
-  const int wanted = quality == ViewQuality::Interactive ? 64 : 128;
-  bool baked = field_ == fit && bakedBounds_ == boundsKey;
-  // A drag's refit: a coarse bake in this very frame when it is cheap, the worker's 64³ one later.
-  if (!baked && quality == ViewQuality::Interactive)
-    if (const int r = inFrameBake_.resolutionFor(f.field()); r > 0) baked = bakeInFrame(fit, f, bounds, boundsKey, r);
-  if (!baked) requestBake(fit, bounds, boundsKey, 64);  // the coarse bake first, the fine one when settled
-  else if (bakeResolution_ < wanted) requestBake(fit, bounds, boundsKey, wanted);
+  const bool baked = prepareBake(fit, f, viewBounds<3>(v, f.data.points), quality);
   // Without a gesture, tracing the previous fit's bake again would show nothing new (its surface
   // with the new fit's marks) at the price of a whole trace: the image on screen stays until the
   // new fit's bake arrives. A gesture still traces it, so that the camera follows the mouse.
@@ -217,19 +209,7 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     return;
   }
   const RefinedView view{fit.get(), v, out.width, out.height};
-  if (baked && refinedView_ == view) {  // the refined image of this very view arrived
-    out.image = refined_.image;
-    out.depth = refined_.depth;
-    out.refinedPixels = refined_.refinedPixels;
-    out.colourRange = refined_.colourRange;
-    out.isoSpacing = refined_.isoSpacing;
-    out.traceMode = refined_.traceMode;
-    return;
-  }
-  if (baked && progressive_ && progressive_->view == view) {  // its refinement fills in (takeRefinedRows)
-    out = progressive_->image;
-    return;
-  }
+  if (baked && takeArrivedImage(view, out)) return;
   if (refining_ && !(*refining_ == view)) {  // the view moved on: its refinement is of no use
     jobs_.cancel();
     refining_.reset();
@@ -244,21 +224,9 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
   if (quality == ViewQuality::Interactive) {  // half resolution: one frame
     tracing_.reset();
     r = tracer_->render(camera, s, job.get());
-  } else {
-    const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
-    if (begin) tracing_ = view;
-    // A frame that already spent half the budget on arrivals (a bake's last slabs) begins the
-    // trace in the next one.
-    if (begin && frameSpentMs_ > kTraceBudgetMs / 2) {
-      out.nothingYet = true;
-      return;
-    }
-    if (!traceSettledStep(*tracer_, begin, camera, s, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) {
-      out.nothingYet = true;
-      return;
-    }
-    tracing_.reset();
-    r = tracer_->finishFrame(job.get());
+  } else if (!traceSettledPart(view, camera, s, *job, r)) {
+    out.nothingYet = true;
+    return;
   }
   takeTrace(r, out);
   out.traceMode = s.mode == render::TracerMode::Exact ? "exact" : "baked";
@@ -270,6 +238,51 @@ void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const Fi
     rows_.start(progressive_->id);
     requestRefinement(std::move(job), fit);
   }
+}
+
+// A drag's refit gets a coarse bake in this very frame when it is cheap, the worker's 64³ one
+// later; otherwise the worker bakes 64³ first and the finer one when the view is settled.
+bool SceneViewRenderer::prepareBake(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
+                                    const Box<3>& bounds, ViewQuality quality) {
+  const std::vector<double> boundsKey = boxKey(bounds);
+  const int wanted = quality == ViewQuality::Interactive ? 64 : 128;
+  bool baked = field_ == fit && bakedBounds_ == boundsKey;
+  if (!baked && quality == ViewQuality::Interactive)
+    if (const int r = inFrameBake_.resolutionFor(f.field()); r > 0) baked = bakeInFrame(fit, f, bounds, boundsKey, r);
+  if (!baked) requestBake(fit, bounds, boundsKey, 64);
+  else if (bakeResolution_ < wanted) requestBake(fit, bounds, boundsKey, wanted);
+  return baked;
+}
+
+bool SceneViewRenderer::takeArrivedImage(const RefinedView& view, SceneViewResult& out) const {
+  if (refinedView_ == view) {  // the refined image of this very view arrived
+    out.image = refined_.image;
+    out.depth = refined_.depth;
+    out.refinedPixels = refined_.refinedPixels;
+    out.colourRange = refined_.colourRange;
+    out.isoSpacing = refined_.isoSpacing;
+    out.traceMode = refined_.traceMode;
+    return true;
+  }
+  if (progressive_ && progressive_->view == view) {  // its refinement fills in (takeRefinedRows)
+    out = progressive_->image;
+    return true;
+  }
+  return false;
+}
+
+bool SceneViewRenderer::traceSettledPart(const RefinedView& view, const Camera& camera,
+                                         const render::TraceSettings& s, render::DeferredRefinement& job,
+                                         render::TraceResult& r) {
+  const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
+  if (begin) tracing_ = view;
+  // A frame that already spent half the budget on arrivals (a bake's last slabs) begins the
+  // trace in the next one.
+  if (begin && frameSpentMs_ > kTraceBudgetMs / 2) return false;
+  if (!traceSettledStep(*tracer_, begin, camera, s, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) return false;
+  tracing_.reset();
+  r = tracer_->finishFrame(&job);
+  return true;
 }
 
 // The in-frame coarse bake of `fit`, uploaded at once; what the worker did for an older field

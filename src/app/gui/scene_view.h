@@ -155,6 +155,16 @@ class SceneViewRenderer {
   // Copies the rows the running refinement published since the last call into progressive_'s
   // image (GL thread); true when some arrived.
   bool takeRefinedRows();
+  // Brings the tracer's bake towards `fit` over `bounds` at `quality`'s resolution (in this frame
+  // or through the worker); true when the tracer holds a bake of `fit` over `bounds`.
+  bool prepareBake(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f, const Box<3>& bounds,
+                   ViewQuality quality);
+  // The refined image of `view`, or its refinement filling in, into `out`; false when neither.
+  bool takeArrivedImage(const RefinedView& view, SceneViewResult& out) const;
+  // This frame's part of the settled trace of `view`; true with the finished trace in `r` (and
+  // `job` ready for the worker's refinement).
+  bool traceSettledPart(const RefinedView& view, const Camera& camera, const render::TraceSettings& s,
+                        render::DeferredRefinement& job, render::TraceResult& r);
   // No refinement fills in rows any more (the view, the bake or the image moved on).
   void dropProgressive() {
     progressive_.reset();
