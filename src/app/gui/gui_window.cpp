@@ -101,6 +101,14 @@ void installCallbacks(GLFWwindow* window, InputCollector* state) {
   });
 }
 
+// A key other than a modifier is held: ImGui repeats it (the Fit panel's arrow keys step r), so
+// frames go on without new events.
+bool keyHeld(const FrameInput& in) {
+  for (int k = 0; k < int(in.keysDown.size()); ++k)
+    if (in.keysDown[std::size_t(k)] && (k < GLFW_KEY_LEFT_SHIFT || k > GLFW_KEY_RIGHT_SUPER)) return true;
+  return false;
+}
+
 // The frame log's record of a frame (frame_log.h): what went down since the previous one.
 FrameLog::Frame logFrame(GuiApp& app, const FrameInput& in, const FrameInput& previous, double start,
                          double oldestEvent) {
@@ -161,11 +169,11 @@ int runDefault(const SceneArgs& args, double uiScale) {
   while (!glfwWindowShouldClose(window) && !app.quitRequested()) {
     // Wait for events (at most 1/60 s while anything runs), and not at all while events recorded
     // earlier still wait for their frames; then draw only a frame that shows something new.
-    const bool busy = app.busy();
+    const bool busy = app.busy(), held = keyHeld(previous);
     if (input.queue.pending() > 0) glfwPollEvents();
-    else glfwWaitEventsTimeout(pacing.waitSeconds(busy));
+    else glfwWaitEventsTimeout(pacing.waitSeconds(busy || held));
     const bool hasInput = input.queue.pending() > 0 || input.refresh;
-    if (!pacing.due(glfwGetTime(), hasInput, app.wantsFrame(), busy)) continue;
+    if (!pacing.due(glfwGetTime(), hasInput, app.wantsFrame() || held, busy)) continue;
     int ww = 0, wh = 0;
     glfwGetWindowSize(window, &ww, &wh);
     const render::FramebufferSize fb = context->framebufferSize();
