@@ -82,6 +82,13 @@ for _ in $(seq 600); do [ -s "$WORK/gui.log" ] && [ "$(q idle)" = 1 ] && break; 
 [ "$(q idle)" = 1 ] || fail "the first fit and its settled view did not arrive within 120 s"
 read -r START _ _ <<< "$(q last)"
 
+# Idle, the window draws a frame only when something is new, and twice a second besides
+# (frame pacing): far fewer than 60 a second. No input reaches it in these 2 s.
+sleep 2
+read -r IDLE_END _ _ <<< "$(q last)"
+echo "idle: $((IDLE_END - START)) frames in 2 s"
+[ $((IDLE_END - START)) -le 10 ] || fail "the idle window drew $((IDLE_END - START)) frames in 2 s (frame pacing: about 4)"
+
 # The View section may lie below the window: scroll the left panel until the bounds box shows.
 xdotool mousemove $((X + 150)) $((Y + 300)); sleep 0.2
 for _ in $(seq 20); do
