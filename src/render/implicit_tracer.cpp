@@ -655,11 +655,16 @@ struct ImplicitTracer::Gpu {
     return *target;
   }
   void uploadModel(const RadialSum<3>& model, const Vec<3>& centre);
-  long long prepareTrace(const TraceFrame& frame, const VolumeBake& bake);
+  long long prepareTrace(const TraceFrame& frame, const VolumeBake& bake, int tileRows);
+  // The tile pass's tile rows the trace needs: the tile target's height in baked mode with the
+  // surface shown, else none.
+  int tilePassRows(const TraceFrame& frame) const {
+    return frame.settings.mode == TracerMode::Baked && frame.settings.showSurface ? target->tileHeight : 0;
+  }
   void setTraceState();
   void traceRows(const TraceFrame& frame, const VolumeBake& bake, const RadialSum<3>* model, bool exactDouble, int y0,
                  int y1);
-  void runTilePass(const TraceFrame& frame, const VolumeBake& bake);
+  void runTilePass(const TraceFrame& frame, const VolumeBake& bake, int row0, int row1);
   void bindBaked(const Program& p, const TraceFrame& frame, const VolumeBake& bake);
   void bindExact(const Program& p, const RadialSum<3>& model, bool exactDouble, int loopBudget);
   long long prepareRects(const TraceFrame& frame);
@@ -704,6 +709,7 @@ struct ImplicitTracer::Frame {
   std::optional<TraceFrame> frame;
   TraceResult result;  // sliceRange, exactDouble, tracedPixels and traceMs so far
   int nextRow = 0;     // GL rows [0, nextRow) are traced
+  int tileRows = 0;    // rows of the tile target the tile pass ran on (all: Gpu::tilePassRows)
   double maxMsPerRow = 0;  // the costliest band's ms per row so far, for the next band's height
   // What readBackStep read and converted so far, for finishFrame.
   std::optional<std::vector<float>> hitData;  // readHitTexture, until converted into surfaceT
@@ -866,11 +872,12 @@ void ImplicitTracer::Gpu::uploadModel(const RadialSum<3>& model, const Vec<3>& c
 // plane's colour and depth to the target. A whole frame is one traceRows over every row, without
 // a scissor; the window's settled frames trace bands of rows over several GUI frames, which give
 // the same bytes (each pixel's ray is independent of the others). Returns the pixels traced.
-long long ImplicitTracer::Gpu::prepareTrace(const TraceFrame& frame, const VolumeBake& bake) {
+// `tileRows`: the tile pass runs on tile rows [0, tileRows) now, the rest later (runTilePass).
+long long ImplicitTracer::Gpu::prepareTrace(const TraceFrame& frame, const VolumeBake& bake, int tileRows) {
   const TraceSettings& settings = frame.settings;
   setTraceState();
   if (settings.mode != TracerMode::Baked) return (long long)frame.pixels();
-  if (settings.showSurface) runTilePass(frame, bake);
+  if (tileRows > 0) runTilePass(frame, bake, 0, tileRows);
   return -1;  // the rectangles are left to prepareRects
 }
 
@@ -924,8 +931,9 @@ void ImplicitTracer::Gpu::traceRows(const TraceFrame& frame, const VolumeBake& b
 }
 
 // The baked mode's tile pass: per tile of kTraceTile² pixels, how far along its rays the trace
-// pass may skip (trace_tile_pass.glsl), from the march of a cone that holds all the tile's rays.
-void ImplicitTracer::Gpu::runTilePass(const TraceFrame& frame, const VolumeBake& bake) {
+// pass may skip (trace_tile_pass.glsl), from the march of a cone that holds all the tile's rays;
+// on tile rows [row0, row1) (GL rows of the tile target: a part of the pass under a scissor).
+void ImplicitTracer::Gpu::runTilePass(const TraceFrame& frame, const VolumeBake& bake, int row0, int row1) {
   const Program& tiles = program(kBakedTileProgram, false);
   tiles.use();
   setTraceUniforms(tiles, frame, bake);
@@ -938,7 +946,13 @@ void ImplicitTracer::Gpu::runTilePass(const TraceFrame& frame, const VolumeBake&
   target->bindTiles();
   empty.bind();
   glDisable(GL_DEPTH_TEST);
+  const bool part = row0 > 0 || row1 < target->tileHeight;
+  if (part) {
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, row0, target->tileWidth, row1 - row0);
+  }
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  if (part) glDisable(GL_SCISSOR_TEST);
   glEnable(GL_DEPTH_TEST);
   target->bind();
 }
@@ -1058,7 +1072,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   return finishFrame(deferred);
 }
 
-void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& settings) {
+void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& settings, int tilePassParts) {
   frame_.reset();
   if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
   if (settings.mode == TracerMode::Exact && !radialSum_)
@@ -1074,9 +1088,12 @@ void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& setti
   result.exactDouble = settings.mode == TracerMode::Exact &&
                        (settings.exactPrecision == ExactPrecision::Double ||
                         (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
-  // The baked mode's tile pass here; its read-back, the clear and the rectangles (prepareRects)
-  // open the first traceRows, within its budget.
-  result.tracedPixels = gpu_->prepareTrace(frame, *bake_);
+  // The baked mode's tile pass here (its first part of `tilePassParts`, the others open the next
+  // traceRows calls); its read-back, the clear and the rectangles (prepareRects) open the first
+  // traceRows after it, within its budget.
+  const int tileRows = gpu_->tilePassRows(frame);
+  f->tileRows = tileRows / std::max(tilePassParts, 1);
+  result.tracedPixels = gpu_->prepareTrace(frame, *bake_, f->tileRows);
   result.traceMs = msSince(t0);
   frame_ = std::move(f);
 }
@@ -1094,6 +1111,14 @@ bool ImplicitTracer::traceRows(double budgetMs) {
   const TraceFrame& frame = *f.frame;
   const KeepFramebuffer keep;
   const auto t0 = Clock::now();
+  if (const int all = gpu_->tilePassRows(frame); f.tileRows < all) {  // the tile pass's next part
+    const int rows = std::max((all + 1) / 2, 1);
+    const int end = std::isfinite(budgetMs) ? std::min(f.tileRows + rows, all) : all;
+    gpu_->runTilePass(frame, *bake_, f.tileRows, end);
+    f.tileRows = end;
+    f.result.traceMs += msSince(t0);
+    if (std::isfinite(budgetMs)) return false;
+  }
   if (f.result.tracedPixels < 0) f.result.tracedPixels = gpu_->prepareRects(frame);
   if (!std::isfinite(budgetMs)) {
     gpu_->traceRows(frame, *bake_, radialSum_, f.result.exactDouble, f.nextRow, frame.height);

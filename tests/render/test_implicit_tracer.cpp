@@ -561,6 +561,28 @@ TEST_CASE("implicit tracer: a frame traced in bands of rows has the bytes of a w
     }
 }
 
+TEST_CASE("implicit tracer: a tile pass run in two halves over two calls gives the bytes of a whole render") {
+  auto context = testing::makeTestContext();
+  ScatteredSpheresScene scene;
+  ImplicitTracer& tracer = scene.tracer;
+  const Camera camera = makeCamera(130, 98, Projection::Perspective, {2.6, 3.1, 3.7});
+  for (bool refine : {false, true}) {
+    CAPTURE(refine);
+    TraceSettings settings;
+    settings.refineExact = refine;
+    settings.showBounds = true;
+    const TraceResult whole = tracer.render(camera, settings);
+    tracer.beginFrame(camera, settings, 2);
+    CHECK_FALSE(tracer.traceRows(1e9));  // a finite budget: the tile pass's second half alone
+    int calls = 1;
+    while (!tracer.traceRows(0.0)) ++calls;
+    CHECK(calls == 1 + (98 - 16 + 7) / 8);  // then the bands as after a whole tile pass
+    const TraceResult split = tracer.finishFrame();
+    checkSameTrace(split, whole);
+    CHECK(split.tracedPixels == whole.tracedPixels);  // the same tiles proven empty
+  }
+}
+
 TEST_CASE("implicit tracer: a banded frame's deferred refinement matches the whole frame's") {
   auto context = testing::makeTestContext();
   ScatteredSpheresScene scene;

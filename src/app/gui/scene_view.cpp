@@ -27,8 +27,8 @@ constexpr double kUploadBudgetMs = 6.0;
 
 // This frame's share of a settled view traced over several frames (at full size the trace pass
 // alone can take several frames' time on a software rasteriser; the image on screen stays
-// meanwhile): `begin` starts the frame (the tile pass, which the GL runs by the end of this
-// frame: its read-back opens the next one), then bands of rows within `budgetMs`, then the
+// meanwhile): `begin` starts the frame (the tile pass in two halves, each run by the GL by the
+// end of its frame; the read-back opens the frame after them), then bands of rows within `budgetMs`, then the
 // read-backs one per frame (the 16 MB hit texture, its conversion, the trace pass). A step that
 // used half the budget leaves the next one to the next frame. True when only finishFrame
 // (overlays, the image's read-back) is left, which then gets a frame of its own.
@@ -36,7 +36,7 @@ bool traceSettledStep(render::ImplicitTracer& tracer, bool begin, const Camera& 
                       const render::TraceSettings& settings, double budgetMs) {
   const auto t0 = std::chrono::steady_clock::now();
   if (begin) {
-    tracer.beginFrame(camera, settings);
+    tracer.beginFrame(camera, settings, 2);  // half the tile pass now, the rest in the next frame
     return false;
   }
   if (!tracer.traceRows(std::max(budgetMs - msSince(t0), 1.0)) || msSince(t0) > budgetMs / 2) return false;
