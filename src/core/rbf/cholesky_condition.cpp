@@ -12,12 +12,21 @@ namespace {
 using Index = Eigen::Index;
 using ConstMap = Eigen::Map<const Eigen::VectorXd>;
 
-// The estimator's vectors (n each), reused from call to call on each thread.
+// Factors up to this size get the row copy and the solves below; above it the copy's strided
+// writes leave L1 and Eigen's blocked triangular solves are faster (measured at n = 92–200,
+// docs/performance.md).
+constexpr Index kRowCopyUpTo = 120;
+
+// The estimator's vectors (n each), the reciprocals of L's diagonal, and L's rows, reused from
+// call to call on each thread.
 struct EstimateBuffers {
-  std::vector<double> v, alt, sign, oldSign;
+  std::vector<double> v, alt, sign, oldSign, invDiagonal;
+  std::vector<double> rows;  // n × n, row j of L contiguous at j·n (entries 0..j)
   void resize(Index n) {
-    if (static_cast<Index>(v.size()) >= n) return;
-    for (std::vector<double>* b : {&v, &alt, &sign, &oldSign}) b->resize(static_cast<std::size_t>(n));
+    if (static_cast<Index>(v.size()) < n)
+      for (std::vector<double>* b : {&v, &alt, &sign, &oldSign, &invDiagonal}) b->resize(static_cast<std::size_t>(n));
+    const Index copied = std::min(n, kRowCopyUpTo);
+    if (static_cast<Index>(rows.size()) < copied * copied) rows.resize(static_cast<std::size_t>(copied * copied));
   }
 };
 
@@ -26,49 +35,101 @@ EstimateBuffers& estimateBuffers() {
   return buffers;
 }
 
-// x ← L⁻¹x for x whose entries above row j0 are zero (they stay zero): column-oriented, one
-// axpy per column of L.
-void forwardFrom(const double* L, Index n, Index ld, double* x, Index j0) {
-  for (Index j = j0; j < n; ++j) {
-    const double* c = L + j * ld;
-    const double w = x[j] / c[j];
+// The factor as the solves read it: columns of L for the forward substitution, rows of L (the
+// columns of Lᵀ) for the backward one, so that both are column-oriented — an axpy per column,
+// no dot-product reductions, whose latency dominates at the local fits' usual 30–120 unknowns.
+struct Factor {
+  const double* L;     // column j at L + j·ld
+  Index n, ld;
+  const double* rows;  // row j at rows + j·n; null: not copied
+  const double* inv;   // 1 / L(j, j)
+};
+
+using FactorMap = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+using VectorMap = Eigen::Map<Eigen::VectorXd>;
+
+// x ← L⁻¹x for x whose entries above row j0 are zero (they stay zero).
+void forwardFrom(const Factor& f, double* x, Index j0) {
+  if (!f.rows) {  // large: Eigen's blocked solve on the trailing block
+    const Index k = f.n - j0;
+    const FactorMap L(f.L + j0 * f.ld + j0, k, k, Eigen::OuterStride<>(f.ld));
+    VectorMap tail(x + j0, k);
+    L.triangularView<Eigen::Lower>().solveInPlace(tail);
+    return;
+  }
+  for (Index j = j0; j < f.n; ++j) {
+    const double* c = f.L + j * f.ld;
+    const double w = x[j] * f.inv[j];
     x[j] = w;
-    for (Index i = j + 1; i < n; ++i) x[i] -= w * c[i];
+    for (Index i = j + 1; i < f.n; ++i) x[i] -= w * c[i];
   }
 }
 
 // x ← L⁻¹x and y ← L⁻¹y in one pass over L.
-void forwardTwo(const double* L, Index n, Index ld, double* x, double* y) {
-  for (Index j = 0; j < n; ++j) {
-    const double* c = L + j * ld;
-    const double wx = x[j] / c[j], wy = y[j] / c[j];
+void forwardTwo(const Factor& f, double* x, double* y) {
+  if (!f.rows) {
+    forwardFrom(f, x, 0);
+    forwardFrom(f, y, 0);
+    return;
+  }
+  for (Index j = 0; j < f.n; ++j) {
+    const double* c = f.L + j * f.ld;
+    const double wx = x[j] * f.inv[j], wy = y[j] * f.inv[j];
     x[j] = wx;
     y[j] = wy;
-    for (Index i = j + 1; i < n; ++i) {
+    for (Index i = j + 1; i < f.n; ++i) {
       x[i] -= wx * c[i];
       y[i] -= wy * c[i];
     }
   }
 }
 
-// x ← L⁻ᵀx: row-oriented on Lᵀ, one dot product with a column of L per entry.
-void backward(const double* L, Index n, Index ld, double* x) {
-  for (Index j = n - 1; j >= 0; --j) {
-    const double* c = L + j * ld;
-    const Index len = n - j - 1;
-    x[j] = (x[j] - ConstMap(c + j + 1, len).dot(ConstMap(x + j + 1, len))) / c[j];
+// x ← L⁻ᵀx: column j of Lᵀ is row j of L (from the copy).
+void backward(const Factor& f, double* x) {
+  if (!f.rows) {
+    const FactorMap L(f.L, f.n, f.n, Eigen::OuterStride<>(f.ld));
+    VectorMap v(x, f.n);
+    L.triangularView<Eigen::Lower>().transpose().solveInPlace(v);
+    return;
+  }
+  for (Index j = f.n - 1; j >= 0; --j) {
+    const double* r = f.rows + j * f.n;
+    const double w = x[j] * f.inv[j];
+    x[j] = w;
+    for (Index i = 0; i < j; ++i) x[i] -= w * r[i];
   }
 }
 
 // x ← L⁻ᵀx and y ← L⁻ᵀy in one pass over L.
-void backwardTwo(const double* L, Index n, Index ld, double* x, double* y) {
-  for (Index j = n - 1; j >= 0; --j) {
-    const double* c = L + j * ld;
-    const Index len = n - j - 1;
-    const ConstMap col(c + j + 1, len);
-    x[j] = (x[j] - col.dot(ConstMap(x + j + 1, len))) / c[j];
-    y[j] = (y[j] - col.dot(ConstMap(y + j + 1, len))) / c[j];
+void backwardTwo(const Factor& f, double* x, double* y) {
+  if (!f.rows) {
+    backward(f, x);
+    backward(f, y);
+    return;
   }
+  for (Index j = f.n - 1; j >= 0; --j) {
+    const double* r = f.rows + j * f.n;
+    const double wx = x[j] * f.inv[j], wy = y[j] * f.inv[j];
+    x[j] = wx;
+    y[j] = wy;
+    for (Index i = 0; i < j; ++i) {
+      x[i] -= wx * r[i];
+      y[i] -= wy * r[i];
+    }
+  }
+}
+
+// The reciprocals of L's diagonal and, for small factors, the rows of L into the buffers.
+Factor prepareFactor(const double* L, Index n, Index ld, EstimateBuffers& buf) {
+  const bool copyRows = n <= kRowCopyUpTo;
+  double* rows = copyRows ? buf.rows.data() : nullptr;
+  for (Index j = 0; j < n; ++j) {
+    const double* c = L + j * ld;
+    buf.invDiagonal[static_cast<std::size_t>(j)] = 1.0 / c[j];
+    if (copyRows)
+      for (Index i = j; i < n; ++i) rows[i * n + j] = c[i];
+  }
+  return Factor{L, n, ld, rows, buf.invDiagonal.data()};
 }
 
 double oneNorm(const double* x, Index n) { return ConstMap(x, n).lpNorm<1>(); }
@@ -91,6 +152,7 @@ double choleskyInverseNormEstimate(const double* L, Index n, Index ld) {
   if (n <= 0) return 0;
   EstimateBuffers& buf = estimateBuffers();
   buf.resize(n);
+  const Factor f = prepareFactor(L, n, ld, buf);
   double *v = buf.v.data(), *alt = buf.alt.data(), *sign = buf.sign.data(), *oldSign = buf.oldSign.data();
   // A⁻¹(e/n) and the alternating vector's A⁻¹x, together.
   double alternating = 1;
@@ -99,8 +161,8 @@ double choleskyInverseNormEstimate(const double* L, Index n, Index ld) {
     alt[i] = n > 1 ? alternating * (1.0 + double(i) / double(n - 1)) : 1.0;
     alternating = -alternating;
   }
-  forwardTwo(L, n, ld, v, alt);
-  backwardTwo(L, n, ld, v, alt);
+  forwardTwo(f, v, alt);
+  backwardTwo(f, v, alt);
   double lower = oneNorm(v, n);
   if (n == 1) return lower;
   double oldLower = lower;
@@ -109,14 +171,14 @@ double choleskyInverseNormEstimate(const double* L, Index n, Index ld) {
     signOf(v, n, sign);
     if (k > 0 && std::equal(sign, sign + n, oldSign)) break;  // stagnated
     std::copy(sign, sign + n, v);  // A⁻ᵀ sign(v) = A⁻¹ sign(v): A is symmetric
-    forwardFrom(L, n, ld, v, 0);
-    backward(L, n, ld, v);
+    forwardFrom(f, v, 0);
+    backward(f, v);
     const Index j = argMaxAbs(v, n);
     if (j == oldIndex) break;
     std::fill(v, v + n, 0.0);  // v ← A⁻¹eⱼ
     v[j] = 1;
-    forwardFrom(L, n, ld, v, j);
-    backward(L, n, ld, v);
+    forwardFrom(f, v, j);
+    backward(f, v);
     lower = oneNorm(v, n);
     if (lower <= oldLower) break;  // Eigen keeps this last, smaller bound
     std::copy(sign, sign + n, oldSign);
