@@ -9,7 +9,7 @@
 #include <Eigen/QR>
 
 #include "core/base/ms_since.h"
-#include "core/rbf/cholesky_condition.h"
+#include "core/rbf/small_cholesky.h"
 
 namespace hermite {
 
@@ -60,21 +60,10 @@ bool acceptable(double rcond, const LocalSolution& s) {
   return rcond > 1e-15 && s.x.allFinite() && s.c.allFinite();
 }
 
-// Eigen's Cholesky factorisation in place (it reads the lower triangle), whose rcond() is
-// Eigen's estimate made by choleskyReciprocalCondition for less (cholesky_condition.h), from the
-// 1-norm of A that Eigen computes before it factorises.
-class InPlaceLlt : public Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> {
- public:
-  explicit InPlaceLlt(Eigen::Ref<Eigen::MatrixXd>& A) : Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>>(A) {}
-  double rcond() const {
-    return choleskyReciprocalCondition(m_l1_norm, m_matrix.data(), m_matrix.rows(), m_matrix.outerStride());
-  }
-};
-
 // cholesky: no polynomial, A positive definite.
 bool solveCholesky(Eigen::Ref<Eigen::MatrixXd> A, const Eigen::VectorXd& b, LocalSolution& out) {
-  InPlaceLlt llt(A);
-  if (llt.info() != Eigen::Success) return false;
+  const SmallCholesky llt(A);  // in place, reads the lower triangle
+  if (!llt.ok()) return false;
   const double rcond = llt.rcond();  // Eigen's 1-norm estimate, as LAPACK's dpocon
   out.x = llt.solve(b);
   out.c.resize(0);
@@ -129,8 +118,8 @@ bool solveNullspace(Eigen::Ref<Eigen::MatrixXd> A, const Eigen::Ref<const Eigen:
   Eigen::Ref<Eigen::MatrixXd> B22 = A.bottomRightCorner(r, r);
   if (sign < 0) B22.triangularView<Eigen::Lower>() *= -1.0;
   const Eigen::VectorXd bq = b - q.V * (q.T.transpose() * (q.V.transpose() * b));  // Qᵀb
-  InPlaceLlt llt(B22);  // in place, lower triangle; B₂₁ is untouched
-  if (llt.info() != Eigen::Success) return false;
+  const SmallCholesky llt(B22);  // in place, lower triangle; B₂₁ is untouched
+  if (!llt.ok()) return false;
   const double rcond = llt.rcond();
   const Eigen::VectorXd y = llt.solve(double(sign) * bq.tail(r));
   // R c = (Qᵀb)₁ − B₁₂ y with B₁₂ = B₂₁ᵀ.
