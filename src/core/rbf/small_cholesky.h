@@ -31,7 +31,7 @@ class SmallCholesky {
 
  private:
   Eigen::Ref<Eigen::MatrixXd> L_;
-  double norm_ = 0;  // ‖A‖₁ before the factorisation
+  double norm_ = 0;  // ‖A‖₁ before the factorisation (NaN or ∞ when an entry is not finite)
   bool ok_ = false;
 };
 
