@@ -4,9 +4,7 @@
 // local fits' sizes, in microseconds per call (the matrix copy excluded), the variants alternating call by call,
 // the fastest of 9 trials.
 //
-//   g++ -O3 -march=native -fno-math-errno -I/usr/include/eigen3 -Isrc scripts/local_cholesky_bench.cpp \
-//       src/core/rbf/small_cholesky.cpp src/core/rbf/cholesky_condition.cpp -o /tmp/local_cholesky_bench
-//   /tmp/local_cholesky_bench
+//   cmake --build build/release --target local_cholesky_bench && build/release/local_cholesky_bench
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>

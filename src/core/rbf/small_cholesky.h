@@ -6,15 +6,16 @@
 // Eigen's LLT factorises blocks of 8 columns from 32 unknowns on (a rank-8 update of the
 // trailing matrix per block, repacked every time); here the factorisation is Eigen's unblocked
 // column loop up to kSmallCholeskyUnblockedUpTo unknowns and Eigen's blocked loop with 32-column
-// blocks above — about a third less time at 40–120 unknowns (docs/performance.md). The factor
-// equals Eigen's up to rounding (the same operations, summed in other groupings).
+// blocks above — about a quarter less time at 44–120 unknowns (build/release/local_cholesky_bench,
+// docs/performance.md). The factor equals Eigen's up to rounding (the same operations, summed in
+// other groupings).
 
 #include <Eigen/Core>
 
 namespace hermite {
 
 // Systems up to this size are factorised column by column.
-inline constexpr Eigen::Index kSmallCholeskyUnblockedUpTo = 96;
+inline constexpr Eigen::Index kSmallCholeskyUnblockedUpTo = 40;
 
 class SmallCholesky {
  public:
