@@ -9,6 +9,7 @@
 #include <Eigen/QR>
 
 #include "core/base/ms_since.h"
+#include "core/rbf/small_cholesky.h"
 
 namespace hermite {
 
@@ -61,8 +62,8 @@ bool acceptable(double rcond, const LocalSolution& s) {
 
 // cholesky: no polynomial, A positive definite.
 bool solveCholesky(Eigen::Ref<Eigen::MatrixXd> A, const Eigen::VectorXd& b, LocalSolution& out) {
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(A);  // in place, reads the lower triangle
-  if (llt.info() != Eigen::Success) return false;
+  const SmallCholesky llt(A);  // in place, reads the lower triangle
+  if (!llt.ok()) return false;
   const double rcond = llt.rcond();  // Eigen's 1-norm estimate, as LAPACK's dpocon
   out.x = llt.solve(b);
   out.c.resize(0);
@@ -117,8 +118,8 @@ bool solveNullspace(Eigen::Ref<Eigen::MatrixXd> A, const Eigen::Ref<const Eigen:
   Eigen::Ref<Eigen::MatrixXd> B22 = A.bottomRightCorner(r, r);
   if (sign < 0) B22.triangularView<Eigen::Lower>() *= -1.0;
   const Eigen::VectorXd bq = b - q.V * (q.T.transpose() * (q.V.transpose() * b));  // Qᵀb
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> llt(B22);  // in place, lower triangle; B₂₁ is untouched
-  if (llt.info() != Eigen::Success) return false;
+  const SmallCholesky llt(B22);  // in place, lower triangle; B₂₁ is untouched
+  if (!llt.ok()) return false;
   const double rcond = llt.rcond();
   const Eigen::VectorXd y = llt.solve(double(sign) * bq.tail(r));
   // R c = (Qᵀb)₁ − B₁₂ y with B₁₂ = B₂₁ᵀ.

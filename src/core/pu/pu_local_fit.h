@@ -11,6 +11,8 @@
 //                         R c = (Qᵀb)₁ − B₁₂ y). About half the work of the saddle's LU
 //                         ((n − m)³/3 + O(n²m) flops against 2(n + m)³/3).
 //  - lu:                  partial-pivot LU of the whole saddle matrix.
+// The LLTs are small_cholesky.h's: Eigen's unblocked loop, or 32-column blocks, in place, with
+// Eigen's 1-norm condition estimate made for less on the factor (cholesky_condition.h).
 // A path whose factorisation fails, whose reciprocal condition estimate is ≤ 1e-15 or whose
 // solution is not finite falls through; the last resort is fitHrbfAbout (pivoted fallbacks,
 // warnings, NumericalError for a failed factorisation — the caller then grows the support).

@@ -139,8 +139,9 @@ class LeafFitter {
     if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
       const int want = std::min(limits_.min, n);
       if (static_cast<int>(idx.size()) > want) {
+        const double before = s;
         s = factorReaching(box, want, 1.0, scratch);
-        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+        narrowSamples(scaledBox<Dim>(box, before), scaledBox<Dim>(box, s), idx);
       }
       if (static_cast<int>(idx.size()) > 4 * want) return unblend();
     }
@@ -180,13 +181,24 @@ class LeafFitter {
         s *= options_.growth;
         tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
       }
+      const double grown = s;
       s = factorReaching(box, want, options_.overlap, scratch);
-      tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+      narrowSamples(scaledBox<Dim>(box, grown), scaledBox<Dim>(box, s), idx);
     } else if (static_cast<int>(idx.size()) > limits_.max) {
       s = factorReaching(box, limits_.max, floor, scratch);
-      tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+      narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), idx);
     }
     return s;
+  }
+
+  // idx ← the samples `query` holds, given idx = those `previous` holds. When query lies inside
+  // previous this keeps the entries query contains — the set samplesInBox returns (a box holds
+  // exactly the samples it contains), in another order (the fit sorts idx) — without a walk of
+  // the tree; otherwise it walks the tree.
+  void narrowSamples(const Box<Dim>& previous, const Box<Dim>& query, std::vector<int>& idx) const {
+    const bool inside = (query.lo.array() >= previous.lo.array()).all() && (query.hi.array() <= previous.hi.array()).all();
+    if (!inside) return tree_.samplesInBox(frameY_, query, idx);
+    idx.erase(std::remove_if(idx.begin(), idx.end(), [&](int j) { return !query.contains(frameY_.col(j)); }), idx.end());
   }
 
   // The support factor just large enough for the `rank`-th nearest of the samples in
