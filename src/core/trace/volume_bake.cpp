@@ -173,6 +173,99 @@ bool bakeCubicRadialSum(const ImplicitField<3>&, const Box<3>&, int, const Vec<3
   return false;
 }
 #endif
+
+// X = the grid points of z-planes k0 … k1 − 1 (3 × R²·(k1 − k0)), x fastest, then y, then z.
+void slabPoints(const Box<3>& bounds, int R, const Vec<3>& h, int k0, int k1, Points<3>& X) {
+  const std::size_t plane = std::size_t(R) * R;
+  X.resize(3, Eigen::Index(plane) * (k1 - k0));
+#pragma omp parallel for schedule(static)
+  for (int k = k0; k < k1; ++k) {
+    const double z = bounds.lo.z() + h.z() * k;
+    for (int j = 0; j < R; ++j) {
+      const double y = bounds.lo.y() + h.y() * j;
+      Eigen::Index col = Eigen::Index(plane) * (k - k0) + Eigen::Index(R) * j;
+      for (int i = 0; i < R; ++i, ++col) X.col(col) = Vec<3>(bounds.lo.x() + h.x() * i, y, z);
+    }
+  }
+}
+
+// out[q] = f(X.col(q)) as float, for every column of X.
+void storeSlabValues(const ImplicitField<3>& field, const Points<3>& X, float* out) {
+  const Eigen::Index m = X.cols();
+  Eigen::VectorXd f;
+  if (field.everywhereValid()) {
+    field.evaluateBatch(X, f);
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
+    return;
+  }
+  // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
+  // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
+  // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
+  // often exactly 0 (a compact kernel beyond r of every sample).
+  std::vector<char> valid;
+  field.evaluateValidBatch(X, f, valid);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index q = 0; q < m; ++q)
+    out[q] = valid[std::size_t(q)] ? float(f(q)) : std::max(float(std::abs(f(q))), kNoDataFloor);
+}
+
+// The R³ samples through evaluateBatch (any field), in slabs of whole z-planes, ~64k points
+// each: large enough for evaluateBatch's threads, small enough to keep X (3 × points doubles)
+// in cache-friendly sizes.
+void bakeBatched(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out,
+                 const CancelToken* cancel) {
+  const std::size_t plane = std::size_t(R) * R;
+  const int planesPerSlab = std::max<int>(1, int(65536 / plane));
+  Points<3> X;
+  for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
+    throwIfCancelled(cancel);
+    const int k1 = std::min(R, k0 + planesPerSlab);
+    slabPoints(bounds, R, h, k0, k1, X);
+    storeSlabValues(field, X, out + plane * k0);
+  }
+}
+
+// Throws InputError unless R ≥ 2, brick cells ≥ 1 and the bounds are finite with min < max.
+void checkBakeArguments(const Box<3>& bounds, const VolumeBakeOptions& options) {
+  const int R = options.resolution;
+  const int C = options.brickCells;
+  if (R < 2) throw InputError("volume bake: resolution must be ≥ 2 (got " + std::to_string(R) + ")");
+  if (C < 1) throw InputError("volume bake: brick cells must be ≥ 1 (got " + std::to_string(C) + ")");
+  if (!((bounds.hi - bounds.lo).array() > 0).all() || !bounds.lo.allFinite() || !bounds.hi.allFinite())
+    throw InputError("volume bake: bounds must be finite with min < max");
+}
+
+// The bake's bricks of C cells per axis: Lipschitz bounds and centre values from the field,
+// and each brick's least and greatest baked sample (its (C + 1)³ samples, fewer at the end).
+void fillBakeBricks(const ImplicitField<3>& field, VolumeBake& bake) {
+  const int R = bake.resolution, C = bake.brickCells;
+  const std::size_t plane = std::size_t(R) * R;
+  BrickGrid& grid = bake.bricks;
+  grid.bounds = bake.bounds;
+  const int perAxis = (R - 1 + C - 1) / C;
+  grid.count = Eigen::Array3i::Constant(perAxis);
+  grid.size = double(C) * bake.spacing();
+  fillBrickGrid(field, grid);
+  const int n = grid.brickCount();
+  bake.brickMin.assign(n, 0.0f);
+  bake.brickMax.assign(n, 0.0f);
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < n; ++b) {
+    const int bx = b % perAxis, by = (b / perAxis) % perAxis, bz = b / (perAxis * perAxis);
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (int k = bz * C; k <= std::min((bz + 1) * C, R - 1); ++k)
+      for (int j = by * C; j <= std::min((by + 1) * C, R - 1); ++j) {
+        const float* row = bake.values.data() + plane * k + std::size_t(R) * j;
+        for (int i = bx * C; i <= std::min((bx + 1) * C, R - 1); ++i) {
+          lo = std::min(lo, row[i]);
+          hi = std::max(hi, row[i]);
+        }
+      }
+    bake.brickMin[b] = lo;
+    bake.brickMax[b] = hi;
+  }
+}
 }  // namespace
 
 Box<3> BrickGrid::brickBox(int bx, int by, int bz) const {
@@ -227,88 +320,23 @@ double VolumeBake::interpolate(const Vec<3>& x) const {
 }
 
 VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const VolumeBakeOptions& options) {
-  const int R = options.resolution;
-  const int C = options.brickCells;
-  if (R < 2) throw InputError("volume bake: resolution must be ≥ 2 (got " + std::to_string(R) + ")");
-  if (C < 1) throw InputError("volume bake: brick cells must be ≥ 1 (got " + std::to_string(C) + ")");
-  if (!((bounds.hi - bounds.lo).array() > 0).all() || !bounds.lo.allFinite() || !bounds.hi.allFinite())
-    throw InputError("volume bake: bounds must be finite with min < max");
-
+  checkBakeArguments(bounds, options);
   VolumeBake bake;
   bake.bounds = bounds;
-  bake.resolution = R;
-  bake.brickCells = C;
-  const std::size_t plane = std::size_t(R) * R;
-  bake.values.resize(plane * R);
+  bake.resolution = options.resolution;
+  bake.brickCells = options.brickCells;
+  const int R = bake.resolution;
+  bake.values.resize(std::size_t(R) * R * R);
   const Vec<3> h = bake.spacing();
 
   auto t0 = std::chrono::steady_clock::now();
-  if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data(), options.cancel)) {
-  // Slabs of whole z-planes, ~64k points each: large enough for evaluateBatch's threads,
-  // small enough to keep X (3 × points doubles) in cache-friendly sizes.
-  const int planesPerSlab = std::max<int>(1, int(65536 / plane));
-  Points<3> X;
-  Eigen::VectorXd f;
-  std::vector<char> valid;
-  for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
-    throwIfCancelled(options.cancel);
-    const int k1 = std::min(R, k0 + planesPerSlab);
-    const Eigen::Index m = Eigen::Index(plane) * (k1 - k0);
-    X.resize(3, m);
-#pragma omp parallel for schedule(static)
-    for (int k = k0; k < k1; ++k) {
-      const double z = bounds.lo.z() + h.z() * k;
-      for (int j = 0; j < R; ++j) {
-        const double y = bounds.lo.y() + h.y() * j;
-        Eigen::Index col = Eigen::Index(plane) * (k - k0) + Eigen::Index(R) * j;
-        for (int i = 0; i < R; ++i, ++col) X.col(col) = Vec<3>(bounds.lo.x() + h.x() * i, y, z);
-      }
-    }
-    float* out = bake.values.data() + plane * k0;
-    if (field.everywhereValid()) {
-      field.evaluateBatch(X, f);
-#pragma omp parallel for schedule(static)
-      for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
-    } else {
-      // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
-      // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
-      // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
-      // often exactly 0 (a compact kernel beyond r of every sample).
-      field.evaluateValidBatch(X, f, valid);
-#pragma omp parallel for schedule(static)
-      for (Eigen::Index q = 0; q < m; ++q)
-        out[q] = valid[std::size_t(q)] ? float(f(q)) : std::max(float(std::abs(f(q))), kNoDataFloor);
-    }
-  }
-  }
+  if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data(), options.cancel))
+    bakeBatched(field, bounds, R, h, bake.values.data(), options.cancel);
   throwIfCancelled(options.cancel);
   bake.sampleMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
-  BrickGrid& grid = bake.bricks;
-  grid.bounds = bounds;
-  const int perAxis = (R - 1 + C - 1) / C;
-  grid.count = Eigen::Array3i::Constant(perAxis);
-  grid.size = double(C) * h;
-  fillBrickGrid(field, grid);
-  const int n = grid.brickCount();
-  bake.brickMin.assign(n, 0.0f);
-  bake.brickMax.assign(n, 0.0f);
-#pragma omp parallel for schedule(static)
-  for (int b = 0; b < n; ++b) {
-    const int bx = b % perAxis, by = (b / perAxis) % perAxis, bz = b / (perAxis * perAxis);
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (int k = bz * C; k <= std::min((bz + 1) * C, R - 1); ++k)
-      for (int j = by * C; j <= std::min((by + 1) * C, R - 1); ++j) {
-        const float* row = bake.values.data() + plane * k + std::size_t(R) * j;
-        for (int i = bx * C; i <= std::min((bx + 1) * C, R - 1); ++i) {
-          lo = std::min(lo, row[i]);
-          hi = std::max(hi, row[i]);
-        }
-      }
-    bake.brickMin[b] = lo;
-    bake.brickMax[b] = hi;
-  }
+  fillBakeBricks(field, bake);
   bake.brickMs = msSince(t0);
   return bake;
 }
