@@ -189,10 +189,10 @@ void slabPoints(const Box<3>& bounds, int R, const Vec<3>& h, int k0, int k1, Po
   }
 }
 
-// out[q] = f(X.col(q)) as float, for every column of X.
-void storeSlabValues(const ImplicitField<3>& field, const Points<3>& X, float* out) {
+// out[q] = f(X.col(q)) as float, for every column of X; f and valid are scratch kept between slabs.
+void storeSlabValues(const ImplicitField<3>& field, const Points<3>& X, Eigen::VectorXd& f, std::vector<char>& valid,
+                     float* out) {
   const Eigen::Index m = X.cols();
-  Eigen::VectorXd f;
   if (field.everywhereValid()) {
     field.evaluateBatch(X, f);
 #pragma omp parallel for schedule(static)
@@ -203,7 +203,6 @@ void storeSlabValues(const ImplicitField<3>& field, const Points<3>& X, float* o
   // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
   // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
   // often exactly 0 (a compact kernel beyond r of every sample).
-  std::vector<char> valid;
   field.evaluateValidBatch(X, f, valid);
 #pragma omp parallel for schedule(static)
   for (Eigen::Index q = 0; q < m; ++q)
@@ -218,11 +217,13 @@ void bakeBatched(const ImplicitField<3>& field, const Box<3>& bounds, int R, con
   const std::size_t plane = std::size_t(R) * R;
   const int planesPerSlab = std::max<int>(1, int(65536 / plane));
   Points<3> X;
+  Eigen::VectorXd f;
+  std::vector<char> valid;
   for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
     throwIfCancelled(cancel);
     const int k1 = std::min(R, k0 + planesPerSlab);
     slabPoints(bounds, R, h, k0, k1, X);
-    storeSlabValues(field, X, out + plane * k0);
+    storeSlabValues(field, X, f, valid, out + plane * k0);
   }
 }
 
