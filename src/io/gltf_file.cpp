@@ -231,13 +231,21 @@ struct Collected {
   bool everyPrimitiveHasNormals = true;
 };
 
-void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
-                  const Eigen::Affine3d& transform, const std::string& path, Collected& out) {
+// The primitive's mode (triangles when unset); throws for lines, which are not supported.
+int checkedPrimitiveMode(const tinygltf::Primitive& primitive, const std::string& where, const std::string& path) {
   const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (mode != TINYGLTF_MODE_POINTS && mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
       mode != TINYGLTF_MODE_TRIANGLE_FAN)
     throw InputError(path + ": " + where + " has mode " + std::to_string(mode) +
                      " (lines), which is not supported; expected points (0) or triangles (4, 5, 6)");
+  return mode;
+}
+
+// Appends the primitive's positions (and normals, if every vertex has one) in world space to
+// out; returns how many vertices it has.
+std::size_t addPrimitiveVertices(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                 const std::string& where, const Eigen::Affine3d& transform, const std::string& path,
+                                 Collected& out) {
   const auto position = primitive.attributes.find("POSITION");
   if (position == primitive.attributes.end()) throw InputError(path + ": " + where + " has no POSITION attribute");
   const AccessorData positions = checkedAccessor(model, position->second, where + " POSITION", TINYGLTF_TYPE_VEC3, false, path);
@@ -253,30 +261,39 @@ void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primi
   }
   if (out.vertices.size() + positions.count > static_cast<std::size_t>(kMaxMeshElements))
     throw InputError(path + ": more vertices than this reader supports");
-
-  const std::size_t base = out.vertices.size();
   const Eigen::Matrix3d normalMatrix = transform.linear().inverse().transpose();
   for (std::size_t i = 0; i < positions.count; ++i) {
     out.vertices.push_back(transform * readVec3(positions, i));
     if (normals.count) out.normals.push_back(normalMatrix * readVec3(normals, i));
   }
-  if (mode == TINYGLTF_MODE_POINTS) return;
+  return positions.count;
+}
 
-  // Corner list: the index accessor, or 0, 1, 2, … without one.
+// The primitive's corner list: its index accessor (each index checked against vertexCount), or
+// 0, 1, 2, … without one.
+std::vector<std::uint32_t> primitiveCorners(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
+                                            std::size_t vertexCount, const std::string& where, const std::string& path) {
   std::vector<std::uint32_t> corner;
   if (primitive.indices >= 0) {
     const AccessorData indices = checkedAccessor(model, primitive.indices, where + " indices", TINYGLTF_TYPE_SCALAR, true, path);
     corner.resize(indices.count);
     for (std::size_t i = 0; i < indices.count; ++i) {
       corner[i] = readIndex(indices, i);
-      if (corner[i] >= positions.count)
+      if (corner[i] >= vertexCount)
         throw InputError(path + ": " + where + " index " + std::to_string(i) + " is " + std::to_string(corner[i]) +
-                         ", but the primitive has " + std::to_string(positions.count) + " vertices");
+                         ", but the primitive has " + std::to_string(vertexCount) + " vertices");
     }
   } else {
-    corner.resize(positions.count);
+    corner.resize(vertexCount);
     for (std::size_t i = 0; i < corner.size(); ++i) corner[i] = static_cast<std::uint32_t>(i);
   }
+  return corner;
+}
+
+// Appends the triangles of a triangle list, strip or fan over the corners to out.corners, the
+// primitive's vertices starting at out.vertices[base].
+void addTriangles(int mode, const std::vector<std::uint32_t>& corner, std::size_t base, const std::string& where,
+                  const std::string& path, Collected& out) {
   auto triangle = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     out.corners.insert(out.corners.end(), {static_cast<int>(base + a), static_cast<int>(base + b), static_cast<int>(base + c)});
   };
@@ -292,6 +309,16 @@ void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primi
   } else {
     for (std::size_t i = 1; i + 1 < corner.size(); ++i) triangle(corner[0], corner[i], corner[i + 1]);
   }
+}
+
+// Appends one mesh primitive, in world space, to out.
+void addPrimitive(const tinygltf::Model& model, const tinygltf::Primitive& primitive, const std::string& where,
+                  const Eigen::Affine3d& transform, const std::string& path, Collected& out) {
+  const int mode = checkedPrimitiveMode(primitive, where, path);
+  const std::size_t base = out.vertices.size();
+  const std::size_t vertexCount = addPrimitiveVertices(model, primitive, where, transform, path, out);
+  if (mode == TINYGLTF_MODE_POINTS) return;
+  addTriangles(mode, primitiveCorners(model, primitive, vertexCount, where, path), base, where, path, out);
 }
 
 void addMesh(const tinygltf::Model& model, int meshIndex, const Eigen::Affine3d& transform, const std::string& path,

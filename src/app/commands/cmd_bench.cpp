@@ -418,9 +418,8 @@ void addMeshJobs(Jobs& jobs, const BenchArgs& args) {
   });
 }
 
-// Rendering (on the OpenGL that OSMesa finds), the patch editor, GUI latency, PU at scale.
-void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
-  // Rendering, on the OpenGL that OSMesa finds on this machine.
+// Rendering, on the OpenGL that OSMesa finds on this machine.
+void addTracerJobs(Jobs& jobs, const BenchArgs& args) {
   jobs.emplace_back("render/bake-trace-refine", [quick = args.quick]() -> Result {
     const TracerBenchResult r =
         quick ? benchTracer(50, 100, 32, 128, 96, 1) : benchTracer(250, 1000, 128, 1024, 768, 3);
@@ -441,9 +440,10 @@ void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
     return {"render/field2d-refit-redraw", {{"points", o.points}, {"size", o.size}, {"fit_ms", r.fitMs},
             {"evaluate_ms", r.evaluateMs}, {"draw_ms", r.drawMs}}, r.medianMs, "ms"};
   });
+}
 
-  jobs.emplace_back("patch/retessellate-4x4-64", [quick = args.quick] { return benchRetessellate(quick); });
-  // GUI latency: dragging a sample until the refitted view is on screen.
+// GUI latency: dragging a sample until the refitted view is on screen.
+void addDragLatencyJobs(Jobs& jobs, const BenchArgs& args) {
   for (const auto& [dim, n] : {std::pair{3, 250}, std::pair{2, 200}}) {
     const std::string name = "gui/drag-latency-" + std::to_string(dim) + "d/N=" + std::to_string(n);
     jobs.emplace_back(name, [name, dim = dim, n = n, quick = args.quick]() -> Result {
@@ -453,30 +453,41 @@ void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
                      {"with_frame_wait_ms", r.withFrameWaitMs}}, r.medianMs, "ms"};
     });
   }
+}
 
-  // Frame times while a fit or a settled render runs (issue 18: ≤ 33 ms at 1280×800). The
-  // worst frame's steps (worst_phases) say where its time went. The dense fit of 1 500 samples
-  // (6 000 unknowns) takes seconds, the 5 000-sample one (20 000 unknowns) many minutes.
-  const auto busyParams = [](const BusyFramesResult& r) {
-    json phases = json::object();
-    for (std::size_t k = 0; k < kFramePhaseNames.size(); ++k) phases[std::string(kFramePhaseNames[k])] = r.worstPhases.ms[k];
-    phases["present"] = r.worstPresentMs;
-    return json{{"samples", r.samples}, {"width", r.width}, {"height", r.height}, {"median_ms", r.medianMs},
-                {"frames", r.frames}, {"total_ms", r.totalMs}, {"fit_ms", r.fitMs}, {"frames_over_33ms", r.over33},
-                {"worst_phases", phases}};
-  };
+// A busy-frames bench's parameters; the worst frame's steps (worst_phases) say where its time went.
+json busyFramesParams(const BusyFramesResult& r) {
+  json phases = json::object();
+  for (std::size_t k = 0; k < kFramePhaseNames.size(); ++k) phases[std::string(kFramePhaseNames[k])] = r.worstPhases.ms[k];
+  phases["present"] = r.worstPresentMs;
+  return json{{"samples", r.samples}, {"width", r.width}, {"height", r.height}, {"median_ms", r.medianMs},
+              {"frames", r.frames}, {"total_ms", r.totalMs}, {"fit_ms", r.fitMs}, {"frames_over_33ms", r.over33},
+              {"worst_phases", phases}};
+}
+
+// Frame times while a fit or a settled render runs (issue 18: ≤ 33 ms at 1280×800). The dense
+// fit of 1 500 samples (6 000 unknowns) takes seconds, the 5 000-sample one (20 000 unknowns)
+// many minutes.
+void addBusyFramesJobs(Jobs& jobs, const BenchArgs& args) {
   for (const int n : {1500, 5000}) {
     const std::string name = "gui/frames-during-dense-fit/N=" + std::to_string(n);
-    jobs.emplace_back(name, [quick = args.quick, n, name, busyParams]() -> Result {
+    jobs.emplace_back(name, [quick = args.quick, n, name]() -> Result {
       const BusyFramesResult r = benchFramesDuringDenseFit(quick ? 300 : n, quick ? 400 : 1280, quick ? 300 : 800);
-      return {name, busyParams(r), r.worstMs, "ms worst frame"};
+      return {name, busyFramesParams(r), r.worstMs, "ms worst frame"};
     });
   }
-  jobs.emplace_back("gui/frames-during-settled-render/pu-N=5000", [quick = args.quick, busyParams]() -> Result {
+  jobs.emplace_back("gui/frames-during-settled-render/pu-N=5000", [quick = args.quick]() -> Result {
     const BusyFramesResult r = benchFramesDuringSettledRender(quick ? 300 : 5000, quick ? 400 : 1280, quick ? 300 : 800);
-    return {"gui/frames-during-settled-render/pu-N=5000", busyParams(r), r.worstMs, "ms worst frame"};
+    return {"gui/frames-during-settled-render/pu-N=5000", busyFramesParams(r), r.worstMs, "ms worst frame"};
   });
+}
 
+// Rendering (on the OpenGL that OSMesa finds), the patch editor, GUI latency, PU at scale.
+void addRenderJobs(Jobs& jobs, const BenchArgs& args) {
+  addTracerJobs(jobs, args);
+  jobs.emplace_back("patch/retessellate-4x4-64", [quick = args.quick] { return benchRetessellate(quick); });
+  addDragLatencyJobs(jobs, args);
+  addBusyFramesJobs(jobs, args);
   // Partition of unity at scale: run on their own (--only pu3d), they take a while.
   for (const auto& [label, N] : {std::pair<const char*, int>{"1e5", 100000}, {"1e6", 1000000}}) {
     const int n = args.quick ? N / 100 : N;

@@ -125,85 +125,126 @@ FrameLog::Frame logFrame(GuiApp& app, const FrameInput& in, const FrameInput& pr
   return f;
 }
 
+// The GLFW window of the scene's document, or null (after a note on stderr) without a display.
+std::unique_ptr<render::RenderContext> openWindow(const Scene& scene, const std::string& documentPath) {
+  try {
+    render::ContextOptions co;
+    co.width = 1280;
+    co.height = 800;
+    co.title = documentTitle(Document(scene, documentPath));
+    return render::createContext("glfw", co);
+  } catch (const EnvironmentError& e) {
+    std::fprintf(stderr, "note: the GUI needs a display (%s); printing the scene's fit report instead.\n", e.what());
+    return nullptr;
+  }
+}
+
+// The window's GUI options: the monitor's content scale (2 on a HiDPI screen) unless --ui-scale
+// (uiScale > 0) says otherwise.
+GuiOptions windowGuiOptions(GLFWwindow* window, double uiScale) {
+  GuiOptions options;
+  options.iniFile = false;  // the layout is fixed; nothing worth remembering
+  options.lowPriorityFits = true;
+  float contentScaleX = 1, contentScaleY = 1;
+  glfwGetWindowContentScale(window, &contentScaleX, &contentScaleY);
+  options.uiScale = uiScale > 0 ? float(uiScale) : contentScaleX;
+  return options;
+}
+
+// The window's frame loop and what it carries from one frame to the next.
+class FrameLoop {
+ public:
+  FrameLoop(render::RenderContext& context, InputCollector& input, GuiApp& app)
+      : context_(context), window_(context.window()), input_(input), app_(app) {
+    if (const char* logPath = std::getenv("HERMITE_GUI_LOG"); logPath && *logPath)
+      log_ = std::make_unique<FrameLog>(logPath);
+    // A test hook (docs/cli.md): every frame takes at least this long, so that input arrives
+    // during slow frames (tests/window/xvfb_click.sh).
+    const char* delay = std::getenv("HERMITE_GUI_FRAME_DELAY_MS");
+    frameDelayMs_ = delay && *delay ? std::max(0.0, std::atof(delay)) : 0.0;
+    last_ = glfwGetTime();
+    title_ = documentTitle(app.document());
+  }
+
+  // Frames until the window closes or the app asks to quit.
+  void run() {
+    while (!glfwWindowShouldClose(window_) && !app_.quitRequested()) {
+      // Wait for events (at most 1/60 s while anything runs), and not at all while events recorded
+      // earlier still wait for their frames; then draw only a frame that shows something new.
+      const bool busy = app_.busy(), held = keyHeld(previous_);
+      if (input_.queue.pending() > 0) glfwPollEvents();
+      else glfwWaitEventsTimeout(pacing_.waitSeconds(busy || held));
+      const bool hasInput = input_.queue.pending() > 0 || input_.refresh;
+      if (!pacing_.due(glfwGetTime(), hasInput, app_.wantsFrame() || held, busy)) continue;
+      drawFrame(hasInput);
+    }
+  }
+
+ private:
+  // Takes the input waiting since the last frame, draws it and shows it; nothing while minimised.
+  void drawFrame(bool hasInput) {
+    int ww = 0, wh = 0;
+    glfwGetWindowSize(window_, &ww, &wh);
+    const render::FramebufferSize fb = context_.framebufferSize();
+    if (fb.width <= 0 || fb.height <= 0) return;  // minimised
+    input_.scaleX = ww > 0 ? double(fb.width) / ww : 1.0;
+    input_.scaleY = wh > 0 ? double(fb.height) / wh : 1.0;
+    FrameInput in = input_.queue.takeFrame(fb.width, fb.height);
+    const double now = glfwGetTime();
+    in.deltaSeconds = now - last_;
+    last_ = now;
+    app_.frame(in);
+    pacing_.drawn(now, hasInput);
+    input_.refresh = false;
+    if (frameDelayMs_ > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frameDelayMs_));
+    context_.present();
+    if (log_) logDrawnFrame(in, now);
+    previous_ = std::move(in);
+    if (std::string shown = documentTitle(app_.document()); shown != title_) {
+      title_ = std::move(shown);
+      glfwSetWindowTitle(window_, title_.c_str());
+    }
+  }
+
+  // The frame log's records of the frame drawn at `start` from input `in`.
+  void logDrawnFrame(const FrameInput& in, double start) {
+    FrameLog::Frame f = logFrame(app_, in, previous_, start, input_.queue.oldestTakenTime());
+    f.fitRunning = app_.worker().busy();
+    f.viewPending = app_.viewPending();
+    f.phases = app_.lastPhases();
+    f.selected = app_.selectedSample();
+    log_->frame(f);
+    log_->widgets(app_.widgetRects());
+  }
+
+  render::RenderContext& context_;
+  GLFWwindow* window_;
+  InputCollector& input_;
+  GuiApp& app_;
+  std::unique_ptr<FrameLog> log_;  // HERMITE_GUI_LOG's frame log, or null
+  double frameDelayMs_ = 0;        // HERMITE_GUI_FRAME_DELAY_MS, ≥ 0
+  FramePacing pacing_;
+  FrameInput previous_;            // the last frame's input
+  double last_ = 0;                // glfwGetTime() of the last frame, seconds
+  std::string title_;              // the window's title
+};
+
 }  // namespace
 
 int runDefault(const SceneArgs& args, double uiScale) {
   const Scene scene = framedOnLoad(loadCommandScene(args));
   // A data file is not the document's file: Save writes a scene beside it (gui_context.cpp).
   const std::string documentPath = args.scenePath.empty() || !isSceneFilePath(args.scenePath) ? "" : args.scenePath;
-  std::unique_ptr<render::RenderContext> context;
-  try {
-    render::ContextOptions co;
-    co.width = 1280;
-    co.height = 800;
-    co.title = documentTitle(Document(scene, documentPath));
-    context = render::createContext("glfw", co);
-  } catch (const EnvironmentError& e) {
-    std::fprintf(stderr, "note: the GUI needs a display (%s); printing the scene's fit report instead.\n", e.what());
+  const std::unique_ptr<render::RenderContext> context = openWindow(scene, documentPath);
+  if (!context) {
     FitArgs f;
     f.scene = args;
     return runFit(f);
   }
-  GLFWwindow* window = context->window();
   InputCollector input;
-  installCallbacks(window, &input);
-
-  GuiOptions options;
-  options.iniFile = false;  // the layout is fixed; nothing worth remembering
-  options.lowPriorityFits = true;
-  // The monitor's content scale (2 on a HiDPI screen) unless --ui-scale says otherwise.
-  float contentScaleX = 1, contentScaleY = 1;
-  glfwGetWindowContentScale(window, &contentScaleX, &contentScaleY);
-  options.uiScale = uiScale > 0 ? float(uiScale) : contentScaleX;
-  GuiApp app(Document(scene, documentPath), options);
-  std::unique_ptr<FrameLog> log;
-  if (const char* logPath = std::getenv("HERMITE_GUI_LOG"); logPath && *logPath) log = std::make_unique<FrameLog>(logPath);
-  // A test hook (docs/cli.md): every frame takes at least this long, so that input arrives
-  // during slow frames (tests/window/xvfb_click.sh).
-  const char* delay = std::getenv("HERMITE_GUI_FRAME_DELAY_MS");
-  const double frameDelayMs = delay && *delay ? std::max(0.0, std::atof(delay)) : 0.0;
-  FrameInput previous;
-  double last = glfwGetTime();
-  std::string title = documentTitle(app.document());
-  FramePacing pacing;
-  while (!glfwWindowShouldClose(window) && !app.quitRequested()) {
-    // Wait for events (at most 1/60 s while anything runs), and not at all while events recorded
-    // earlier still wait for their frames; then draw only a frame that shows something new.
-    const bool busy = app.busy(), held = keyHeld(previous);
-    if (input.queue.pending() > 0) glfwPollEvents();
-    else glfwWaitEventsTimeout(pacing.waitSeconds(busy || held));
-    const bool hasInput = input.queue.pending() > 0 || input.refresh;
-    if (!pacing.due(glfwGetTime(), hasInput, app.wantsFrame() || held, busy)) continue;
-    int ww = 0, wh = 0;
-    glfwGetWindowSize(window, &ww, &wh);
-    const render::FramebufferSize fb = context->framebufferSize();
-    if (fb.width <= 0 || fb.height <= 0) continue;  // minimised
-    input.scaleX = ww > 0 ? double(fb.width) / ww : 1.0;
-    input.scaleY = wh > 0 ? double(fb.height) / wh : 1.0;
-    FrameInput in = input.queue.takeFrame(fb.width, fb.height);
-    const double now = glfwGetTime();
-    in.deltaSeconds = now - last;
-    last = now;
-    app.frame(in);
-    pacing.drawn(now, hasInput);
-    input.refresh = false;
-    if (frameDelayMs > 0) std::this_thread::sleep_for(std::chrono::duration<double, std::milli>(frameDelayMs));
-    context->present();
-    if (log) {
-      FrameLog::Frame f = logFrame(app, in, previous, now, input.queue.oldestTakenTime());
-      f.fitRunning = app.worker().busy();
-      f.viewPending = app.viewPending();
-      f.phases = app.lastPhases();
-      f.selected = app.selectedSample();
-      log->frame(f);
-      log->widgets(app.widgetRects());
-    }
-    previous = std::move(in);
-    if (std::string shown = documentTitle(app.document()); shown != title) {
-      title = std::move(shown);
-      glfwSetWindowTitle(window, title.c_str());
-    }
-  }
+  installCallbacks(context->window(), &input);
+  GuiApp app(Document(scene, documentPath), windowGuiOptions(context->window(), uiScale));
+  FrameLoop(*context, input, app).run();
   return 0;
 }
 

@@ -169,19 +169,10 @@ class CellIndex {
   Cell<Dim> maxCell_;
 };
 
-}  // namespace
-
+// Throws for a non-finite coordinate or normal or a zero normal; scales every normal to unit length.
 template <int Dim>
-void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& warnings,
-                     const std::string& source) {
-  Points<Dim>& P = samples.points;
-  Points<Dim>& N = samples.normals;
-  if (P.cols() != N.cols())
-    throw InputError(source + ": " + std::to_string(P.cols()) + " points but " +
-                     std::to_string(N.cols()) + " normals (one normal per point)");
-  const Eigen::Index n = P.cols();
-
-  for (Eigen::Index i = 0; i < n; ++i) {
+void normalizeNormals(const Points<Dim>& P, Points<Dim>& N, const std::string& source) {
+  for (Eigen::Index i = 0; i < P.cols(); ++i) {
     // Built only for a message: a string for every sample would slow down large clouds.
     const auto sample = [&] { return source + ": sample " + std::to_string(i) + ": "; };
     if (!P.col(i).allFinite()) throw InputError(sample() + "non-finite coordinate " + formatVector<Dim>(P.col(i)));
@@ -192,20 +183,24 @@ void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& war
     const Vec<Dim> scaled = N.col(i) / largest;
     N.col(i) = scaled / scaled.norm();
   }
+}
 
-  // Exact duplicates: sort lexicographically by coordinates, O(N log N). The coordinates are
-  // copied next to their index so the sort compares contiguous keys instead of chasing indices.
+// The sample indices sorted lexicographically by coordinates, equal points by index (so the
+// first of a run is the smallest index), O(N log N). The coordinates are copied next to their
+// index so the sort compares contiguous keys instead of chasing indices.
+template <int Dim>
+std::vector<Eigen::Index> lexicographicOrder(const Points<Dim>& P) {
   struct Key {
     std::array<double, Dim> p;
     Eigen::Index index;
   };
+  const Eigen::Index n = P.cols();
   std::vector<Key> keys(static_cast<std::size_t>(n));
   for (Eigen::Index i = 0; i < n; ++i) {
     Key& k = keys[static_cast<std::size_t>(i)];
     for (int c = 0; c < Dim; ++c) k.p[static_cast<std::size_t>(c)] = P(c, i);
     k.index = i;
   }
-  // Equal points ordered by index, so the first of a run is the smallest index.
   std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
     for (std::size_t c = 0; c < Dim; ++c) {
       if (a.p[c] < b.p[c]) return true;
@@ -215,12 +210,24 @@ void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& war
   });
   std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
   for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
-  keys = {};
+  return order;
+}
 
-  constexpr double kNormalTolerance = 1e-12;
-  std::vector<char> removed(static_cast<std::size_t>(n), 0);
-  Eigen::Index mergedCount = 0;
+// Exact duplicates found in runs of equal points: each but the first of a run, with one
+// example pair for the warning.
+struct Duplicates {
+  std::vector<char> removed;  // one per sample, 1 for a repeat
+  Eigen::Index count = 0;
   Eigen::Index exampleKept = -1, exampleRemoved = -1;
+};
+
+// The repeats of earlier samples; throws when a repeat's normal differs from its first's.
+template <int Dim>
+Duplicates findDuplicates(const Points<Dim>& P, const Points<Dim>& N, const std::string& source) {
+  constexpr double kNormalTolerance = 1e-12;
+  const std::vector<Eigen::Index> order = lexicographicOrder<Dim>(P);
+  Duplicates d;
+  d.removed.assign(static_cast<std::size_t>(P.cols()), 0);
   for (std::size_t s = 0; s < order.size();) {
     std::size_t e = s + 1;
     const Eigen::Index first = order[s];
@@ -231,17 +238,21 @@ void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& war
                          " are at the same point " + formatVector<Dim>(P.col(first)) +
                          " but have different normals " + formatVector<Dim>(N.col(first)) + " and " +
                          formatVector<Dim>(N.col(j)));
-      removed[j] = 1;
-      if (mergedCount == 0) exampleKept = first, exampleRemoved = j;
-      ++mergedCount;
+      d.removed[j] = 1;
+      if (d.count == 0) d.exampleKept = first, d.exampleRemoved = j;
+      ++d.count;
       ++e;
     }
     s = e;
   }
-  if (mergedCount == 0) return;
+  return d;
+}
 
+// Drops the removed samples, keeping the order of the rest; returns how many remain.
+template <int Dim>
+Eigen::Index removeSamples(Points<Dim>& P, Points<Dim>& N, const std::vector<char>& removed) {
   Eigen::Index out = 0;
-  for (Eigen::Index i = 0; i < n; ++i) {
+  for (Eigen::Index i = 0; i < P.cols(); ++i) {
     if (removed[i]) continue;
     if (out != i) {
       P.col(out) = P.col(i);
@@ -251,9 +262,26 @@ void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& war
   }
   P.conservativeResize(Eigen::NoChange, out);
   N.conservativeResize(Eigen::NoChange, out);
-  warnings.push_back(source + ": merged " + std::to_string(mergedCount) + " exact duplicate sample" +
-                     (mergedCount == 1 ? "" : "s") + " (e.g. sample " + std::to_string(exampleRemoved) +
-                     " repeats sample " + std::to_string(exampleKept) + "); " + std::to_string(out) +
+  return out;
+}
+
+}  // namespace
+
+template <int Dim>
+void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& warnings,
+                     const std::string& source) {
+  Points<Dim>& P = samples.points;
+  Points<Dim>& N = samples.normals;
+  if (P.cols() != N.cols())
+    throw InputError(source + ": " + std::to_string(P.cols()) + " points but " +
+                     std::to_string(N.cols()) + " normals (one normal per point)");
+  normalizeNormals<Dim>(P, N, source);
+  const Duplicates d = findDuplicates<Dim>(P, N, source);
+  if (d.count == 0) return;
+  const Eigen::Index remaining = removeSamples<Dim>(P, N, d.removed);
+  warnings.push_back(source + ": merged " + std::to_string(d.count) + " exact duplicate sample" +
+                     (d.count == 1 ? "" : "s") + " (e.g. sample " + std::to_string(d.exampleRemoved) +
+                     " repeats sample " + std::to_string(d.exampleKept) + "); " + std::to_string(remaining) +
                      " samples remain");
 }
 

@@ -150,26 +150,22 @@ RayHit CpuTracer::trace(const Ray& ray) const {
   return h;
 }
 
-CpuTraceResult CpuTracer::render(const Camera& camera, const std::array<double, 3>& background) const {
+// Every pixel's ray clipped to the bounds (Miss where it passes by them).
+std::vector<CpuTracer::RayState> CpuTracer::startRays(const Camera& camera) const {
   const int W = camera.width(), H = camera.height();
   const std::size_t n = std::size_t(W) * H;
-  CpuTraceResult out;
-  out.image = ImageRgba8(W, H);
-  out.hit.assign(n, 0);
-  out.back.assign(n, 0);
-  out.depth.assign(n, std::numeric_limits<float>::infinity());
-  out.normal.assign(3 * n, 0.0f);
-  out.setupMs = setupMs_;
-  const auto t0 = std::chrono::steady_clock::now();
-
-  // Wavefront: every live ray asks for one f value per round; the values come from one
-  // evaluateBatch call (threaded and vectorised), then the rays advance in parallel.
   std::vector<RayState> states(n);
 #pragma omp parallel for schedule(static)
   for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p)
     states[p] = start(camera.pixelRay(int(p % W), int(p / W)));
+  return states;
+}
+
+// Wavefront: every live ray asks for one f value per round; the values come from one
+// evaluateBatch call (threaded and vectorised), then the rays advance in parallel.
+void CpuTracer::marchWavefront(std::vector<RayState>& states) const {
   std::vector<std::ptrdiff_t> live;
-  for (std::size_t p = 0; p < n; ++p)
+  for (std::size_t p = 0; p < states.size(); ++p)
     if (states[p].phase != RayState::Miss) live.push_back(std::ptrdiff_t(p));
   Points<3> X;
   Eigen::VectorXd f;
@@ -188,23 +184,32 @@ CpuTraceResult CpuTracer::render(const Camera& camera, const std::array<double, 
     }
     live.resize(kept);
   }
+}
 
-  // Normals of all hits in one batch.
+// ∇f at every hit, in one batch; zero for the other rays.
+std::vector<Vec<3>> CpuTracer::hitGradients(const std::vector<RayState>& states) const {
   std::vector<std::ptrdiff_t> hits;
-  for (std::size_t p = 0; p < n; ++p)
+  for (std::size_t p = 0; p < states.size(); ++p)
     if (states[p].phase == RayState::Hit) hits.push_back(std::ptrdiff_t(p));
-  X.resize(3, std::ptrdiff_t(hits.size()));
+  Points<3> X(3, std::ptrdiff_t(hits.size()));
   for (std::size_t q = 0; q < hits.size(); ++q) X.col(std::ptrdiff_t(q)) = states[hits[q]].ray.at(states[hits[q]].t);
+  Eigen::VectorXd f;
   Points<3> G;
   field_.evaluateBatch(X, f, &G);
-  std::vector<Vec<3>> gradient(n, Vec<3>::Zero());
+  std::vector<Vec<3>> gradient(states.size(), Vec<3>::Zero());
   for (std::size_t q = 0; q < hits.size(); ++q) gradient[hits[q]] = G.col(std::ptrdiff_t(q));
+  return gradient;
+}
 
+// Writes each pixel (background on a miss) and its hit, depth and normal; returns all rays' f evaluations.
+long long CpuTracer::shadePixels(const std::vector<RayState>& states, const std::vector<Vec<3>>& gradient,
+                                 const Camera& camera, const std::array<double, 3>& background,
+                                 CpuTraceResult& out) const {
   const std::uint8_t bg[3] = {shading::toByte(background[0]), shading::toByte(background[1]),
                               shading::toByte(background[2])};
   long long evaluations = 0;
 #pragma omp parallel for schedule(static) reduction(+ : evaluations)
-  for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(n); ++p) {
+  for (std::ptrdiff_t p = 0; p < std::ptrdiff_t(states.size()); ++p) {
     const RayHit h = finish(states[p], gradient[p]);
     evaluations += states[p].steps + (h.hit ? 1 : 0);
     std::uint8_t* px = out.image.pixels.data() + 4 * p;
@@ -222,8 +227,25 @@ CpuTraceResult CpuTracer::render(const Camera& camera, const std::array<double, 
     const Vec<3> c = shading::shadeHit(h.normal, states[p].ray.direction, camera.right(), camera.up(), camera.forward());
     for (int k = 0; k < 3; ++k) px[k] = shading::toByte(c(k));
   }
+  return evaluations;
+}
+
+CpuTraceResult CpuTracer::render(const Camera& camera, const std::array<double, 3>& background) const {
+  const int W = camera.width(), H = camera.height();
+  const std::size_t n = std::size_t(W) * H;
+  CpuTraceResult out;
+  out.image = ImageRgba8(W, H);
+  out.hit.assign(n, 0);
+  out.back.assign(n, 0);
+  out.depth.assign(n, std::numeric_limits<float>::infinity());
+  out.normal.assign(3 * n, 0.0f);
+  out.setupMs = setupMs_;
+  const auto t0 = std::chrono::steady_clock::now();
+  std::vector<RayState> states = startRays(camera);
+  marchWavefront(states);
+  const std::vector<Vec<3>> gradient = hitGradients(states);
+  out.evaluations = shadePixels(states, gradient, camera, background, out);
   out.traceMs = msSince(t0);
-  out.evaluations = evaluations;
   return out;
 }
 

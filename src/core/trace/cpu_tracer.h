@@ -69,6 +69,14 @@ class CpuTracer {
   double nextMarch(const RayState& s) const;
   void advance(RayState& s, double value) const;
   RayHit finish(const RayState& s, const Vec<3>& gradient) const;
+  // render()'s steps: every pixel's ray started; all rays advanced in rounds of one batched f
+  // evaluation (a wavefront) until each hits or misses; ∇f at the hits in one batch (zero
+  // elsewhere); the pixels shaded into out, returning the f evaluations of all rays.
+  std::vector<RayState> startRays(const Camera& camera) const;
+  void marchWavefront(std::vector<RayState>& states) const;
+  std::vector<Vec<3>> hitGradients(const std::vector<RayState>& states) const;
+  long long shadePixels(const std::vector<RayState>& states, const std::vector<Vec<3>>& gradient, const Camera& camera,
+                        const std::array<double, 3>& background, CpuTraceResult& out) const;
 
   const ImplicitField<3>& field_;
   Box<3> bounds_;

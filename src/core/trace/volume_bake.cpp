@@ -53,35 +53,109 @@ void fillBrickGrid(const ImplicitField<3>& field, BrickGrid& grid) {
 
 
 #if defined(__AVX512F__)
+constexpr int kBlocks = 8;  // vectors of 8 x-samples per chunk of a row (8 accumulators)
+
+// What the cubic grid bake reads per row: the centres, α and β as separate arrays (n each; β
+// zero without gradients), the row's x-samples (blocks·8, the last repeated past R − 1) and the
+// polynomial p(x − po).
+struct CubicRows {
+  int n = 0, R = 0, blocks = 0;
+  std::vector<double> cx, cy, cz, al, bx, by, bz;
+  std::vector<double> xs;
+  Polynomial poly = Polynomial::None;
+  const Eigen::VectorXd* pc = nullptr;
+  Vec<3> po = Vec<3>::Zero();
+};
+
+// The arrays of CubicRows for a bake of R³ samples from bounds.lo with spacing h.
+CubicRows cubicRows(const RadialSum<3>& rs, const Box<3>& bounds, int R, const Vec<3>& h) {
+  CubicRows g;
+  g.n = int(rs.centres().cols());
+  g.R = R;
+  const bool beta = rs.hasBeta();
+  for (std::vector<double>* v : {&g.cx, &g.cy, &g.cz, &g.al, &g.bx, &g.by, &g.bz}) v->assign(g.n, 0.0);
+  for (int j = 0; j < g.n; ++j) {
+    g.cx[j] = rs.centres()(0, j);
+    g.cy[j] = rs.centres()(1, j);
+    g.cz[j] = rs.centres()(2, j);
+    g.al[j] = rs.alpha()(j);
+    if (beta) {
+      g.bx[j] = rs.beta()(0, j);
+      g.by[j] = rs.beta()(1, j);
+      g.bz[j] = rs.beta()(2, j);
+    }
+  }
+  g.blocks = (R + 7) / 8;
+  g.xs.resize(std::size_t(g.blocks) * 8);
+  for (int i = 0; i < g.blocks * 8; ++i) g.xs[i] = bounds.lo.x() + h.x() * std::min(i, R - 1);
+  g.poly = rs.polynomial();
+  g.pc = &rs.poly();
+  g.po = rs.polyOrigin();
+  return g;
+}
+
+// dst[i] = acc's lane for x-sample i plus the polynomial at (xs[i], y, z), for the nb vectors
+// from block b0 and i < R.
+void storeCubicChunk(const CubicRows& g, int b0, int nb, double y, double z, const __m512d* acc, float* dst) {
+  const Eigen::VectorXd& pc = *g.pc;
+  for (int q = 0; q < nb; ++q) {
+    alignas(64) double v[8];
+    _mm512_store_pd(v, acc[q]);
+    for (int l = 0; l < 8; ++l) {
+      const int i = (b0 + q) * 8 + l;
+      if (i >= g.R) break;
+      const double px = g.xs[i] - g.po(0), py = y - g.po(1), pz = z - g.po(2);
+      const double p = g.poly == Polynomial::Linear ? pc(0) + pc(1) * px + pc(2) * py + pc(3) * pz
+                       : g.poly == Polynomial::None ? 0.0
+                                                    : evaluatePolynomial<3>(g.poly, pc, Vec<3>(px, py, pz), nullptr, nullptr);
+      dst[i] = float(v[l] + p);
+    }
+  }
+}
+
+// One chunk of a row at (y, z): up to kBlocks vectors of x-samples from block b0, summed over
+// every centre. Per pair: f += r (α r² − 3 β·d), with dy² + dz² and βy dy + βz dz hoisted.
+void bakeCubicChunk(const CubicRows& g, int b0, double y, double z, float* dst) {
+  const int nb = std::min(kBlocks, g.blocks - b0);
+  __m512d acc[kBlocks], xv[kBlocks];
+  for (int q = 0; q < kBlocks; ++q) {
+    acc[q] = _mm512_setzero_pd();
+    xv[q] = q < nb ? _mm512_loadu_pd(&g.xs[std::size_t(b0 + q) * 8]) : _mm512_setzero_pd();
+  }
+  for (int c = 0; c < g.n; ++c) {
+    const double dy = y - g.cy[c], dz = z - g.cz[c];
+    const __m512d C = _mm512_set1_pd(dy * dy + dz * dz);
+    const __m512d B = _mm512_set1_pd(-3.0 * (g.by[c] * dy + g.bz[c] * dz));
+    const __m512d X = _mm512_set1_pd(g.cx[c]);
+    const __m512d A = _mm512_set1_pd(g.al[c]);
+    const __m512d BX = _mm512_set1_pd(-3.0 * g.bx[c]);
+    auto pair = [&](int q) {
+      const __m512d dx = _mm512_sub_pd(xv[q], X);
+      const __m512d r2 = _mm512_fmadd_pd(dx, dx, C);
+      const __m512d r = detail::sqrtLanes(r2);
+      // α r² − 3 β·d
+      const __m512d t = _mm512_fmadd_pd(A, r2, _mm512_fmadd_pd(BX, dx, B));
+      acc[q] = _mm512_fmadd_pd(r, t, acc[q]);
+    };
+    if (nb == kBlocks) {
+#pragma GCC unroll 8
+      for (int q = 0; q < kBlocks; ++q) pair(q);
+    } else {
+      for (int q = 0; q < nb; ++q) pair(q);
+    }
+  }
+  storeCubicChunk(g, b0, nb, y, z, acc, dst);
+}
+
 // Grid bake of a cubic RadialSum<3> (HRBF or plain RBF, φ = x³, a = φ′/x = 3x): row by row
-// along x, 8 x-samples per vector, with what depends only on the row and the centre (dy² + dz²,
-// βy dy + βz dz) hoisted out of the x loop — the structure evaluateBatch cannot see. Per pair:
-// f += x (α x² − 3 β·d). Threaded over rows. False (nothing written) for other fields.
+// along x, 8 x-samples per vector, with what depends only on the row and the centre hoisted out
+// of the x loop — the structure evaluateBatch cannot see. Threaded over rows. False (nothing
+// written) for other fields.
 bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out,
                         const CancelToken* cancel) {
   const RadialSum<3>* rs = field.asRadialSum();
   if (rs == nullptr || rs->kernel().type != KernelType::Cubic) return false;
-  const int n = int(rs->centres().cols());
-  const bool beta = rs->hasBeta();
-  std::vector<double> cx(n), cy(n), cz(n), al(n), bx(n, 0.0), by(n, 0.0), bz(n, 0.0);
-  for (int j = 0; j < n; ++j) {
-    cx[j] = rs->centres()(0, j);
-    cy[j] = rs->centres()(1, j);
-    cz[j] = rs->centres()(2, j);
-    al[j] = rs->alpha()(j);
-    if (beta) {
-      bx[j] = rs->beta()(0, j);
-      by[j] = rs->beta()(1, j);
-      bz[j] = rs->beta()(2, j);
-    }
-  }
-  constexpr int kBlocks = 8;  // vectors of 8 x-samples per chunk of a row (8 accumulators)
-  const int blocks = (R + 7) / 8;
-  std::vector<double> xs(std::size_t(blocks) * 8);
-  for (int i = 0; i < blocks * 8; ++i) xs[i] = bounds.lo.x() + h.x() * std::min(i, R - 1);
-  const Polynomial poly = rs->polynomial();
-  const Eigen::VectorXd& pc = rs->poly();
-  const Vec<3> po = rs->polyOrigin();  // the polynomial is p(x − po)
+  const CubicRows g = cubicRows(*rs, bounds, R, h);
   const std::size_t plane = std::size_t(R) * R;
 #pragma omp parallel for schedule(dynamic, 16)
   for (int row = 0; row < R * R; ++row) {
@@ -89,49 +163,7 @@ bool bakeCubicRadialSum(const ImplicitField<3>& field, const Box<3>& bounds, int
     const int j = row % R, k = row / R;
     const double y = bounds.lo.y() + h.y() * j, z = bounds.lo.z() + h.z() * k;
     float* dst = out + plane * k + std::size_t(R) * j;
-    for (int b0 = 0; b0 < blocks; b0 += kBlocks) {
-      const int nb = std::min(kBlocks, blocks - b0);
-      __m512d acc[kBlocks], xv[kBlocks];
-      for (int q = 0; q < kBlocks; ++q) {
-        acc[q] = _mm512_setzero_pd();
-        xv[q] = q < nb ? _mm512_loadu_pd(&xs[std::size_t(b0 + q) * 8]) : _mm512_setzero_pd();
-      }
-      for (int c = 0; c < n; ++c) {
-        const double dy = y - cy[c], dz = z - cz[c];
-        const __m512d C = _mm512_set1_pd(dy * dy + dz * dz);
-        const __m512d B = _mm512_set1_pd(-3.0 * (by[c] * dy + bz[c] * dz));
-        const __m512d X = _mm512_set1_pd(cx[c]);
-        const __m512d A = _mm512_set1_pd(al[c]);
-        const __m512d BX = _mm512_set1_pd(-3.0 * bx[c]);
-        auto pair = [&](int q) {
-          const __m512d dx = _mm512_sub_pd(xv[q], X);
-          const __m512d r2 = _mm512_fmadd_pd(dx, dx, C);
-          const __m512d r = detail::sqrtLanes(r2);
-          // α r² − 3 β·d
-          const __m512d t = _mm512_fmadd_pd(A, r2, _mm512_fmadd_pd(BX, dx, B));
-          acc[q] = _mm512_fmadd_pd(r, t, acc[q]);
-        };
-        if (nb == kBlocks) {
-#pragma GCC unroll 8
-          for (int q = 0; q < kBlocks; ++q) pair(q);
-        } else {
-          for (int q = 0; q < nb; ++q) pair(q);
-        }
-      }
-      for (int q = 0; q < nb; ++q) {
-        alignas(64) double v[8];
-        _mm512_store_pd(v, acc[q]);
-        for (int l = 0; l < 8; ++l) {
-          const int i = (b0 + q) * 8 + l;
-          if (i >= R) break;
-          const double px = xs[i] - po(0), py = y - po(1), pz = z - po(2);
-          const double p = poly == Polynomial::Linear ? pc(0) + pc(1) * px + pc(2) * py + pc(3) * pz
-                           : poly == Polynomial::None ? 0.0
-                                                      : evaluatePolynomial<3>(poly, pc, Vec<3>(px, py, pz), nullptr, nullptr);
-          dst[i] = float(v[l] + p);
-        }
-      }
-    }
+    for (int b0 = 0; b0 < g.blocks; b0 += kBlocks) bakeCubicChunk(g, b0, y, z, dst);
   }
   return true;
 }
@@ -141,6 +173,100 @@ bool bakeCubicRadialSum(const ImplicitField<3>&, const Box<3>&, int, const Vec<3
   return false;
 }
 #endif
+
+// X = the grid points of z-planes k0 … k1 − 1 (3 × R²·(k1 − k0)), x fastest, then y, then z.
+void slabPoints(const Box<3>& bounds, int R, const Vec<3>& h, int k0, int k1, Points<3>& X) {
+  const std::size_t plane = std::size_t(R) * R;
+  X.resize(3, Eigen::Index(plane) * (k1 - k0));
+#pragma omp parallel for schedule(static)
+  for (int k = k0; k < k1; ++k) {
+    const double z = bounds.lo.z() + h.z() * k;
+    for (int j = 0; j < R; ++j) {
+      const double y = bounds.lo.y() + h.y() * j;
+      Eigen::Index col = Eigen::Index(plane) * (k - k0) + Eigen::Index(R) * j;
+      for (int i = 0; i < R; ++i, ++col) X.col(col) = Vec<3>(bounds.lo.x() + h.x() * i, y, z);
+    }
+  }
+}
+
+// out[q] = f(X.col(q)) as float, for every column of X; f and valid are scratch kept between slabs.
+void storeSlabValues(const ImplicitField<3>& field, const Points<3>& X, Eigen::VectorXd& f, std::vector<char>& valid,
+                     float* out) {
+  const Eigen::Index m = X.cols();
+  if (field.everywhereValid()) {
+    field.evaluateBatch(X, f);
+#pragma omp parallel for schedule(static)
+    for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
+    return;
+  }
+  // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
+  // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
+  // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
+  // often exactly 0 (a compact kernel beyond r of every sample).
+  field.evaluateValidBatch(X, f, valid);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index q = 0; q < m; ++q)
+    out[q] = valid[std::size_t(q)] ? float(f(q)) : std::max(float(std::abs(f(q))), kNoDataFloor);
+}
+
+// The R³ samples through evaluateBatch (any field), in slabs of whole z-planes, ~64k points
+// each: large enough for evaluateBatch's threads, small enough to keep X (3 × points doubles)
+// in cache-friendly sizes.
+void bakeBatched(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out,
+                 const CancelToken* cancel) {
+  const std::size_t plane = std::size_t(R) * R;
+  const int planesPerSlab = std::max<int>(1, int(65536 / plane));
+  Points<3> X;
+  Eigen::VectorXd f;
+  std::vector<char> valid;
+  for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
+    throwIfCancelled(cancel);
+    const int k1 = std::min(R, k0 + planesPerSlab);
+    slabPoints(bounds, R, h, k0, k1, X);
+    storeSlabValues(field, X, f, valid, out + plane * k0);
+  }
+}
+
+// Throws InputError unless R ≥ 2, brick cells ≥ 1 and the bounds are finite with min < max.
+void checkBakeArguments(const Box<3>& bounds, const VolumeBakeOptions& options) {
+  const int R = options.resolution;
+  const int C = options.brickCells;
+  if (R < 2) throw InputError("volume bake: resolution must be ≥ 2 (got " + std::to_string(R) + ")");
+  if (C < 1) throw InputError("volume bake: brick cells must be ≥ 1 (got " + std::to_string(C) + ")");
+  if (!((bounds.hi - bounds.lo).array() > 0).all() || !bounds.lo.allFinite() || !bounds.hi.allFinite())
+    throw InputError("volume bake: bounds must be finite with min < max");
+}
+
+// The bake's bricks of C cells per axis: Lipschitz bounds and centre values from the field,
+// and each brick's least and greatest baked sample (its (C + 1)³ samples, fewer at the end).
+void fillBakeBricks(const ImplicitField<3>& field, VolumeBake& bake) {
+  const int R = bake.resolution, C = bake.brickCells;
+  const std::size_t plane = std::size_t(R) * R;
+  BrickGrid& grid = bake.bricks;
+  grid.bounds = bake.bounds;
+  const int perAxis = (R - 1 + C - 1) / C;
+  grid.count = Eigen::Array3i::Constant(perAxis);
+  grid.size = double(C) * bake.spacing();
+  fillBrickGrid(field, grid);
+  const int n = grid.brickCount();
+  bake.brickMin.assign(n, 0.0f);
+  bake.brickMax.assign(n, 0.0f);
+#pragma omp parallel for schedule(static)
+  for (int b = 0; b < n; ++b) {
+    const int bx = b % perAxis, by = (b / perAxis) % perAxis, bz = b / (perAxis * perAxis);
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (int k = bz * C; k <= std::min((bz + 1) * C, R - 1); ++k)
+      for (int j = by * C; j <= std::min((by + 1) * C, R - 1); ++j) {
+        const float* row = bake.values.data() + plane * k + std::size_t(R) * j;
+        for (int i = bx * C; i <= std::min((bx + 1) * C, R - 1); ++i) {
+          lo = std::min(lo, row[i]);
+          hi = std::max(hi, row[i]);
+        }
+      }
+    bake.brickMin[b] = lo;
+    bake.brickMax[b] = hi;
+  }
+}
 }  // namespace
 
 Box<3> BrickGrid::brickBox(int bx, int by, int bz) const {
@@ -195,88 +321,23 @@ double VolumeBake::interpolate(const Vec<3>& x) const {
 }
 
 VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const VolumeBakeOptions& options) {
-  const int R = options.resolution;
-  const int C = options.brickCells;
-  if (R < 2) throw InputError("volume bake: resolution must be ≥ 2 (got " + std::to_string(R) + ")");
-  if (C < 1) throw InputError("volume bake: brick cells must be ≥ 1 (got " + std::to_string(C) + ")");
-  if (!((bounds.hi - bounds.lo).array() > 0).all() || !bounds.lo.allFinite() || !bounds.hi.allFinite())
-    throw InputError("volume bake: bounds must be finite with min < max");
-
+  checkBakeArguments(bounds, options);
   VolumeBake bake;
   bake.bounds = bounds;
-  bake.resolution = R;
-  bake.brickCells = C;
-  const std::size_t plane = std::size_t(R) * R;
-  bake.values.resize(plane * R);
+  bake.resolution = options.resolution;
+  bake.brickCells = options.brickCells;
+  const int R = bake.resolution;
+  bake.values.resize(std::size_t(R) * R * R);
   const Vec<3> h = bake.spacing();
 
   auto t0 = std::chrono::steady_clock::now();
-  if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data(), options.cancel)) {
-  // Slabs of whole z-planes, ~64k points each: large enough for evaluateBatch's threads,
-  // small enough to keep X (3 × points doubles) in cache-friendly sizes.
-  const int planesPerSlab = std::max<int>(1, int(65536 / plane));
-  Points<3> X;
-  Eigen::VectorXd f;
-  std::vector<char> valid;
-  for (int k0 = 0; k0 < R; k0 += planesPerSlab) {
-    throwIfCancelled(options.cancel);
-    const int k1 = std::min(R, k0 + planesPerSlab);
-    const Eigen::Index m = Eigen::Index(plane) * (k1 - k0);
-    X.resize(3, m);
-#pragma omp parallel for schedule(static)
-    for (int k = k0; k < k1; ++k) {
-      const double z = bounds.lo.z() + h.z() * k;
-      for (int j = 0; j < R; ++j) {
-        const double y = bounds.lo.y() + h.y() * j;
-        Eigen::Index col = Eigen::Index(plane) * (k - k0) + Eigen::Index(R) * j;
-        for (int i = 0; i < R; ++i, ++col) X.col(col) = Vec<3>(bounds.lo.x() + h.x() * i, y, z);
-      }
-    }
-    float* out = bake.values.data() + plane * k0;
-    if (field.everywhereValid()) {
-      field.evaluateBatch(X, f);
-#pragma omp parallel for schedule(static)
-      for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
-    } else {
-      // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
-      // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
-      // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
-      // often exactly 0 (a compact kernel beyond r of every sample).
-      field.evaluateValidBatch(X, f, valid);
-#pragma omp parallel for schedule(static)
-      for (Eigen::Index q = 0; q < m; ++q)
-        out[q] = valid[std::size_t(q)] ? float(f(q)) : std::max(float(std::abs(f(q))), kNoDataFloor);
-    }
-  }
-  }
+  if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data(), options.cancel))
+    bakeBatched(field, bounds, R, h, bake.values.data(), options.cancel);
   throwIfCancelled(options.cancel);
   bake.sampleMs = msSince(t0);
 
   t0 = std::chrono::steady_clock::now();
-  BrickGrid& grid = bake.bricks;
-  grid.bounds = bounds;
-  const int perAxis = (R - 1 + C - 1) / C;
-  grid.count = Eigen::Array3i::Constant(perAxis);
-  grid.size = double(C) * h;
-  fillBrickGrid(field, grid);
-  const int n = grid.brickCount();
-  bake.brickMin.assign(n, 0.0f);
-  bake.brickMax.assign(n, 0.0f);
-#pragma omp parallel for schedule(static)
-  for (int b = 0; b < n; ++b) {
-    const int bx = b % perAxis, by = (b / perAxis) % perAxis, bz = b / (perAxis * perAxis);
-    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
-    for (int k = bz * C; k <= std::min((bz + 1) * C, R - 1); ++k)
-      for (int j = by * C; j <= std::min((by + 1) * C, R - 1); ++j) {
-        const float* row = bake.values.data() + plane * k + std::size_t(R) * j;
-        for (int i = bx * C; i <= std::min((bx + 1) * C, R - 1); ++i) {
-          lo = std::min(lo, row[i]);
-          hi = std::max(hi, row[i]);
-        }
-      }
-    bake.brickMin[b] = lo;
-    bake.brickMax[b] = hi;
-  }
+  fillBakeBricks(field, bake);
   bake.brickMs = msSince(t0);
   return bake;
 }
