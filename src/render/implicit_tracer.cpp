@@ -1072,7 +1072,7 @@ TraceResult ImplicitTracer::render(const Camera& camera, const TraceSettings& se
   return finishFrame(deferred);
 }
 
-void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& settings, int tilePassParts) {
+void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& settings, bool halfTilePass) {
   frame_.reset();
   if (!bake_ || !field_) throw InputError("implicit tracer: render before upload");
   if (settings.mode == TracerMode::Exact && !radialSum_)
@@ -1088,11 +1088,11 @@ void ImplicitTracer::beginFrame(const Camera& camera, const TraceSettings& setti
   result.exactDouble = settings.mode == TracerMode::Exact &&
                        (settings.exactPrecision == ExactPrecision::Double ||
                         (settings.exactPrecision == ExactPrecision::Auto && exactNeedsDouble()));
-  // The baked mode's tile pass here (its first part of `tilePassParts`, the others open the next
-  // traceRows calls); its read-back, the clear and the rectangles (prepareRects) open the first
+  // The baked mode's tile pass here (with halfTilePass its first half; the next traceRows runs
+  // the rest); its read-back, the clear and the rectangles (prepareRects) open the first
   // traceRows after it, within its budget.
   const int tileRows = gpu_->tilePassRows(frame);
-  f->tileRows = tileRows / std::max(tilePassParts, 1);
+  f->tileRows = halfTilePass ? tileRows / 2 : tileRows;
   result.tracedPixels = gpu_->prepareTrace(frame, *bake_, f->tileRows);
   result.traceMs = msSince(t0);
   frame_ = std::move(f);
@@ -1111,11 +1111,9 @@ bool ImplicitTracer::traceRows(double budgetMs) {
   const TraceFrame& frame = *f.frame;
   const KeepFramebuffer keep;
   const auto t0 = Clock::now();
-  if (const int all = gpu_->tilePassRows(frame); f.tileRows < all) {  // the tile pass's next part
-    const int rows = std::max((all + 1) / 2, 1);
-    const int end = std::isfinite(budgetMs) ? std::min(f.tileRows + rows, all) : all;
-    gpu_->runTilePass(frame, *bake_, f.tileRows, end);
-    f.tileRows = end;
+  if (const int all = gpu_->tilePassRows(frame); f.tileRows < all) {  // the tile pass's second half
+    gpu_->runTilePass(frame, *bake_, f.tileRows, all);
+    f.tileRows = all;
     f.result.traceMs += msSince(t0);
     if (std::isfinite(budgetMs)) return false;
   }

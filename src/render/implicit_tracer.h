@@ -191,16 +191,15 @@ class ImplicitTracer {
   // refineDeferred: the result is the baked image, and `deferred` gets what refinement needs.
   TraceResult render(const Camera& camera, const TraceSettings& settings, DeferredRefinement* deferred = nullptr);
   // The same frame over several calls, for a caller that must return within a time budget (the
-  // window's settled view at full size): beginFrame runs the tile pass (with `tilePassParts` 2,
-  // its first half of tile rows; then the first traceRows with a finite budget runs the rest and
-  // returns); the first traceRows after it also
-  // reads the tile pass back and draws the rectangles it found; each traceRows marches the rays
-  // of the next bands of rows until `budgetMs` of wall clock went by (bands sized by the costliest
-  // row so far, at least 8 rows; infinity: every row left) and returns true once every row is
-  // traced; finishFrame
-  // then does what render() does after the trace pass and returns the same bytes. render(),
+  // window's settled view at full size): beginFrame runs the tile pass (with `halfTilePass`, the
+  // first half of its tile rows: the first traceRows then runs the rest, and returns at once when
+  // its budget is finite); the first traceRows after the whole tile pass also reads it back and
+  // draws the rectangles it found; each traceRows marches the rays of the next bands of rows until
+  // `budgetMs` of wall clock went by (bands sized by the costliest row so far, at least 8 rows;
+  // infinity: every row left) and returns true once every row is traced; finishFrame then does
+  // what render() does after the trace pass and returns the same bytes. render(),
   // beginFrame(), upload() and finishDeferred() abandon a frame in progress (they reuse its target).
-  void beginFrame(const Camera& camera, const TraceSettings& settings, int tilePassParts = 1);
+  void beginFrame(const Camera& camera, const TraceSettings& settings, bool halfTilePass = false);
   bool traceRows(double budgetMs);
   // Optional, after the last traceRows: the next of finishFrame's read-backs (the surface hits,
   // then the trace pass's colour, plane colour and depth), one per call, so that a caller with a

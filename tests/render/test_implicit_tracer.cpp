@@ -572,7 +572,7 @@ TEST_CASE("implicit tracer: a tile pass run in two halves over two calls gives t
     settings.refineExact = refine;
     settings.showBounds = true;
     const TraceResult whole = tracer.render(camera, settings);
-    tracer.beginFrame(camera, settings, 2);
+    tracer.beginFrame(camera, settings, true);
     CHECK_FALSE(tracer.traceRows(1e9));  // a finite budget: the tile pass's second half alone
     int calls = 1;
     while (!tracer.traceRows(0.0)) ++calls;

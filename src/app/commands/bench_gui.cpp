@@ -32,6 +32,15 @@ GuiOptions windowOptions() {
   return o;
 }
 
+// At most one frame per 1/60 s, as under the window's vsync: wait() returns at the next slot.
+struct FrameSlot {
+  std::chrono::steady_clock::time_point last = std::chrono::steady_clock::now() - std::chrono::milliseconds(17);
+  void wait() {
+    std::this_thread::sleep_until(last + std::chrono::microseconds(16667));
+    last = std::chrono::steady_clock::now();
+  }
+};
+
 }  // namespace
 
 namespace {
@@ -44,7 +53,7 @@ struct DragBench {
   render::OffscreenTarget target;
   GuiApp app;
   FrameInput in;
-  std::chrono::steady_clock::time_point lastFrame = std::chrono::steady_clock::now() - std::chrono::milliseconds(17);
+  FrameSlot slot;
 
   DragBench(const Scene& scene, int width, int height)
       : context(offscreenContext("osmesa", width, height)), target(width, height, false),
@@ -52,10 +61,7 @@ struct DragBench {
     in.width = width;
     in.height = height;
   }
-  void waitForFrameSlot() {
-    std::this_thread::sleep_until(lastFrame + std::chrono::microseconds(16667));
-    lastFrame = std::chrono::steady_clock::now();
-  }
+  void waitForFrameSlot() { slot.wait(); }
   void drawFrame() {
     target.bind();
     app.frame(in);
@@ -168,7 +174,7 @@ struct PacedApp {
   GuiApp app;
   FrameInput in;
   std::chrono::steady_clock::time_point lastFrame = std::chrono::steady_clock::now();
-  std::chrono::steady_clock::time_point slot = lastFrame;  // the last 60 Hz slot
+  FrameSlot slot;
   std::vector<double> frameMs;
   FramePhases worstPhases;
   double worstPresentMs = 0;
@@ -186,14 +192,12 @@ struct PacedApp {
   double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); }
   // The next 60 Hz slot; a frame there when the window would draw one (no input arrives here).
   void tick() {
-    std::this_thread::sleep_until(slot + std::chrono::microseconds(16667));
-    slot = std::chrono::steady_clock::now();
+    slot.wait();
     if (pacing.due(seconds(), false, app.wantsFrame(), app.busy())) draw(false);
   }
   // A frame with the input in `in`, at the next 60 Hz slot.
   void frame() {
-    std::this_thread::sleep_until(slot + std::chrono::microseconds(16667));
-    slot = std::chrono::steady_clock::now();
+    slot.wait();
     draw(true);
   }
   void draw(bool input) {

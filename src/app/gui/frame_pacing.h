@@ -1,11 +1,12 @@
 #pragma once
-// When the window draws a frame. A frame of the whole window costs the software rasteriser about
-// 10–16 ms of CPU at 1280 × 800 whatever it shows, so frames that would show nothing new are
-// skipped: a frame is drawn for input (and a few frames after it, for ImGui's hover state), for
-// work that waits for the GL thread (a finished fit, a bake to upload, trace bands, refined
-// rows), a few times a second while a fit or a view job runs (progress and elapsed times), and
-// rarely when idle. The window polls these conditions at 60 Hz while anything runs; a skipped
-// frame costs nothing, and the CPU it leaves goes to the fit and the view's refinement.
+// When the window draws a frame. Every frame of the whole window costs the software rasteriser
+// the same CPU whatever it shows (most while a fit holds the cores: docs/performance.md, "GUI
+// frame"), so frames that would show nothing new are skipped: a frame is drawn for input (and a
+// few frames after it, for ImGui's hover state), for work that waits for the GL thread (a
+// finished fit, a bake to upload, trace bands, refined rows), a few times a second while a fit or
+// a view job runs (progress and elapsed times), and rarely when idle. The window polls these
+// conditions at 60 Hz while anything runs; a skipped frame costs nothing, and the CPU it leaves
+// goes to the fit and the view's refinement.
 
 namespace hermite::app {
 

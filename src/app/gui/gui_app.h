@@ -145,7 +145,6 @@ class GuiApp {
   DataPanel data_{ctx_};
   ViewPanel view_{ctx_, camera_};
   ExplorePanel explore_{ctx_};
-  std::uint64_t framedVersion_ = 0;  // the document version at the end of the last frame
   PatchEditor patch_{ctx_};
   HoleFillPanel holeFill_{ctx_};
 
@@ -159,6 +158,7 @@ class GuiApp {
   std::optional<Click> click_;
   std::array<bool, 3> prevMouseDown_{};
   std::array<bool, 512> prevKeys_{};
+  std::uint64_t framedVersion_ = 0;  // the document version at the end of the last frame
   bool quit_ = false;
 };
 

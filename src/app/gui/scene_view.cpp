@@ -25,20 +25,14 @@ constexpr double kTraceBudgetMs = 12.0;
 // of texels: 23–32 ms in one piece on a loaded llvmpipe).
 constexpr double kUploadBudgetMs = 6.0;
 
-// This frame's share of a settled view traced over several frames (at full size the trace pass
-// alone can take several frames' time on a software rasteriser; the image on screen stays
-// meanwhile): `begin` starts the frame (the tile pass in two halves, each run by the GL by the
-// end of its frame; the read-back opens the frame after them), then bands of rows within `budgetMs`, then the
+// This frame's share of a begun settled frame traced over several GUI frames (at full size the
+// trace pass alone can take several frames' time on a software rasteriser; the image on screen
+// stays meanwhile): the tile pass's second half, then bands of rows within `budgetMs`, then the
 // read-backs one per frame (the 16 MB hit texture, its conversion, the trace pass). A step that
 // used half the budget leaves the next one to the next frame. True when only finishFrame
 // (overlays, the image's read-back) is left, which then gets a frame of its own.
-bool traceSettledStep(render::ImplicitTracer& tracer, bool begin, const Camera& camera,
-                      const render::TraceSettings& settings, double budgetMs) {
+bool traceSettledStep(render::ImplicitTracer& tracer, double budgetMs) {
   const auto t0 = std::chrono::steady_clock::now();
-  if (begin) {
-    tracer.beginFrame(camera, settings, 2);  // half the tile pass now, the rest in the next frame
-    return false;
-  }
   if (!tracer.traceRows(std::max(budgetMs - msSince(t0), 1.0)) || msSince(t0) > budgetMs / 2) return false;
   return tracer.readBackStep() && msSince(t0) <= budgetMs / 2;
 }
@@ -192,10 +186,10 @@ void SceneViewRenderer::renderField3d(const std::shared_ptr<const FitOutcome>& f
 }
 
 // The same without waiting. A fit without a bake yet keeps the image of the fit before it on
-// screen (nothingYet; a gesture traces that fit's bake) while a 64³ bake runs; a settled view traces the bake it
-// has (64³ until the 128³ one arrives) and, on the 128³ bake, leaves the exact refinement to the
-// worker; the refined image replaces the baked one when it arrives, unless the view changed
-// meanwhile (a gesture cancels its job).
+// screen (nothingYet; a gesture traces that fit's bake) while a 64³ bake runs; a settled view
+// traces the bake it has (64³ until the 128³ one arrives) and, on the 128³ bake, leaves the
+// exact refinement to the worker; the refined image replaces the baked one when it arrives,
+// unless the view changed meanwhile (a gesture cancels its job).
 void SceneViewRenderer::renderField3dInBackground(const std::shared_ptr<const FitOutcome>& fit, const SceneFit<3>& f,
                                                   const Scene& viewScene, ViewQuality quality, SceneViewResult& out) {
   const ViewSpec& v = viewScene.view;
@@ -274,12 +268,15 @@ bool SceneViewRenderer::takeArrivedImage(const RefinedView& view, SceneViewResul
 bool SceneViewRenderer::traceSettledPart(const RefinedView& view, const Camera& camera,
                                          const render::TraceSettings& s, render::DeferredRefinement& job,
                                          render::TraceResult& r) {
-  const bool begin = !(tracing_ == view) || !tracer_->frameStarted();
-  if (begin) tracing_ = view;
-  // A frame that already spent half the budget on arrivals (a bake's last slabs) begins the
-  // trace in the next one.
-  if (begin && frameSpentMs_ > kTraceBudgetMs / 2) return false;
-  if (!traceSettledStep(*tracer_, begin, camera, s, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) return false;
+  if (!(tracing_ == view) || !tracer_->frameStarted()) {
+    tracing_ = view;
+    // The frame begins with the first half of the tile pass, which the GL runs by the end of this
+    // GUI frame; a GUI frame that already spent half the budget on arrivals (a bake's last slabs)
+    // leaves it to the next one.
+    if (frameSpentMs_ <= kTraceBudgetMs / 2) tracer_->beginFrame(camera, s, true);
+    return false;
+  }
+  if (!traceSettledStep(*tracer_, std::max(kTraceBudgetMs - frameSpentMs_, 1.0))) return false;
   tracing_.reset();
   r = tracer_->finishFrame(&job);
   return true;

@@ -138,7 +138,6 @@ void ViewImage::drawCompareLabels(const GuiContext& ctx, float x0, float w) cons
   label(x0 + w, ctx.fits.shownCompare().get());
 }
 
-
 bool ViewImage::wantsFrame() const {
   return interactFrames_ <= kSettleFrames || renderer_.hasFrameWork() || compareRenderer_.hasFrameWork();
 }
