@@ -222,6 +222,8 @@ struct PacedApp {
       f.viewPending = app.viewPending();
       f.selected = app.selectedSample();
       f.phases = app.lastPhases();
+      f.drawVertices = app.lastDrawVertices();
+      f.drawCommands = app.lastDrawCommands();
       log->frame(f);
     }
   }

@@ -36,7 +36,7 @@ void FrameLog::frame(const Frame& f) {
                f.viewPending ? "true" : "false", f.selected);
   for (std::size_t k = 0; k < kFramePhaseNames.size(); ++k)
     std::fprintf(file_, "%s\"%s\": %.2f", k ? ", " : "", kFramePhaseNames[k].data(), f.phases.ms[k]);
-  std::fputs("}}\n", file_);
+  std::fprintf(file_, "}, \"draw_vertices\": %d, \"draw_commands\": %d}\n", f.drawVertices, f.drawCommands);
   std::fflush(file_);
 }
 

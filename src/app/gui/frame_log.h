@@ -29,6 +29,7 @@ class FrameLog {
     bool fitRunning = false, viewPending = false;
     int selected = -1;                // the selected sample (−1: none)
     FramePhases phases;               // GuiApp::frame's steps (without the buffer swap)
+    int drawVertices = 0, drawCommands = 0;  // the frame's ImGui draw data
   };
   using Widgets = std::map<std::string, std::array<float, 4>>;
 

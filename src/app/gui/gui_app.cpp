@@ -29,6 +29,13 @@ namespace hermite::app {
 
 namespace {
 
+// Vertices and draw commands of a frame's ImGui draw data.
+void countDrawData(const ImDrawData& data, int& vertices, int& commands) {
+  vertices = data.TotalVtxCount;
+  commands = 0;
+  for (int i = 0; i < data.CmdListsCount; ++i) commands += data.CmdLists[i]->CmdBuffer.Size;
+}
+
 // How far (view pixels) the mouse may move between press and release of a click.
 constexpr double kClickSlopPx = 3.0;
 
@@ -120,6 +127,7 @@ void GuiApp::frame(const FrameInput& in) {
   timer.mark(FramePhase::Overlays);
   ImGui::Render();
   glyphMisses_ += render::countFallbackGlyphs(*ImGui::GetDrawData());
+  countDrawData(*ImGui::GetDrawData(), drawVertices_, drawCommands_);
 
   GLint framebuffer = 0;
   glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);

@@ -116,6 +116,10 @@ class GuiApp {
   std::string presenterCaption() const;
   // Where the last frame's time went (frame_phases.h); the present / buffer swap is not in it.
   const FramePhases& lastPhases() const { return phases_; }
+  // The last frame's ImGui draw data: vertices and draw commands (the rasteriser's share of a
+  // frame grows with them; HERMITE_GUI_LOG writes them).
+  int lastDrawVertices() const { return drawVertices_; }
+  int lastDrawCommands() const { return drawCommands_; }
 
  private:
   void handleShortcuts(const FrameInput& in);
@@ -136,6 +140,7 @@ class GuiApp {
   render::UiFonts fonts_;
   int glyphMisses_ = 0;
   FramePhases phases_;
+  int drawVertices_ = 0, drawCommands_ = 0;
   // Tools in the view.
   CameraTool camera_{ctx_};
   SampleTool samples_{ctx_};

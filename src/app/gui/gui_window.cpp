@@ -212,6 +212,8 @@ class FrameLoop {
     f.fitRunning = app_.worker().busy();
     f.viewPending = app_.viewPending();
     f.phases = app_.lastPhases();
+    f.drawVertices = app_.lastDrawVertices();
+    f.drawCommands = app_.lastDrawCommands();
     f.selected = app_.selectedSample();
     log_->frame(f);
     log_->widgets(app_.widgetRects());
