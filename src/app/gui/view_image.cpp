@@ -38,13 +38,17 @@ ImTextureID textureId(const render::Texture& t) {
   return reinterpret_cast<ImTextureID>(static_cast<std::uintptr_t>(t.id()));
 }
 
-// Uploads an image into `texture`, (re)creating it when the size changed.
-void uploadImage(render::Texture& texture, const ImageRgba8& image) {
+// Uploads an image into `texture`, (re)creating it when the size changed. An image shown at its
+// own size (`shownW` × `shownH` window pixels) is sampled at its texel centres, where nearest and
+// linear filtering give the same bytes; nearest costs a software rasteriser less per pixel. A
+// stretched one (a gesture's reduced view) is filtered linearly.
+void uploadImage(render::Texture& texture, const ImageRgba8& image, int shownW, int shownH) {
   if (!texture.valid() || texture.width() != image.width || texture.height() != image.height) {
     texture = render::Texture::create2D(GL_RGBA8, image.width, image.height);
-    texture.setFilter(GL_LINEAR, GL_LINEAR);
     texture.setWrap(GL_CLAMP_TO_EDGE);
   }
+  const GLenum filter = image.width == shownW && image.height == shownH ? GL_NEAREST : GL_LINEAR;
+  texture.setFilter(filter, filter);
   texture.upload2D(GL_RGBA, GL_UNSIGNED_BYTE, image.pixels.data());
 }
 
@@ -80,11 +84,11 @@ void ViewImage::redrawIfStale(GuiContext& ctx) {
     SceneViewResult r = renderer_.render(shown, ctx.scene(), rw, rh, quality, true);
     if (!r.nothingYet) {  // else the image on screen stays until the fit's bake arrives
       view_ = std::move(r);
-      if (!view_.gpuImage) uploadImage(viewTexture_, view_.image);
+      if (!view_.gpuImage) uploadImage(viewTexture_, view_.image, w, viewH);
     }
     if (split) {
       compareView_ = compareRenderer_.render(shownCompare, ctx.scene(), rw, rh, quality, true);
-      if (!compareView_.gpuImage) uploadImage(compareTexture_, compareView_.image);
+      if (!compareView_.gpuImage) uploadImage(compareTexture_, compareView_.image, w, viewH);
     }
   } catch (const std::exception& e) {
     ctx.setStatus(std::string("drawing failed: ") + e.what(), true);
