@@ -51,14 +51,17 @@ int envInt(const char* name, int lo, int hi, int fallback) {
 
 }  // namespace
 
+bool idleSchedFromEnv(const char* value, bool unset) {
+  if (value != nullptr && std::strcmp(value, "idle") == 0) return true;
+  if (value != nullptr && std::strcmp(value, "normal") == 0) return false;
+  return unset;
+}
+
 FitPriority windowFitPriority() {
   FitPriority p;
   p.nice = envInt("HERMITE_FIT_NICE", 0, 19, kFitNice);
   p.threads = envInt("HERMITE_FIT_THREADS", 0, 1024, 0);
-  const char* sched = std::getenv("HERMITE_FIT_SCHED");
-  p.idle = sched != nullptr && std::strcmp(sched, "idle") == 0      ? true
-           : sched != nullptr && std::strcmp(sched, "normal") == 0 ? false
-                                                                    : kFitIdle;
+  p.idle = idleSchedFromEnv(std::getenv("HERMITE_FIT_SCHED"), kFitIdle);
   return p;
 }
 
@@ -73,6 +76,16 @@ bool threadIsIdle(pid_t tid) { return sched_getscheduler(tid) == SCHED_IDLE; }
 int viewWorkerNice() {
   static const int nice = envInt("HERMITE_VIEW_NICE", 0, 19, kViewWorkerNice);
   return nice;
+}
+
+bool viewWorkerIdle() {
+  static const bool idle = idleSchedFromEnv(std::getenv("HERMITE_VIEW_SCHED"), kViewWorkerIdle);
+  return idle;
+}
+
+void lowerViewWorkerPriority() {
+  lowerCallingThreadPriority(viewWorkerNice());
+  if (viewWorkerIdle()) idleCallingThread();
 }
 
 pid_t currentThreadId() { return static_cast<pid_t>(syscall(SYS_gettid)); }

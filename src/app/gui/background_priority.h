@@ -47,6 +47,8 @@ struct FitPriority {
   bool idle = false;
 };
 inline constexpr bool kFitIdle = false;
+// A HERMITE_*_SCHED value: "idle" true, "normal" false, anything else (or none) `unset`.
+bool idleSchedFromEnv(const char* value, bool unset);
 inline constexpr int kFitNice = 10;
 FitPriority windowFitPriority();
 
@@ -56,6 +58,13 @@ FitPriority windowFitPriority();
 // renderer, so nothing else in the process is affected.
 inline constexpr int kViewWorkerNice = 10;
 int viewWorkerNice();
+// Whether the view worker's jobs also move to SCHED_IDLE: HERMITE_VIEW_SCHED ("idle" / "normal";
+// unset: kViewWorkerIdle). A core that runs only SCHED_IDLE work counts as idle when a thread
+// wakes, so llvmpipe's rasteriser threads land on it at once instead of sharing the GUI's core.
+inline constexpr bool kViewWorkerIdle = false;
+bool viewWorkerIdle();
+// What a view job does first: viewWorkerNice(), then SCHED_IDLE when viewWorkerIdle().
+void lowerViewWorkerPriority();
 
 // The nice value of thread `tid` of this process (getpriority), for tests and logs.
 int threadNice(pid_t tid);

@@ -311,7 +311,7 @@ void SceneViewRenderer::requestBake(const std::shared_ptr<const FitOutcome>& fit
   dropProgressive();
   jobs_.submit(
       [this, fit, bounds, boundsKey, resolution](const CancelToken& cancel) -> ViewJobRunner::Apply {
-        lowerCallingThreadPriority(viewWorkerNice());
+        lowerViewWorkerPriority();
         const SceneFit<3>& f = *fit->as<SceneFit<3>>();
         render::TracerUploadOptions uo;
         uo.bakeResolution = resolution;
@@ -332,7 +332,7 @@ void SceneViewRenderer::requestRefinement(std::shared_ptr<render::DeferredRefine
                                           const std::shared_ptr<const FitOutcome>& fit) {
   const std::uint64_t id = refinements_;
   jobs_.submit([this, job, fit, id](const CancelToken& cancel) -> ViewJobRunner::Apply {
-    lowerCallingThreadPriority(viewWorkerNice());
+    lowerViewWorkerPriority();
     render::refineDeferred(*job, &cancel);
     return [this, fit, id] {
       if (field_ != fit) return;  // another upload came first: the job's samples are gone

@@ -86,3 +86,22 @@ TEST_CASE("background priority: every OpenBLAS pool thread moves to SCHED_IDLE (
   REQUIRE(WIFEXITED(status));
   CHECK(WEXITSTATUS(status) == 0);
 }
+
+TEST_CASE("background priority: HERMITE_*_SCHED values, and a view job's thread lowered as configured") {
+  CHECK(idleSchedFromEnv("idle", false));
+  CHECK(!idleSchedFromEnv("normal", true));
+  CHECK(idleSchedFromEnv(nullptr, true));
+  CHECK(!idleSchedFromEnv("IDLE", false));  // anything else keeps the default
+  const pid_t self = currentThreadId();
+  int nice = -1;
+  bool idle = false;
+  std::thread t([&] {
+    lowerViewWorkerPriority();
+    nice = threadNice(currentThreadId());
+    idle = threadIsIdle(currentThreadId());
+  });
+  t.join();
+  CHECK(nice >= viewWorkerNice());
+  CHECK(idle == viewWorkerIdle());
+  CHECK(!threadIsIdle(self));
+}
