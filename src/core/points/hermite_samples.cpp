@@ -11,6 +11,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/format_number.h"
+#include "core/base/parallel_sort.h"
 
 namespace hermite {
 
@@ -64,8 +65,9 @@ double spacingCellSize(const Points<Dim>& points, const Vec<Dim>& lo, const Vec<
   double previousCell = 0;
   double previousOccupied = 0;
   for (int attempt = 0;; ++attempt) {
+#pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) keys[i] = keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell));
-    std::sort(keys.begin(), keys.end());
+    parallelSort(keys.begin(), keys.end());
     const double occupied = double(std::unique(keys.begin(), keys.end()) - keys.begin());
     if (4 * occupied >= double(n) || cell <= minCell || attempt >= 40) break;
     double factor = 0.5;
@@ -90,8 +92,10 @@ class CellIndex {
       : lo_(lo), cell_(cell), sorted_(Dim, points.cols()), maxCell_(cellOf<Dim>(lo + extent, lo, cell)) {
     const Eigen::Index n = points.cols();
     std::vector<std::pair<CellKey, Eigen::Index>> byCell(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) byCell[i] = {keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell)), i};
-    std::sort(byCell.begin(), byCell.end());
+    parallelSort(byCell.begin(), byCell.end());  // (key, index): a strict total order
+#pragma omp parallel for schedule(static)
     for (Eigen::Index s = 0; s < n; ++s) sorted_.col(s) = points.col(byCell[s].second);
     for (Eigen::Index s = 0; s < n;) {
       Eigen::Index e = s + 1;
@@ -201,7 +205,7 @@ std::vector<Eigen::Index> lexicographicOrder(const Points<Dim>& P) {
     for (int c = 0; c < Dim; ++c) k.p[static_cast<std::size_t>(c)] = P(c, i);
     k.index = i;
   }
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+  parallelSort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
     for (std::size_t c = 0; c < Dim; ++c) {
       if (a.p[c] < b.p[c]) return true;
       if (b.p[c] < a.p[c]) return false;
