@@ -7,11 +7,11 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 
 #include "core/base/errors.h"
 #include "core/base/format_number.h"
 #include "core/base/parallel_sort.h"
+#include "core/points/flat_cell_map.h"
 
 namespace hermite {
 
@@ -97,10 +97,13 @@ class CellIndex {
     parallelSort(byCell.begin(), byCell.end());  // (key, index): a strict total order
 #pragma omp parallel for schedule(static)
     for (Eigen::Index s = 0; s < n; ++s) sorted_.col(s) = points.col(byCell[s].second);
+    Eigen::Index occupied = 0;
+    for (Eigen::Index s = 0; s < n; ++s) occupied += s == 0 || byCell[s].first != byCell[s - 1].first;
+    cells_ = FlatCellMap(static_cast<std::size_t>(occupied));
     for (Eigen::Index s = 0; s < n;) {
       Eigen::Index e = s + 1;
       while (e < n && byCell[e].first == byCell[s].first) ++e;
-      cells_.emplace(byCell[s].first, std::make_pair(s, e));
+      cells_.insert(byCell[s].first, s, e);
       s = e;
     }
   }
@@ -151,8 +154,7 @@ class CellIndex {
       std::int64_t chebyshev = 0;
       for (int k = 0; k < Dim; ++k) chebyshev = std::max(chebyshev, std::abs(q[k] - c[k]));
       if (chebyshev == ring) {
-        const auto it = cells_.find(keyOf<Dim>(q));
-        if (it != cells_.end()) best2 = nearestIn(self, it->second.first, it->second.second, best2);
+        if (const FlatCellMap::Slot* cell = cells_.find(keyOf<Dim>(q))) best2 = nearestIn(self, cell->begin, cell->end, best2);
       }
       int k = 0;
       for (; k < Dim; ++k) {
@@ -169,7 +171,7 @@ class CellIndex {
   Vec<Dim> lo_;
   double cell_;
   Points<Dim> sorted_;
-  std::unordered_map<CellKey, std::pair<Eigen::Index, Eigen::Index>> cells_;  // key → [begin, end) in sorted_
+  FlatCellMap cells_;  // key → [begin, end) in sorted_
   Cell<Dim> maxCell_;
 };
 
