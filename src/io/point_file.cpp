@@ -15,7 +15,7 @@
 #include "io/atomic_file.h"
 #include "io/input_file.h"
 #include "io/mesh_file.h"
-#include "io/quoted_token.h"
+#include "io/number_lines.h"
 
 namespace hermite {
 
@@ -24,75 +24,7 @@ namespace {
 // The whole file in memory (readInputFile), then a pointer walk over the lines.
 std::string readWholeFile(const std::string& path) { return readInputFile(path, "point file"); }
 
-// Iterates over the data lines of a text file: skips a UTF-8 byte-order mark, blank lines and
-// lines whose first non-blank character is '#'; strips a trailing '\r' (CRLF files).
-class LineReader {
- public:
-  explicit LineReader(std::string_view text) : p_(text.data()), end_(text.data() + text.size()) {
-    if (end_ - p_ >= 3 && std::memcmp(p_, "\xEF\xBB\xBF", 3) == 0) p_ += 3;
-  }
-
-  // False at the end of the text; otherwise `line` holds the next data line and `number` its
-  // 1-based line number in the file.
-  bool next(std::string_view& line, long& number) {
-    while (p_ < end_) {
-      const char* eol = static_cast<const char*>(std::memchr(p_, '\n', static_cast<std::size_t>(end_ - p_)));
-      if (!eol) eol = end_;
-      const char* b = p_;
-      const char* e = eol;
-      p_ = eol < end_ ? eol + 1 : end_;
-      ++lineNumber_;
-      while (b < e && (*b == ' ' || *b == '\t')) ++b;
-      while (e > b && (e[-1] == '\r' || e[-1] == ' ' || e[-1] == '\t')) --e;
-      if (b == e || *b == '#') continue;
-      line = std::string_view(b, static_cast<std::size_t>(e - b));
-      number = lineNumber_;
-      return true;
-    }
-    return false;
-  }
-
- private:
-  const char* p_;
-  const char* end_;
-  long lineNumber_ = 0;
-};
-
 bool isBlank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-
-// Parses the blank-separated numbers of one line into `values` (at most `capacity` are stored)
-// and returns how many there are. A token that is not a finite number throws "path:LINE: ...".
-int parseNumbers(std::string_view line, double* values, int capacity, const std::string& path, long lineNumber) {
-  int count = 0;
-  const char* p = line.data();
-  const char* end = p + line.size();
-  while (true) {
-    while (p < end && isBlank(*p)) ++p;
-    if (p == end) break;
-    const char* tokenBegin = p;
-    while (p < end && !isBlank(*p)) ++p;
-    const std::string_view token(tokenBegin, static_cast<std::size_t>(p - tokenBegin));
-    auto where = [&] { return path + ":" + std::to_string(lineNumber) + ": "; };
-
-    const char* b = token.data();
-    const char* e = b + token.size();
-    if (*b == '+' && e - b > 1 && (std::isdigit(static_cast<unsigned char>(b[1])) || b[1] == '.')) ++b;
-    double v = 0;
-    const auto r = std::from_chars(b, e, v);
-    if (r.ec == std::errc::invalid_argument || r.ptr != e)
-      throw InputError(where() + quotedToken(token) + " is not a number");
-    if (r.ec == std::errc::result_out_of_range) {
-      // from_chars reports both overflow and underflow; strtod tells them apart (underflow → 0).
-      const std::string copy(b, e);
-      v = std::strtod(copy.c_str(), nullptr);
-    }
-    if (!std::isfinite(v))
-      throw InputError(where() + quotedToken(token) + " is not a finite number");
-    if (count < capacity) values[count] = v;
-    ++count;
-  }
-  return count;
-}
 
 std::string columnNames(int dim, bool withNormals) {
   if (dim == 2) return withNormals ? "x y nx ny" : "x y";
@@ -193,22 +125,19 @@ template <int Dim>
 HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path, std::vector<std::string>& warnings,
                                  const PointFileOptions& options, int fileDim = Dim) {
   const int kColumns = 2 * fileDim;
+  const NumberLines parsed = parseNumberLines(text, kColumns, path);
   // Dim × N column-major: coordinates of consecutive samples are consecutive.
   std::vector<double> points, normals;
-  const std::size_t estimatedLines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')) + 1;
-  points.reserve(estimatedLines * Dim);
-  normals.reserve(estimatedLines * Dim);
-
-  LineReader lines(text);
-  std::string_view line;
-  long lineNumber = 0;
-  double values[6];
+  points.reserve(parsed.counts.size() * Dim);
+  normals.reserve(parsed.counts.size() * Dim);
   // The first data line decides: 2·Dim columns (points and normals) or Dim (positions only:
   // normals are estimated below). Every other line must have the same columns.
   int columns = 0;
   long firstLine = 0;
-  while (lines.next(line, lineNumber)) {
-    const int count = parseNumbers(line, values, kColumns, path, lineNumber);
+  for (std::size_t l = 0; l < parsed.counts.size(); ++l) {
+    const int count = parsed.counts[l];
+    const long lineNumber = parsed.numbers[l];
+    const double* values = parsed.values.data() + l * static_cast<std::size_t>(kColumns);
     if (columns == 0 && (count == kColumns || count == fileDim)) {
       columns = count;
       firstLine = lineNumber;
@@ -224,6 +153,7 @@ HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path,
     points.insert(points.end(), values, values + Dim);
     if (columns == kColumns) normals.insert(normals.end(), values + fileDim, values + fileDim + Dim);
   }
+  if (parsed.error) std::rethrow_exception(parsed.error);  // the first line that is not numbers
   if (points.empty()) throw InputError(path + ": no points");
   const Eigen::Index count = static_cast<Eigen::Index>(points.size() / Dim);
   if (columns == fileDim) normals.assign(points.size(), 0.0);  // every normal missing: estimated below

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "app/commands/commands.h"
+#include "app/commands/kept_until_exit.h"
 #include "app/commands/output.h"
 #include "app/commands/output_path.h"
 #include "app/commands/terminal_progress.h"
@@ -201,6 +202,7 @@ int runMesh(const MeshArgs& args) {
   // A degenerate field's flat regions are left out of the mesh (no data); say why it is open.
   for (const std::string& w : fit->warnings())
     if (w.rfind(kDegenerateFieldWarningStart, 0) == 0) std::cerr << "warning: " << w << "\n";
+  keepUntilExit(std::move(fit));  // the process ends next: freeing the local models one by one only costs time
   return 0;
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
+#include "core/base/parallel_sort.h"
 #include "core/mesh/marching_cull.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_options.h"
@@ -81,6 +82,7 @@ std::vector<Eigen::Index> spatialOrder(const Points<Dim>& X) {
   if (n == 0) return order;
   const Vec<Dim> lo = X.rowwise().minCoeff(), ext = X.rowwise().maxCoeff() - lo;
   std::vector<std::pair<std::uint64_t, Eigen::Index>> keys(static_cast<size_t>(n));
+#pragma omp parallel for schedule(static)
   for (Eigen::Index i = 0; i < n; ++i) {
     std::uint64_t key = 0;
     for (int a = 0; a < Dim; ++a) {
@@ -90,7 +92,7 @@ std::vector<Eigen::Index> spatialOrder(const Points<Dim>& X) {
     }
     keys[static_cast<size_t>(i)] = {key, i};
   }
-  std::sort(keys.begin(), keys.end());
+  parallelSort(keys.begin(), keys.end());  // (key, column): a strict total order
   for (Eigen::Index i = 0; i < n; ++i) order[static_cast<size_t>(i)] = keys[static_cast<size_t>(i)].second;
   return order;
 }

@@ -103,7 +103,7 @@ inline std::vector<std::int64_t> signChangingCells(const MarchingGrid<3>& g, con
   }
   std::vector<std::int64_t> cells;
   for (const auto& v : perBlock) cells.insert(cells.end(), v.begin(), v.end());
-  std::sort(cells.begin(), cells.end());
+  parallelSort(cells.begin(), cells.end());
   return cells;
 }
 
@@ -146,7 +146,7 @@ inline void slabEdges(MarchingGrid<3>& g, const std::vector<std::int64_t>& cells
         if (g.inside(q) != g.inside(r) && g.isValid(q) && g.isValid(r)) g.edgeKeys.push_back(q * 3 + a);
       }
     }
-  std::sort(g.edgeKeys.begin(), g.edgeKeys.end());
+  parallelSort(g.edgeKeys.begin(), g.edgeKeys.end());
   g.edgeKeys.erase(std::unique(g.edgeKeys.begin(), g.edgeKeys.end()), g.edgeKeys.end());
 }
 

@@ -7,10 +7,11 @@
 #include <cstdint>
 #include <limits>
 #include <numeric>
-#include <unordered_map>
 
 #include "core/base/errors.h"
 #include "core/base/format_number.h"
+#include "core/base/parallel_sort.h"
+#include "core/points/flat_cell_map.h"
 
 namespace hermite {
 
@@ -64,8 +65,9 @@ double spacingCellSize(const Points<Dim>& points, const Vec<Dim>& lo, const Vec<
   double previousCell = 0;
   double previousOccupied = 0;
   for (int attempt = 0;; ++attempt) {
+#pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) keys[i] = keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell));
-    std::sort(keys.begin(), keys.end());
+    parallelSort(keys.begin(), keys.end());
     const double occupied = double(std::unique(keys.begin(), keys.end()) - keys.begin());
     if (4 * occupied >= double(n) || cell <= minCell || attempt >= 40) break;
     double factor = 0.5;
@@ -90,13 +92,18 @@ class CellIndex {
       : lo_(lo), cell_(cell), sorted_(Dim, points.cols()), maxCell_(cellOf<Dim>(lo + extent, lo, cell)) {
     const Eigen::Index n = points.cols();
     std::vector<std::pair<CellKey, Eigen::Index>> byCell(static_cast<std::size_t>(n));
+#pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) byCell[i] = {keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell)), i};
-    std::sort(byCell.begin(), byCell.end());
+    parallelSort(byCell.begin(), byCell.end());  // (key, index): a strict total order
+#pragma omp parallel for schedule(static)
     for (Eigen::Index s = 0; s < n; ++s) sorted_.col(s) = points.col(byCell[s].second);
+    Eigen::Index occupied = 0;
+    for (Eigen::Index s = 0; s < n; ++s) occupied += s == 0 || byCell[s].first != byCell[s - 1].first;
+    cells_ = FlatCellMap(static_cast<std::size_t>(occupied));
     for (Eigen::Index s = 0; s < n;) {
       Eigen::Index e = s + 1;
       while (e < n && byCell[e].first == byCell[s].first) ++e;
-      cells_.emplace(byCell[s].first, std::make_pair(s, e));
+      cells_.insert(byCell[s].first, s, e);
       s = e;
     }
   }
@@ -147,8 +154,7 @@ class CellIndex {
       std::int64_t chebyshev = 0;
       for (int k = 0; k < Dim; ++k) chebyshev = std::max(chebyshev, std::abs(q[k] - c[k]));
       if (chebyshev == ring) {
-        const auto it = cells_.find(keyOf<Dim>(q));
-        if (it != cells_.end()) best2 = nearestIn(self, it->second.first, it->second.second, best2);
+        if (const FlatCellMap::Slot* cell = cells_.find(keyOf<Dim>(q))) best2 = nearestIn(self, cell->begin, cell->end, best2);
       }
       int k = 0;
       for (; k < Dim; ++k) {
@@ -165,7 +171,7 @@ class CellIndex {
   Vec<Dim> lo_;
   double cell_;
   Points<Dim> sorted_;
-  std::unordered_map<CellKey, std::pair<Eigen::Index, Eigen::Index>> cells_;  // key → [begin, end) in sorted_
+  FlatCellMap cells_;  // key → [begin, end) in sorted_
   Cell<Dim> maxCell_;
 };
 
@@ -201,7 +207,7 @@ std::vector<Eigen::Index> lexicographicOrder(const Points<Dim>& P) {
     for (int c = 0; c < Dim; ++c) k.p[static_cast<std::size_t>(c)] = P(c, i);
     k.index = i;
   }
-  std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+  parallelSort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
     for (std::size_t c = 0; c < Dim; ++c) {
       if (a.p[c] < b.p[c]) return true;
       if (b.p[c] < a.p[c]) return false;

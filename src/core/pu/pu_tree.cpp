@@ -109,23 +109,37 @@ void PuTree<Dim>::splitByRules(const Points<Dim>& points, const PuTreeOptions& o
   }
 }
 
+// Level by level: the crowding of every candidate is counted in parallel (countInBox reads the
+// tree, which no thread changes meanwhile), then the crowded ones split one after another. A
+// support's count does not depend on the tree's shape, and a split reorders only its own node's
+// range of order_, so the tree is the one a depth-first pass splits, up to the numbering of nodes
+// (leaves() is listed depth first either way).
 template <int Dim>
 void PuTree<Dim>::splitCrowdedSupports(const Points<Dim>& points, const PuTreeOptions& options,
                                        std::vector<int>& scratch) {
-  std::vector<int> stack;
+  std::vector<int> candidates, next;
   for (int id = 0; id < static_cast<int>(nodes_.size()); ++id)
-    if (nodes_[id].firstChild < 0) stack.push_back(id);
+    if (nodes_[id].firstChild < 0) candidates.push_back(id);
   const int limit = options.maxSupportSamples;
-  int polls = 0;
-  while (!stack.empty()) {
-    const int id = stack.back();
-    stack.pop_back();
-    if (nodes_[id].depth >= options.maxDepth) continue;
-    if (!options.splitEmpty && nodes_[id].begin == nodes_[id].end) continue;
-    if (++polls % 256 == 0) throwIfCancelled(options.cancel);  // before the count, most of this pass's work
-    if (countInBox(points, scaledBox<Dim>(nodes_[id].box, options.overlap), limit) <= limit) continue;
-    const int first = splitNode(points, id, scratch);
-    for (int ch = kChildren - 1; ch >= 0; --ch) stack.push_back(first + ch);
+  std::vector<char> crowded;
+  while (!candidates.empty()) {
+    const int m = static_cast<int>(candidates.size());
+    crowded.assign(static_cast<std::size_t>(m), 0);
+#pragma omp parallel for schedule(dynamic, 256)
+    for (int i = 0; i < m; ++i) {
+      if (options.cancel && options.cancel->cancelled()) continue;  // polled per box: most of this pass's work
+      const Node& nd = nodes_[static_cast<std::size_t>(candidates[static_cast<std::size_t>(i)])];
+      if (nd.depth >= options.maxDepth || (!options.splitEmpty && nd.begin == nd.end)) continue;
+      crowded[static_cast<std::size_t>(i)] = countInBox(points, scaledBox<Dim>(nd.box, options.overlap), limit) > limit;
+    }
+    throwIfCancelled(options.cancel);
+    next.clear();
+    for (int i = 0; i < m; ++i) {
+      if (!crowded[static_cast<std::size_t>(i)]) continue;
+      const int first = splitNode(points, candidates[static_cast<std::size_t>(i)], scratch);
+      for (int ch = 0; ch < kChildren; ++ch) next.push_back(first + ch);
+    }
+    candidates.swap(next);
   }
 }
 
