@@ -18,6 +18,7 @@
 #include "app/commands/byte_size.h"
 #include "app/commands/commands.h"
 #include "app/commands/error_report.h"
+#include "app/commands/kept_until_exit.h"
 #include "app/commands/fatal_exit.h"
 #include "app/commands/output.h"
 #include "core/base/blas_setup.h"
@@ -314,6 +315,7 @@ int runProgram(int argc, char** argv, const DisplayCommands& display) {
   // (docs/performance.md).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  enableKeepUntilExit();  // a command's last large objects go with the process (kept_until_exit.h)
   return runCli(argc, argv, display);
 }
 

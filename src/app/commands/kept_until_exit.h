@@ -3,14 +3,18 @@
 // exit instead of destroyed, so the operating system reclaims their memory with the process at
 // once. Destroying a partition-of-unity fit of 200 000 samples frees its 73 000 local models
 // one by one on one core: 0.14 s of the elephant's 4-second `mesh` (docs/performance.md,
-// "Serial stretches of mesh"). The objects stay reachable (from a static list), so leak checkers
-// do not report them; a process that keeps many (a test runner) holds their memory until it ends.
+// "Serial stretches of mesh"). Only the program's own process keeps them (runProgram enables
+// it); a caller that runs commands in-process (a test) frees them as usual. Kept objects stay
+// reachable (from a static list), so leak checkers do not report them.
 
 #include <memory>
 
 namespace hermite::app {
 
-// Keeps `object` alive until the process ends (thread-safe).
+// From now on keepUntilExit keeps its objects (the program's process; not undone).
+void enableKeepUntilExit();
+
+// Keeps `object` alive until the process ends when enabled, else lets it go now (thread-safe).
 void keepUntilExit(std::shared_ptr<const void> object);
 
 }  // namespace hermite::app
