@@ -19,6 +19,7 @@
 #include "core/base/threading.h"
 #include "core/rbf/cholesky_solve.h"
 #include "core/rbf/dense_fit_memory.h"
+#include "core/rbf/kept_kernel_matrix.h"
 #include "core/rbf/lapack_errors.h"
 #include "core/rbf/symmetric_norm.h"
 
@@ -590,6 +591,7 @@ SaddleSolution solveSaddle(SaddleSystem sys, SolverChoice choice) {
     throw NumericalError("the solution is not finite (solver " + out.solver + ", condition estimate " +
                          fmt(out.conditionEstimate) + ")");
   if (auto warning = illConditionedWarning(out.conditionEstimate, out.solver)) out.warnings.push_back(*warning);
+  if (sys.keepMatrix) keepKernelMatrix(std::move(sys.A));  // empty when LU took it over (m = 0)
   return out;
 }
 

@@ -64,6 +64,9 @@ struct SaddleSystem {
   // Polled between tiles of the factorisation (≤ 50 ms of work each): solveSaddle throws
   // Cancelled once it is set. Null: never cancelled.
   const CancelToken* cancel = nullptr;
+  // True: after a successful solve, A's storage (with unspecified contents) is kept for the next
+  // fit of the same size (kept_kernel_matrix.h) instead of freed. The HRBF fit sets it.
+  bool keepMatrix = false;
 };
 
 struct SaddleSolution {

@@ -8,7 +8,7 @@
 #include "core/base/exact_centre.h"
 #include "core/base/ms_since.h"
 #include "core/rbf/dense_fit_memory.h"
-#include "core/base/huge_pages.h"
+#include "core/rbf/kept_kernel_matrix.h"
 
 namespace hermite {
 
@@ -106,8 +106,7 @@ SaddleSystem assembleHrbf(const HermiteSamples<Dim>& samples, const HrbfOptions&
   const Eigen::Index n = Eigen::Index(N) * B;
 
   SaddleSystem sys;
-  sys.A.resize(n, n);
-  adviseHugePages(sys.A.data(), sizeof(double) * std::size_t(n) * std::size_t(n));
+  sys.A = takeKernelMatrix(n);  // every entry the solver reads is written below
   sys.P.resize(n, m);
   sys.b.setZero(n);
   sys.definiteSign = kernelDefiniteSign(kernel, options.polynomial, options.smoothing);
@@ -168,8 +167,14 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
   const int m = monomialCount<Dim>(options.polynomial);
   const int sign = kernelDefiniteSign(options.kernel, options.polynomial, options.smoothing);
   const bool projectable = m == 0 && definitenessPolynomial(options.kernel) != Polynomial::None;
-  checkDenseFitMemory(std::int64_t(samples.size()) * (Dim + 1) + m, plannedSolverPath(options.solver, m, sign, projectable),
-                      m);
+  const std::int64_t unknowns = std::int64_t(samples.size()) * (Dim + 1) + m;
+  const SolverChoice path = plannedSolverPath(options.solver, m, sign, projectable);
+  try {
+    checkDenseFitMemory(unknowns, path, m);
+  } catch (const MemoryLimitError&) {
+    if (releaseKeptKernelMatrix() == 0) throw;  // the kept matrix's memory may make the difference
+    checkDenseFitMemory(unknowns, path, m);
+  }
   // The polynomial part about `origin` (docs/maths.md, Centring): P is built from the centred
   // points, the kernel block is unchanged (it sees only exact differences pᵢ − pⱼ).
   throwIfCancelled(options.cancel);
@@ -185,6 +190,7 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
   // keeping a copy in A's upper triangle.
   sys.assembleLower = kernelBlockAssembler<Dim>(fitted->points, options);
   sys.cancel = options.cancel;
+  sys.keepMatrix = true;
   const Kernel& kernel = options.kernel;
   constexpr int B = Dim + 1;
   const int N = samples.size();
