@@ -699,6 +699,25 @@ class KeepFramebuffer {
   GLint viewport_[4] = {};
 };
 
+// Limits drawing to GL rows [row0, row1) of a target `width` × `height` while in scope (a band of
+// the trace pass, a part of the tile pass, refined rows); no scissor when the rows are all of them.
+class RowScissor {
+ public:
+  RowScissor(int width, int height, int row0, int row1) : on_(row0 > 0 || row1 < height) {
+    if (!on_) return;
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, row0, width, row1 - row0);
+  }
+  ~RowScissor() {
+    if (on_) glDisable(GL_SCISSOR_TEST);
+  }
+  RowScissor(const RowScissor&) = delete;
+  RowScissor& operator=(const RowScissor&) = delete;
+
+ private:
+  bool on_;
+};
+
 }  // namespace
 
 // A frame traced over several calls: copies of what its passes read (TraceFrame refers to them)
@@ -913,19 +932,16 @@ void ImplicitTracer::Gpu::traceRows(const TraceFrame& frame, const VolumeBake& b
   }
   bricks.bind(1);
   p.setUniform("uBricks", 1);
-  const bool band = y0 > 0 || y1 < frame.height;
-  if (band) {
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(0, y0, frame.width, y1 - y0);
+  {
+    const RowScissor band(frame.width, frame.height, y0, y1);
+    if (baked) {
+      rects.bind();
+      if (rectVertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, rectVertexCount);
+    } else {
+      empty.bind();
+      glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
   }
-  if (baked) {
-    rects.bind();
-    if (rectVertexCount > 0) glDrawArrays(GL_TRIANGLES, 0, rectVertexCount);
-  } else {
-    empty.bind();
-    glDrawArrays(GL_TRIANGLES, 0, 3);
-  }
-  if (band) glDisable(GL_SCISSOR_TEST);
   glFinish();
   checkGl("implicit tracer trace pass");
 }
@@ -946,13 +962,10 @@ void ImplicitTracer::Gpu::runTilePass(const TraceFrame& frame, const VolumeBake&
   target->bindTiles();
   empty.bind();
   glDisable(GL_DEPTH_TEST);
-  const bool part = row0 > 0 || row1 < target->tileHeight;
-  if (part) {
-    glEnable(GL_SCISSOR_TEST);
-    glScissor(0, row0, target->tileWidth, row1 - row0);
+  {
+    const RowScissor part(target->tileWidth, target->tileHeight, row0, row1);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
   }
-  glDrawArrays(GL_TRIANGLES, 0, 3);
-  if (part) glDisable(GL_SCISSOR_TEST);
   glEnable(GL_DEPTH_TEST);
   target->bind();
 }
@@ -1265,10 +1278,10 @@ void ImplicitTracer::finishDeferredRows(const DeferredRefinement& job, int rowBe
   glTextureSubImage2D(target.color.id(), 0, 0, glRow, W, rows, GL_RGBA, GL_UNSIGNED_BYTE, &job.color[4 * first]);
   glTextureSubImage2D(target.depth.id(), 0, 0, glRow, W, rows, GL_DEPTH_COMPONENT, GL_FLOAT, &job.depth[first]);
   checkGl("implicit tracer refined rows upload");
-  glEnable(GL_SCISSOR_TEST);
-  glScissor(0, glRow, W, rows);
-  gpu_->drawOverlayContent(frame, hasSamples_ ? &samples_ : nullptr);
-  glDisable(GL_SCISSOR_TEST);
+  {
+    const RowScissor scissor(W, H, glRow, glRow + rows);
+    gpu_->drawOverlayContent(frame, hasSamples_ ? &samples_ : nullptr);
+  }
   std::vector<std::uint8_t> color(4 * count);
   glPixelStorei(GL_PACK_ALIGNMENT, 1);
   glGetTextureSubImage(target.color.id(), 0, 0, glRow, 0, W, rows, 1, GL_RGBA, GL_UNSIGNED_BYTE,
