@@ -47,10 +47,10 @@ struct FitPriority {
   bool idle = false;
 };
 inline constexpr bool kFitIdle = false;
-// A HERMITE_*_SCHED value: "idle" true, "normal" false, anything else (or none) `unset`.
-bool idleSchedFromEnv(const char* value, bool unset);
 inline constexpr int kFitNice = 10;
 FitPriority windowFitPriority();
+// A HERMITE_*_SCHED value: "idle" true, "normal" false, anything else (or none) `unset`.
+bool idleSchedFromEnv(const char* value, bool unset);
 
 // The nice value of the view worker's jobs (bakes, exact refinement; scene_view.h), which lower
 // their own thread before they start, so that its OpenMP team inherits it: kViewWorkerNice
