@@ -1,6 +1,7 @@
 #include "app/commands/cli.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <cstring>
 #include <exception>
@@ -69,7 +70,10 @@ void addThreads(CLI::App& cmd, int& threads) {
       ->check(CLI::Range(1, 4096))
       ->transform([](std::string value) {
         const int cores = availableCores();
-        if (std::stol(value) <= cores) return value;
+        long n = 0;
+        const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), n);
+        // Not a whole number, or one the range check rejects anyway: left to that check's message.
+        if (ec != std::errc() || end != value.data() + value.size() || n <= cores) return value;
         std::fprintf(stderr, "note: --threads %s is more than the %d cores available to this process; using %d\n",
                      value.c_str(), cores, cores);
         return std::to_string(cores);

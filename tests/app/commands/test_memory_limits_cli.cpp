@@ -107,6 +107,18 @@ TEST_CASE("--threads above the cores available is lowered to them, with a note")
   CHECK_FALSE(contains(ok.err, "note:"));
 }
 
+TEST_CASE("--threads that is not a whole number is a usage error naming the option, not an internal error") {
+  const std::string scene = writeTemp("threads_bad_sphere.json", kSphereScene);
+  for (const char* value : {"abc", "3x", "99999999999999999999999", "-1"}) {
+    CAPTURE(value);
+    const auto r = hermite::testing::runCli("fit " + scene + " --threads " + value);
+    CHECK(r.rc == 2);
+    CHECK(contains(r.err, "--threads"));
+    CHECK(contains(r.err, value));
+    CHECK_FALSE(contains(r.err, "internal error"));
+  }
+}
+
 TEST_CASE("under an address-space limit near the fit's size the process never hangs: it fits or exits 4") {
   // 2 000 points: a 512 MB system matrix. The limits run from a clear refusal to a clear fit,
   // through the boundary where the check passes and a later allocation may still fail.
