@@ -2,6 +2,8 @@
 // Points sampled from triangle meshes with their exact normals, for the normal-estimation and
 // data-loading tests: uniform by area, seeded.
 
+#include <Eigen/Geometry>
+#include <algorithm>
 #include <random>
 #include <vector>
 
