@@ -14,23 +14,25 @@ namespace {
 // box scaled by 2, grown ×2 while it holds too few others. Beyond the scaled box a neighbour may
 // be missed, which only overestimates dₖ (a wider reach, never a hole).
 template <int Dim>
-void leafSpacings(const PuTree<Dim>& tree, const Points<Dim>& frameY, int leaf, int k, std::vector<double>& radius,
-                  std::vector<int>& cand, std::vector<double>& dist) {
-  const auto& nd = tree.node(tree.leaves()[static_cast<std::size_t>(leaf)]);
+void leafSpacings(const PuTree<Dim>& tree, int leaf, int k, std::vector<double>& radius, std::vector<int>& cand,
+                  std::vector<double>& dist) {
+  const int node = tree.leaves()[static_cast<std::size_t>(leaf)];
+  const auto& nd = tree.node(node);
   const Box<Dim>& root = tree.root();
+  const Points<Dim>& Y = tree.sortedPoints();
   double scale = 2.0;
   for (;;) {
-    tree.samplesInBox(frameY, scaledBox<Dim>(tree.leafBox(leaf), scale), cand);
+    tree.positionsInBox(scaledBox<Dim>(tree.leafBox(leaf), scale), cand, node);
     const bool all = (scaledBox<Dim>(tree.leafBox(leaf), scale).extent().array() >= root.extent().array()).all();
     if (static_cast<int>(cand.size()) > 2 * k || all) break;
     scale *= 2.0;
   }
   const double fallback = root.extent().norm();  // a lone sample reaches the whole root box
   for (int j = nd.begin; j < nd.end; ++j) {
-    const Vec<Dim> p = frameY.col(tree.order()[static_cast<std::size_t>(j)]);
+    const Vec<Dim> p = Y.col(j);
     dist.clear();
     for (int c : cand) {
-      const double d = (frameY.col(c) - p).norm();
+      const double d = (Y.col(c) - p).norm();
       if (d > 0) dist.push_back(d);  // coincident samples give no spacing
     }
     double dk = fallback;
@@ -86,7 +88,7 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
 #pragma omp for schedule(dynamic, 16)
     for (int i = 0; i < leaves; ++i)  // no throw inside the parallel loop: cancelled leaves are skipped
       if (tree.leafSampleCount(i) > 0 && !(cancel && cancel->cancelled()))
-        leafSpacings<Dim>(tree, frameY, i, k, radius_, cand, dist);
+        leafSpacings<Dim>(tree, i, k, radius_, cand, dist);
   }
   throwIfCancelled(cancel);
   if (n > 0) {
