@@ -28,18 +28,20 @@ void leafSpacings(const PuTree<Dim>& tree, int leaf, int k, std::vector<double>&
     scale *= 2.0;
   }
   const double fallback = root.extent().norm();  // a lone sample reaches the whole root box
+  // Squared distances, ranked, and the square root of the k-th: norm() is the square root of
+  // squaredNorm() and the rounded square root is monotonic, so dₖ is the same number.
   for (int j = nd.begin; j < nd.end; ++j) {
     const Vec<Dim> p = Y.col(j);
     dist.clear();
     for (int c : cand) {
-      const double d = (Y.col(c) - p).norm();
-      if (d > 0) dist.push_back(d);  // coincident samples give no spacing
+      const double d2 = (Y.col(c) - p).squaredNorm();
+      if (d2 > 0) dist.push_back(d2);  // coincident samples give no spacing
     }
     double dk = fallback;
     if (!dist.empty()) {
       const int rank = std::min(k, static_cast<int>(dist.size())) - 1;
       std::nth_element(dist.begin(), dist.begin() + rank, dist.end());
-      dk = dist[static_cast<std::size_t>(rank)];
+      dk = std::sqrt(dist[static_cast<std::size_t>(rank)]);
     }
     radius[static_cast<std::size_t>(j)] = dk;
   }
