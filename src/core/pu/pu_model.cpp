@@ -586,6 +586,26 @@ void PuModel<Dim>::forSupportsAt(const Vec<Dim>& y, F&& visit) const {
 }
 
 template <int Dim>
+template <class Accept>
+bool PuModel<Dim>::anySupportAt(const Vec<Dim>& y, Accept&& accept) const {
+  const auto& nodes = tree_.nodes();
+  int stack[64 * PuTree<Dim>::kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int id = stack[--top];
+    if (!reach_[id].contains(y)) continue;
+    const auto& nd = nodes[id];
+    if (nd.firstChild < 0) {
+      if (accept(nd.leaf)) return true;
+    } else {
+      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+  return false;
+}
+
+template <int Dim>
 template <class F>
 void PuModel<Dim>::forSupportsTouching(const Box<Dim>& b, F&& visit) const {
   const auto& nodes = tree_.nodes();
@@ -686,10 +706,8 @@ bool PuModel<Dim>::validNear(const Vec<Dim>& x, double margin) const {
   if (options_.blend == PuBlend::Hard) return true;
   const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
   const bool frozen[Dim] = {};
-  bool reached = false;
-  forSupportsAt(y, [&](int i) {
-    if (!reached && bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0) reached = true;
-  });
+  const bool reached =
+      anySupportAt(y, [&](int i) { return bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0; });
   return (reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended)) &&
          dataReach_.reaches(tree_, y, margin / frame_.q);
 }
