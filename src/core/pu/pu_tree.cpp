@@ -228,34 +228,54 @@ int PuTree<Dim>::countInBox(const Box<Dim>& query, int limit, int near) const {
   return count;
 }
 
+// The children a node's walk goes on to, with a node's box split at its centre c: on axis k the
+// lower half meets the query when q.lo ≤ c, the upper when c ≤ q.hi (the node itself meets it),
+// and a child meets the query when its half does on every axis — boxesIntersect of the child's
+// box, without making the box of every child. Likewise for a child inside the query.
 template <int Dim>
 template <class Take, class TakeRange, class Done>
 void PuTree<Dim>::visitInBox(const Box<Dim>& query, int near, Take&& take, TakeRange&& takeRange, Done&& done) const {
   struct Item {  // not Box: its initialised members would clear the whole stack on every call
     int id;
+    bool inside;
     Vec<Dim> lo, hi;
   };
+  constexpr unsigned kAll = kChildren - 1;
   Item stack[64 * kChildren];
   int top = 0;
   const int start = enclosingNode(query, near);
   const Span& s0 = spans_[static_cast<std::size_t>(start)];
-  const Box<Dim>& startBox = nodes_[static_cast<std::size_t>(start)].box;
-  if (s0.begin != s0.end && boxesIntersect<Dim>(startBox, query)) stack[top++] = Item{start, startBox.lo, startBox.hi};
+  const Box<Dim>& b0 = nodes_[static_cast<std::size_t>(start)].box;
+  const bool inside0 = (b0.lo.array() >= query.lo.array()).all() && (b0.hi.array() <= query.hi.array()).all();
+  if (s0.begin != s0.end && boxesIntersect<Dim>(b0, query)) stack[top++] = Item{start, inside0, b0.lo, b0.hi};
   while (top > 0 && !done()) {
     const Item it = stack[--top];
-    const Box<Dim> box{it.lo, it.hi};
     const Span& sp = spans_[static_cast<std::size_t>(it.id)];
-    const bool inside = (box.lo.array() >= query.lo.array()).all() && (box.hi.array() <= query.hi.array()).all();
-    if (inside) {
+    if (it.inside) {
       takeRange(sp.begin, sp.end);
     } else if (sp.firstChild < 0) {
       for (int i = sp.begin; i < sp.end; ++i) take(i, query.contains(sorted_.col(i)));
     } else {
-      const Vec<Dim> c = box.center();
+      const Vec<Dim> c = 0.5 * (it.lo + it.hi);  // Box::center(), as splitNode splits
+      unsigned meetLo = 0, meetHi = 0, inLo = 0, inHi = 0;
+      for (int k = 0; k < Dim; ++k) {
+        meetLo |= unsigned(query.lo(k) <= c(k)) << k;
+        meetHi |= unsigned(c(k) <= query.hi(k)) << k;
+        inLo |= unsigned(it.lo(k) >= query.lo(k) && c(k) <= query.hi(k)) << k;
+        inHi |= unsigned(c(k) >= query.lo(k) && it.hi(k) <= query.hi(k)) << k;
+      }
       for (int ch = 0; ch < kChildren; ++ch) {
+        const unsigned up = unsigned(ch), down = ~up & kAll;
         const Span& cs = spans_[static_cast<std::size_t>(sp.firstChild + ch)];
-        const Box<Dim> b = childBox(box, c, ch);
-        if (cs.begin != cs.end && boxesIntersect<Dim>(b, query)) stack[top++] = Item{sp.firstChild + ch, b.lo, b.hi};
+        if (((meetHi & up) | (meetLo & down)) != kAll || cs.begin == cs.end) continue;
+        Item& child = stack[top++];
+        child.id = sp.firstChild + ch;
+        child.inside = ((inHi & up) | (inLo & down)) == kAll;
+        for (int k = 0; k < Dim; ++k) {
+          const bool upper = (up >> k) & 1u;
+          child.lo(k) = upper ? c(k) : it.lo(k);
+          child.hi(k) = upper ? it.hi(k) : c(k);
+        }
       }
     }
   }
