@@ -289,10 +289,10 @@ std::vector<char> blendedLeaves(const PuTree<Dim>& tree, PuBlend blend, double o
   return out;
 }
 
-// Distance between two boxes (0 when they meet).
+// Squared distance between two boxes (0 when they meet).
 template <int Dim>
-double boxDistance(const Box<Dim>& a, const Box<Dim>& b) {
-  return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec<Dim>::Zero()).norm();
+double squaredBoxDistance(const Box<Dim>& a, const Box<Dim>& b) {
+  return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec<Dim>::Zero()).squaredNorm();
 }
 
 // Whether some sample pᵢ reaching the box b of tree node `node` (‖b − pᵢ‖ ≤ rᵢ) passes accept(j),
@@ -311,14 +311,15 @@ bool someSampleReaches(const PuTree<Dim>& tree, const PuDataReach<Dim>& reach, i
   while (top > 0) {
     const int id = stack[--top];
     const auto& nd = nodes[static_cast<std::size_t>(id)];
-    if (nd.begin == nd.end || boxDistance<Dim>(nd.box, b) > reach.nodeRadius(static_cast<std::size_t>(id)))
+    if (nd.begin == nd.end ||
+        normExceeds(squaredBoxDistance<Dim>(nd.box, b), reach.nodeRadius(static_cast<std::size_t>(id))))
       continue;
     if (nd.firstChild >= 0) {
       for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
       continue;
     }
-    for (int j = nd.begin; j < nd.end; ++j)
-      if (b.distanceTo(tree.sortedPoints().col(j)) <= reach.radiusAt(j) && accept(j))
+    for (int j = nd.begin; j < nd.end; ++j)  // accept first: it is cheaper, and often false
+      if (accept(j) && !normExceeds(squaredDistanceTo<Dim>(b, tree.sortedPoints().col(j)), reach.radiusAt(j)))
         return true;
   }
   return false;
