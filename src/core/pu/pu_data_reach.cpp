@@ -10,36 +10,39 @@ namespace hermite {
 
 namespace {
 
-// dₖ of the samples of one leaf: the k-th smallest positive distance to the samples of the leaf
-// box scaled by 2, grown ×2 while it holds too few others. Beyond the scaled box a neighbour may
-// be missed, which only overestimates dₖ (a wider reach, never a hole).
+// dₖ of the samples of one leaf (k = 2·Dim): the k-th smallest positive distance to the samples
+// of the leaf box scaled by 2, grown ×2 while it holds too few others. Beyond the scaled box a
+// neighbour may be missed, which only overestimates dₖ (a wider reach, never a hole).
 template <int Dim>
-void leafSpacings(const PuTree<Dim>& tree, const Points<Dim>& frameY, int leaf, int k, std::vector<double>& radius,
-                  std::vector<int>& cand, std::vector<double>& dist) {
-  const auto& nd = tree.node(tree.leaves()[static_cast<std::size_t>(leaf)]);
+void leafSpacings(const PuTree<Dim>& tree, int leaf, std::vector<double>& radius, std::vector<int>& cand) {
+  constexpr int k = 2 * Dim;
+  const int node = tree.leaves()[static_cast<std::size_t>(leaf)];
+  const auto& nd = tree.node(node);
   const Box<Dim>& root = tree.root();
+  const Points<Dim>& Y = tree.sortedPoints();
   double scale = 2.0;
   for (;;) {
-    tree.samplesInBox(frameY, scaledBox<Dim>(tree.leafBox(leaf), scale), cand);
+    tree.positionsInBox(scaledBox<Dim>(tree.leafBox(leaf), scale), cand, node);
     const bool all = (scaledBox<Dim>(tree.leafBox(leaf), scale).extent().array() >= root.extent().array()).all();
     if (static_cast<int>(cand.size()) > 2 * k || all) break;
     scale *= 2.0;
   }
   const double fallback = root.extent().norm();  // a lone sample reaches the whole root box
+  // The k smallest squared distances, kept sorted as the candidates pass, and the square root of
+  // the k-th (of the largest when fewer): norm() is the square root of squaredNorm() and the
+  // rounded square root is monotonic, so dₖ is the k-th smallest distance, bit for bit.
   for (int j = nd.begin; j < nd.end; ++j) {
-    const Vec<Dim> p = frameY.col(tree.order()[static_cast<std::size_t>(j)]);
-    dist.clear();
+    const Vec<Dim> p = Y.col(j);
+    double best[k];
+    int have = 0;
     for (int c : cand) {
-      const double d = (frameY.col(c) - p).norm();
-      if (d > 0) dist.push_back(d);  // coincident samples give no spacing
+      const double d2 = (Y.col(c) - p).squaredNorm();
+      if (!(d2 > 0) || (have == k && d2 >= best[k - 1])) continue;  // coincident samples give no spacing
+      int at = have < k ? have++ : k - 1;
+      for (; at > 0 && best[at - 1] > d2; --at) best[at] = best[at - 1];
+      best[at] = d2;
     }
-    double dk = fallback;
-    if (!dist.empty()) {
-      const int rank = std::min(k, static_cast<int>(dist.size())) - 1;
-      std::nth_element(dist.begin(), dist.begin() + rank, dist.end());
-      dk = dist[static_cast<std::size_t>(rank)];
-    }
-    radius[static_cast<std::size_t>(j)] = dk;
+    radius[static_cast<std::size_t>(j)] = have > 0 ? std::sqrt(best[have - 1]) : fallback;
   }
 }
 
@@ -77,16 +80,14 @@ PuDataReach<Dim>::PuDataReach(const PuTree<Dim>& tree, const Points<Dim>& frameY
     }
   }
   radius_.assign(static_cast<std::size_t>(n), 0.0);
-  constexpr int k = 2 * Dim;
   const int leaves = tree.leafCount();
 #pragma omp parallel
   {
     std::vector<int> cand;
-    std::vector<double> dist;
 #pragma omp for schedule(dynamic, 16)
     for (int i = 0; i < leaves; ++i)  // no throw inside the parallel loop: cancelled leaves are skipped
       if (tree.leafSampleCount(i) > 0 && !(cancel && cancel->cancelled()))
-        leafSpacings<Dim>(tree, frameY, i, k, radius_, cand, dist);
+        leafSpacings<Dim>(tree, i, radius_, cand);
   }
   throwIfCancelled(cancel);
   if (n > 0) {
@@ -123,7 +124,7 @@ bool PuDataReach<Dim>::reaches(const PuTree<Dim>& tree, const Vec<Dim>& y, doubl
     const int id = stack[--top];
     const auto& nd = nodes[static_cast<std::size_t>(id)];
     const double r = widened(nodeRadius(static_cast<std::size_t>(id)));  // 0 for nodes split off later
-    if (nd.begin == nd.end || nd.box.distanceTo(y) > r) continue;
+    if (nd.begin == nd.end || normExceeds(squaredDistanceTo<Dim>(nd.box, y), r)) continue;
     if (nd.firstChild >= 0) {
       for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
       continue;

@@ -19,11 +19,29 @@
 // along n pass; the tips of limbs thinner than the reach may not (docs/maths.md, "No data").
 // Queries walk the box tree, pruning nodes whose samples' largest radius cannot reach y.
 
+#include <cmath>
 #include <vector>
 
 #include "core/pu/pu_tree.h"
 
 namespace hermite {
+
+// √s > r for s the squared norm of a vector and r ≥ 0, exactly as the rounded square root
+// compares (norm() is the square root of squaredNorm()), taking the root only when s lies
+// within a relative 10⁻¹² of r²: the reach tests compare millions of distances with radii.
+inline bool normExceeds(double squaredNorm, double r) {
+  const double r2 = r * r;
+  if (squaredNorm > r2 * (1 + 1e-12)) return true;
+  if (squaredNorm < r2 * (1 - 1e-12)) return false;
+  return std::sqrt(squaredNorm) > r;
+}
+
+// The squared distance from x to the nearest point of the box b (0 inside): Box::distanceTo
+// before its square root.
+template <int Dim>
+double squaredDistanceTo(const Box<Dim>& b, const Vec<Dim>& x) {
+  return (b.lo - x).cwiseMax(x - b.hi).cwiseMax(Vec<Dim>::Zero()).squaredNorm();
+}
 
 template <int Dim>
 class PuDataReach {

@@ -102,7 +102,9 @@ constexpr char kCover = 2;
 // Per-thread scratch of the local fits, reused from box to box.
 template <int Dim>
 struct LeafScratch {
-  std::vector<int> idx;      // the support's samples
+  int node = 0;              // the leaf's tree node (where the support queries start)
+  std::vector<int> pos;      // the support's samples, as positions in the tree's order
+  std::vector<int> idx;      // the same samples' indices, ascending (the local fit's order)
   std::vector<double> dist;  // their reach (the support factor that just holds each)
   HermiteSamples<Dim> sub;   // the local fit's data
 };
@@ -114,14 +116,15 @@ class LeafFitter {
  public:
   using Leaf = typename PuModel<Dim>::Leaf;
 
-  LeafFitter(const HermiteSamples<Dim>& samples, const Points<Dim>& frameY, const PuTree<Dim>& tree,
-             const PuOptions& options, const HrbfOptions& local, SupportLimits limits, const std::vector<char>& kind)
-      : samples_(samples), frameY_(frameY), tree_(tree), options_(options), local_(local), limits_(limits), kind_(kind) {}
+  LeafFitter(const HermiteSamples<Dim>& samples, const PuTree<Dim>& tree, const PuOptions& options,
+             const HrbfOptions& local, SupportLimits limits, const std::vector<char>& kind)
+      : samples_(samples), tree_(tree), options_(options), local_(local), limits_(limits), kind_(kind) {}
 
   const CancelToken* cancel() const { return local_.cancel; }
   // Fits leaf i; throws NumericalError when its system stays singular after growing.
   void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     const Box<Dim>& box = tree_.leafBox(i);
+    scratch.node = tree_.leaves()[static_cast<std::size_t>(i)];
     const int n = samples_.size();
     const auto unblend = [&] {  // no data there: no fit, its nominal support for display
       leaf.blended = false;
@@ -130,7 +133,7 @@ class LeafFitter {
       leaf.samples = 0;
     };
     if (!leaf.blended) return unblend();
-    std::vector<int>& idx = scratch.idx;
+    std::vector<int>& pos = scratch.pos;
     const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
     double s = initialFactor(box, cover ? 1.0 : 0.5 * (1.0 + options_.overlap), scratch);
     // A cover box fits its nearest few samples; one whose support cannot stay small (samples at
@@ -138,18 +141,18 @@ class LeafFitter {
     // left out, not grown: it only widens where f has a value.
     if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
       const int want = std::min(limits_.min, n);
-      if (static_cast<int>(idx.size()) > want) {
+      if (static_cast<int>(pos.size()) > want) {
         const double before = s;
         s = factorReaching(box, want, 1.0, scratch);
-        narrowSamples(scaledBox<Dim>(box, before), scaledBox<Dim>(box, s), idx);
+        narrowSamples(scaledBox<Dim>(box, before), scaledBox<Dim>(box, s), scratch);
       }
-      if (static_cast<int>(idx.size()) > 4 * want) return unblend();
+      if (static_cast<int>(pos.size()) > 4 * want) return unblend();
     }
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
     for (int attempt = 0;; ++attempt) {
-      std::sort(idx.begin(), idx.end());
-      const int k = static_cast<int>(idx.size());
-      gatherSamples(idx, scratch.sub);
+      sampleIndices(pos, scratch.idx);
+      const int k = static_cast<int>(pos.size());
+      gatherSamples(scratch.idx, scratch.sub);
       try {
         leaf.model = fitPuLocal<Dim>(scratch.sub, local_, report);
         leaf.support = scaledBox<Dim>(box, s);
@@ -162,54 +165,66 @@ class LeafFitter {
           throw NumericalError("partition: local fit of box " + std::to_string(i) + " (" + std::to_string(k) +
                                " samples) failed: " + e.what());
         s *= options_.growth;
-        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+        tree_.positionsInBox(scaledBox<Dim>(box, s), pos, scratch.node);
         report = FitReport{};
       }
     }
   }
 
  private:
-  // The support factor of a box, its samples in scratch.idx: the overlap, grown until the
+  // The support factor of a box, its samples in scratch.pos: the overlap, grown until the
   // support holds limits.min samples, or shrunk (not below the floor) to hold at most limits.max.
   double initialFactor(const Box<Dim>& box, double floor, LeafScratch<Dim>& scratch) const {
-    std::vector<int>& idx = scratch.idx;
+    std::vector<int>& pos = scratch.pos;
     double s = options_.overlap;
-    tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+    tree_.positionsInBox(scaledBox<Dim>(box, s), pos, scratch.node);
     const int want = std::min(limits_.min, samples_.size());
-    if (static_cast<int>(idx.size()) < want) {
-      while (static_cast<int>(idx.size()) < want) {
+    if (static_cast<int>(pos.size()) < want) {
+      while (static_cast<int>(pos.size()) < want) {
         s *= options_.growth;
-        tree_.samplesInBox(frameY_, scaledBox<Dim>(box, s), idx);
+        tree_.positionsInBox(scaledBox<Dim>(box, s), pos, scratch.node);
       }
       const double grown = s;
       s = factorReaching(box, want, options_.overlap, scratch);
-      narrowSamples(scaledBox<Dim>(box, grown), scaledBox<Dim>(box, s), idx);
-    } else if (static_cast<int>(idx.size()) > limits_.max) {
+      narrowSamples(scaledBox<Dim>(box, grown), scaledBox<Dim>(box, s), scratch);
+    } else if (static_cast<int>(pos.size()) > limits_.max) {
       s = factorReaching(box, limits_.max, floor, scratch);
-      narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), idx);
+      narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), scratch);
     }
     return s;
   }
 
-  // idx ← the samples `query` holds, given idx = those `previous` holds. When query lies inside
-  // previous this keeps the entries query contains — the set samplesInBox returns (a box holds
-  // exactly the samples it contains), in another order (the fit sorts idx) — without a walk of
-  // the tree; otherwise it walks the tree.
-  void narrowSamples(const Box<Dim>& previous, const Box<Dim>& query, std::vector<int>& idx) const {
-    const bool inside = (query.lo.array() >= previous.lo.array()).all() && (query.hi.array() <= previous.hi.array()).all();
-    if (!inside) return tree_.samplesInBox(frameY_, query, idx);
-    idx.erase(std::remove_if(idx.begin(), idx.end(), [&](int j) { return !query.contains(frameY_.col(j)); }), idx.end());
+  // scratch.pos ← the samples `query` holds, given those `previous` holds. When query lies inside
+  // previous this keeps the entries query contains — the set positionsInBox returns (a box holds
+  // exactly the samples it contains), in another order (the fit sorts the indices) — without a
+  // walk of the tree; otherwise it walks the tree.
+  void narrowSamples(const Box<Dim>& previous, const Box<Dim>& query, LeafScratch<Dim>& scratch) const {
+    std::vector<int>& pos = scratch.pos;
+    const bool inside =
+        (query.lo.array() >= previous.lo.array()).all() && (query.hi.array() <= previous.hi.array()).all();
+    if (!inside) return tree_.positionsInBox(query, pos, scratch.node);
+    const Points<Dim>& Y = tree_.sortedPoints();
+    pos.erase(std::remove_if(pos.begin(), pos.end(), [&](int j) { return !query.contains(Y.col(j)); }), pos.end());
+  }
+
+  // The sample indices of the positions pos, ascending: the local fit's data in the order of the
+  // samples, whatever the order of the tree walk.
+  void sampleIndices(const std::vector<int>& pos, std::vector<int>& idx) const {
+    idx.resize(pos.size());
+    for (std::size_t j = 0; j < pos.size(); ++j) idx[j] = tree_.order()[static_cast<std::size_t>(pos[j])];
+    std::sort(idx.begin(), idx.end());
   }
 
   // The support factor just large enough for the `rank`-th nearest of the samples in
-  // scratch.idx (normalised L∞ distance about the box centre), but at least `floor`.
+  // scratch.pos (normalised L∞ distance about the box centre), but at least `floor`.
   double factorReaching(const Box<Dim>& box, int rank, double floor, LeafScratch<Dim>& scratch) const {
     const Vec<Dim> c = box.center();
     const Vec<Dim> invH = (0.5 * box.extent()).cwiseInverse();
     std::vector<double>& dist = scratch.dist;
-    dist.resize(scratch.idx.size());
-    for (std::size_t j = 0; j < scratch.idx.size(); ++j)
-      dist[j] = ((frameY_.col(scratch.idx[j]) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
+    const Points<Dim>& Y = tree_.sortedPoints();
+    dist.resize(scratch.pos.size());
+    for (std::size_t j = 0; j < scratch.pos.size(); ++j)
+      dist[j] = ((Y.col(scratch.pos[j]) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
     std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
     // A relative 1e-9 beyond the sample: rounding of the scaled box cannot drop it (its weight
     // there, ~1e-26, is negligible).
@@ -228,7 +243,6 @@ class LeafFitter {
   }
 
   const HermiteSamples<Dim>& samples_;
-  const Points<Dim>& frameY_;
   const PuTree<Dim>& tree_;
   const PuOptions& options_;
   const HrbfOptions& local_;
@@ -245,7 +259,7 @@ class LeafFitter {
 // fitted on its own support (borrowing a neighbour's fit instead extrapolates that fit a whole box
 // and grows sheets). Hard blend: every leaf.
 template <int Dim>
-std::vector<char> blendedLeaves(const PuTree<Dim>& tree, const Points<Dim>& frameY, PuBlend blend, double overlap) {
+std::vector<char> blendedLeaves(const PuTree<Dim>& tree, PuBlend blend, double overlap) {
   const int n = tree.leafCount();
   std::vector<char> out(static_cast<std::size_t>(n), 1);
   if (blend == PuBlend::Hard) return out;
@@ -269,38 +283,43 @@ std::vector<char> blendedLeaves(const PuTree<Dim>& tree, const Points<Dim>& fram
         near = 2.0 * nd.box.extent().maxCoeff() >= edge;
       }
     }
-    near = near && tree.countInBox(frameY, scaledBox<Dim>(b, overlap), 1) >= 1;
+    near = near && tree.countInBox(scaledBox<Dim>(b, overlap), 1, tree.leaves()[static_cast<std::size_t>(i)]) >= 1;
     out[static_cast<std::size_t>(i)] = near ? 1 : 0;
   }
   return out;
 }
 
-// Distance between two boxes (0 when they meet).
+// Squared distance between two boxes (0 when they meet).
 template <int Dim>
-double boxDistance(const Box<Dim>& a, const Box<Dim>& b) {
-  return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec<Dim>::Zero()).norm();
+double squaredBoxDistance(const Box<Dim>& a, const Box<Dim>& b) {
+  return (a.lo - b.hi).cwiseMax(b.lo - a.hi).cwiseMax(Vec<Dim>::Zero()).squaredNorm();
 }
 
-// Whether some sample pᵢ reaching the box b (‖b − pᵢ‖ ≤ rᵢ) passes accept(j), j its position in
-// tree.order(): a walk of the tree that skips nodes whose largest reach cannot meet b.
+// Whether some sample pᵢ reaching the box b of tree node `node` (‖b − pᵢ‖ ≤ rᵢ) passes accept(j),
+// j its position in tree.order(): a walk of the tree that skips nodes whose largest reach cannot
+// meet b. It starts at the nearest ancestor holding b grown by the largest reach (every sample
+// that reaches b lies in it; the margin covers the rounding of the distances).
 template <int Dim, class Accept>
-bool someSampleReaches(const PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
-                       const Box<Dim>& b, const Accept& accept) {
+bool someSampleReaches(const PuTree<Dim>& tree, const PuDataReach<Dim>& reach, int node, const Accept& accept) {
   const auto& nodes = tree.nodes();
+  const Box<Dim>& b = nodes[static_cast<std::size_t>(node)].box;
+  const double grow = (1.0 + 1e-6) * reach.maxRadius();
+  const Box<Dim> grown{b.lo.array() - grow, b.hi.array() + grow};
   int stack[64 * PuTree<Dim>::kChildren];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = tree.enclosingNode(grown, node);
   while (top > 0) {
     const int id = stack[--top];
     const auto& nd = nodes[static_cast<std::size_t>(id)];
-    if (nd.begin == nd.end || boxDistance<Dim>(nd.box, b) > reach.nodeRadius(static_cast<std::size_t>(id)))
+    if (nd.begin == nd.end ||
+        normExceeds(squaredBoxDistance<Dim>(nd.box, b), reach.nodeRadius(static_cast<std::size_t>(id))))
       continue;
     if (nd.firstChild >= 0) {
       for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
       continue;
     }
-    for (int j = nd.begin; j < nd.end; ++j)
-      if (b.distanceTo(frameY.col(tree.order()[static_cast<std::size_t>(j)])) <= reach.radiusAt(j) && accept(j))
+    for (int j = nd.begin; j < nd.end; ++j)  // accept first: it is cheaper, and often false
+      if (accept(j) && !normExceeds(squaredDistanceTo<Dim>(b, tree.sortedPoints().col(j)), reach.radiusAt(j)))
         return true;
   }
   return false;
@@ -314,14 +333,13 @@ bool someSampleReaches(const PuTree<Dim>& tree, const Points<Dim>& frameY, const
 // (meshes close up to δ ≈ 7·dₖ: 20 000 sphere samples at 16³); a doubled cover would blend and
 // fit a band of empty boxes twice as thick around every surface, for every fit.
 template <int Dim>
-void blendReachCover(const PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
-                     std::vector<char>& blended) {
+void blendReachCover(const PuTree<Dim>& tree, const PuDataReach<Dim>& reach, std::vector<char>& blended) {
   if (reach.empty()) return;
   const int n = tree.leafCount();
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     if (blended[static_cast<std::size_t>(i)]) continue;
-    if (someSampleReaches(tree, frameY, reach, tree.leafBox(i), [](int) { return true; }))
+    if (someSampleReaches(tree, reach, tree.leaves()[static_cast<std::size_t>(i)], [](int) { return true; }))
       blended[static_cast<std::size_t>(i)] = kCover;
   }
 }
@@ -336,18 +354,16 @@ constexpr double kCoverEdge = 2.0;
 // Only leaves whose node id is at least `firstNode` are tested: a leaf that passed once passes
 // again (its box, the samples and their reach stay), so later passes test only the new children.
 template <int Dim>
-std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>& frameY,
-                                      const PuDataReach<Dim>& reach, const std::vector<char>& nodeBlended,
-                                      std::size_t firstNode) {
+std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const PuDataReach<Dim>& reach,
+                                      const std::vector<char>& nodeBlended, std::size_t firstNode) {
   const int n = tree.leafCount();
   std::vector<char> split(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(dynamic, 64)
   for (int i = 0; i < n; ++i) {
     const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
     if (node < firstNode || tree.leafSampleCount(i) > 0 || (node < nodeBlended.size() && nodeBlended[node])) continue;
-    const Box<Dim>& b = tree.leafBox(i);
-    const double edge = b.extent().maxCoeff();
-    const bool coarse = someSampleReaches(tree, frameY, reach, b,
+    const double edge = tree.leafBox(i).extent().maxCoeff();
+    const bool coarse = someSampleReaches(tree, reach, static_cast<int>(node),
                                           [&](int j) { return edge > kCoverEdge * reach.radiusAt(j); });
     split[static_cast<std::size_t>(i)] = coarse ? 1 : 0;
   }
@@ -364,8 +380,8 @@ std::vector<int> oversizedCoverLeaves(const PuTree<Dim>& tree, const Points<Dim>
 // is carried over to its leaves (the new ones are not blended: at most cover boxes,
 // blendReachCover).
 template <int Dim>
-void refineCover(PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach<Dim>& reach,
-                 std::vector<char>& blended, const CancelToken* cancel) {
+void refineCover(PuTree<Dim>& tree, const PuDataReach<Dim>& reach, std::vector<char>& blended,
+                 const CancelToken* cancel) {
   std::vector<char> nodeBlended(tree.nodes().size(), 0);  // node ids survive splits; new nodes are not blended
   for (int i = 0; i < tree.leafCount(); ++i)
     nodeBlended[static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)])] = blended[static_cast<std::size_t>(i)];
@@ -373,7 +389,7 @@ void refineCover(PuTree<Dim>& tree, const Points<Dim>& frameY, const PuDataReach
   std::size_t firstNode = 0;  // the first pass tests every leaf, later ones the new children
   for (int pass = 0; pass < 32; ++pass) {
     throwIfCancelled(cancel);
-    const std::vector<int> coarse = oversizedCoverLeaves<Dim>(tree, frameY, reach, nodeBlended, firstNode);
+    const std::vector<int> coarse = oversizedCoverLeaves<Dim>(tree, reach, nodeBlended, firstNode);
     const int before = tree.leafCount();
     firstNode = tree.nodes().size();
     if (!coarse.empty()) tree.splitEmptyLeaves(coarse);
@@ -571,6 +587,26 @@ void PuModel<Dim>::forSupportsAt(const Vec<Dim>& y, F&& visit) const {
 }
 
 template <int Dim>
+template <class Accept>
+bool PuModel<Dim>::anySupportAt(const Vec<Dim>& y, Accept&& accept) const {
+  const auto& nodes = tree_.nodes();
+  int stack[64 * PuTree<Dim>::kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int id = stack[--top];
+    if (!reach_[id].contains(y)) continue;
+    const auto& nd = nodes[id];
+    if (nd.firstChild < 0) {
+      if (accept(nd.leaf)) return true;
+    } else {
+      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    }
+  }
+  return false;
+}
+
+template <int Dim>
 template <class F>
 void PuModel<Dim>::forSupportsTouching(const Box<Dim>& b, F&& visit) const {
   const auto& nodes = tree_.nodes();
@@ -671,10 +707,8 @@ bool PuModel<Dim>::validNear(const Vec<Dim>& x, double margin) const {
   if (options_.blend == PuBlend::Hard) return true;
   const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
   const bool frozen[Dim] = {};
-  bool reached = false;
-  forSupportsAt(y, [&](int i) {
-    if (!reached && bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0) reached = true;
-  });
+  const bool reached =
+      anySupportAt(y, [&](int i) { return bump<Dim>(leaves_[i].support, y, frozen, nullptr, nullptr) > 0; });
   return (reached || (tree_.root().contains(y) && leaves_[tree_.locateLeaf(y)].blended)) &&
          dataReach_.reaches(tree_, y, margin / frame_.q);
 }
@@ -951,27 +985,27 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   treeOptions.cancel = options.local.cancel;
   PuTree<Dim> tree(frameY, treeOptions);
   PuDataReach<Dim> dataReach;
-  std::vector<char> blended = blendedLeaves<Dim>(tree, frameY, options.blend, options.overlap);
+  std::vector<char> blended = blendedLeaves<Dim>(tree, options.blend, options.overlap);
   if (options.blend == PuBlend::Smooth) {
     // Normals in frame coordinates: y = R⁻¹(x − t)/q turns directions by R⁻¹ = Rᵀ.
     Points<Dim> frameN;
     if (!identity) frameN = frame.R.transpose() * samples.normals;
     dataReach = PuDataReach<Dim>(tree, frameY, options.dataReach, identity ? &samples.normals : &frameN,
                                  options.edgeShift, options.local.cancel);
-    refineCover<Dim>(tree, frameY, dataReach, blended, options.local.cancel);
+    refineCover<Dim>(tree, dataReach, blended, options.local.cancel);
   }
   throwIfCancelled(options.local.cancel);
   const double treeMs = msSince(t0);
   const auto leafCount = static_cast<std::size_t>(tree.leafCount());
   std::vector<typename PuModel<Dim>::Leaf> leaves(leafCount);
   std::vector<FitReport> reports(leafCount);
-  blendReachCover<Dim>(tree, frameY, dataReach, blended);
+  blendReachCover<Dim>(tree, dataReach, blended);
   throwIfCancelled(options.local.cancel);
   for (std::size_t i = 0; i < leafCount; ++i) leaves[i].blended = blended[i] != 0;
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;
   checkLocalFitMemory<Dim>(n, limits, local);
-  fitLeaves<Dim>(LeafFitter<Dim>(samples, frameY, tree, options, local, limits, blended), leaves, reports);
+  fitLeaves<Dim>(LeafFitter<Dim>(samples, tree, options, local, limits, blended), leaves, reports);
   if (report) {
     *report = summariseFits<Dim>(tree, leaves, reports, options, local);
     report->treeMs = treeMs;

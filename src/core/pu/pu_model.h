@@ -134,6 +134,10 @@ class PuModel : public ImplicitField<Dim> {
   void buildReach();
   template <class F>
   void forSupportsAt(const Vec<Dim>& y, F&& visit) const;
+  // Whether accept(leaf) holds for some leaf whose support reaches y (the walk of forSupportsAt,
+  // stopping at the first).
+  template <class Accept>
+  bool anySupportAt(const Vec<Dim>& y, Accept&& accept) const;
   template <class F>
   void forSupportsTouching(const Box<Dim>& b, F&& visit) const;
   // Every point of the frame box yb lies in the root and in a blended leaf box.

@@ -53,6 +53,7 @@ class PuTree {
     int begin = 0;        // samples of the node: order()[begin, end)
     int end = 0;
     int depth = 0;
+    int parent = -1;      // -1 for the root
   };
 
   PuTree() = default;
@@ -69,15 +70,26 @@ class PuTree {
   int leafSampleCount(int leaf) const { return nodes_[leaves_[leaf]].end - nodes_[leaves_[leaf]].begin; }
   // Sample indices sorted so every node's samples are contiguous.
   const std::vector<int>& order() const { return order_; }
+  // The tree's points in that order (Dim × N): column j is points.col(order()[j]), so a node's
+  // samples lie side by side in memory for the box queries.
+  const Points<Dim>& sortedPoints() const { return sorted_; }
 
   // The leaf whose box contains y (y is clamped to the root box first; ties on shared faces go
   // to the upper child).
   int locateLeaf(const Vec<Dim>& y) const;
 
-  // Indices of the samples of `points` (the tree's points) inside the closed box `query`.
-  void samplesInBox(const Points<Dim>& points, const Box<Dim>& query, std::vector<int>& out) const;
+  // Indices of the tree's samples inside the closed box `query`. The walk starts at the nearest
+  // ancestor of node `near` (itself included) whose box holds `query` strictly inside — every
+  // sample in `query` lies in that node — so a query about a leaf skips the walk down from the
+  // root; the samples and their order are those of a walk from the root.
+  void samplesInBox(const Box<Dim>& query, std::vector<int>& out, int near = 0) const;
+  // Their positions j in order() instead (sortedPoints().col(j) is the sample).
+  void positionsInBox(const Box<Dim>& query, std::vector<int>& out, int near = 0) const;
   // How many samples lie in `query`, counting stops above `limit`.
-  int countInBox(const Points<Dim>& points, const Box<Dim>& query, int limit) const;
+  int countInBox(const Box<Dim>& query, int limit, int near = 0) const;
+  // The nearest ancestor of node `near` (itself included) whose box holds `query` strictly
+  // inside, or the root.
+  int enclosingNode(const Box<Dim>& query, int near) const;
 
   // Splits each given leaf that holds no samples into kChildren empty children (leaves with
   // samples, or at depth `maxDepth`, stay). Leaf indices change: leaves() is listed afresh;
@@ -88,16 +100,37 @@ class PuTree {
   void listLeaves();  // leaves_ in depth-first order
   // Splits node `id` into kChildren children, its samples bucketed by child (bit k set ⇔
   // coordinate k ≥ the centre's); returns the first child. `scratch` is reused between calls.
-  int splitNode(const Points<Dim>& points, int id, std::vector<int>& scratch);
+  struct SplitScratch {  // reused between splits
+    std::vector<int> order;
+    Points<Dim> points;
+  };
+  int splitNode(int id, SplitScratch& scratch);
   // Pass 1: the `fit.partition` rules (docs/scene-format.md) from the root.
-  void splitByRules(const Points<Dim>& points, const PuTreeOptions& options, std::vector<int>& scratch);
+  void splitByRules(const PuTreeOptions& options, SplitScratch& scratch);
   // Pass 2, on the complete tree (so support queries are fast): leaves whose support at
   // `overlap` holds more than maxSupportSamples samples split further.
-  void splitCrowdedSupports(const Points<Dim>& points, const PuTreeOptions& options, std::vector<int>& scratch);
+  void splitCrowdedSupports(const PuTreeOptions& options, SplitScratch& scratch);
+  // Appends the kChildren children of node `id` (its box split at the centre), child ch holding
+  // the samples order_[begin[ch], end[ch]); returns the first.
+  int addChildren(int id, const int (&begin)[kChildren], const int (&end)[kChildren]);
+  // Calls take(j, inside) for the position j in order() of every sample of a leaf that meets
+  // `query` (inside: whether `query` holds it), takeRange(begin, end) for a whole node's range
+  // inside `query`; stops when done() turns true. Children's boxes are made from their parent's
+  // as splitNode made them (the same numbers), so the walk reads only spans_ of the nodes.
+  template <class Take, class TakeRange, class Done>
+  void visitInBox(const Box<Dim>& query, int near, Take&& take, TakeRange&& takeRange, Done&& done) const;
+
+  struct Span {  // what a walk reads of a node: its children and its samples
+    int firstChild = -1;
+    int begin = 0;
+    int end = 0;
+  };
 
   std::vector<Node> nodes_;
+  std::vector<Span> spans_;  // per node, as in nodes_
   std::vector<int> leaves_;
   std::vector<int> order_;
+  Points<Dim> sorted_;  // the points in order_ (sortedPoints())
 };
 
 // The box b scaled by `factor` about its centre.
