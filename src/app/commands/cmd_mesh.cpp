@@ -114,12 +114,15 @@ int autoMeshResolution(int dimension, long long samples) {
 }
 
 // The mesh's closedness in words: a degenerate field's mesh is never called a closed manifold (its
-// components may be noise, docs/maths.md "Degenerate fields").
-const char* degenerateText(bool degenerate, bool closedManifold) {
+// components may be noise, docs/maths.md "Degenerate fields"); a field with "no data" regions (a
+// partition of unity) may also end where its data ends.
+const char* degenerateText(bool degenerate, bool closedManifold, bool everywhereValid) {
   if (degenerate)
     return closedManifold ? "closed, but the field is degenerate (components may be noise)"
                           : "open (degenerate regions left out)";
-  return closedManifold ? "closed manifold" : "open (the surface leaves view.bounds)";
+  if (closedManifold) return "closed manifold";
+  return everywhereValid ? "open (the surface leaves view.bounds)"
+                         : "open (the surface leaves view.bounds or ends where the field has no data)";
 }
 
 std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance) {
@@ -149,7 +152,8 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
                   "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
                   "%.1f ms (field %.1f ms)",
                   mesh.vertexCount(), mesh.triangleCount(),
-                  degenerateText(degenerate, mesh.triangleCount() > 0 && c.closedManifold()),
+                  degenerateText(degenerate, mesh.triangleCount() > 0 && c.closedManifold(),
+                                 f3->field().everywhereValid()),
                   c.eulerCharacteristic,
                   cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF), report.totalMs + chords.ms,
                   report.evaluateMs);

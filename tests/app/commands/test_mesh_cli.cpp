@@ -253,3 +253,21 @@ TEST_CASE("mesh without --resolution: 3D round(0.6·√N) cells within 64 – 25
   CHECK(r.out.find("85x85x85 cells") != std::string::npos);
   CHECK(r.out.find("closed manifold") != std::string::npos);
 }
+
+TEST_CASE("mesh: an open scan fitted by partition of unity ends where its data ends, and the summary says so") {
+  // 12 000 points of the upper half of a unit sphere (golden spiral), normals = positions: the
+  // partition of unity (picked by size) has no data below the rim, so the mesh is open there.
+  std::ostringstream points;
+  const int n = 12000;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1.0 - (i + 0.5) / n, r = std::sqrt(1.0 - z * z), phi = 2.399963229728653 * i;
+    points << r * std::cos(phi) << ' ' << r * std::sin(phi) << ' ' << z << ' ' << r * std::cos(phi) << ' '
+           << r * std::sin(phi) << ' ' << z << '\n';
+  }
+  const std::string file = writeTemp("mesh_open_cap.xyzn", points.str());
+  const std::string out = tempPath("mesh_open_cap.ply");
+  const auto r = runCli("mesh " + file + " -o " + out);
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("open (the surface leaves view.bounds or ends where the field has no data)") != std::string::npos);
+  CHECK_FALSE(hermite::checkMesh(hermite::loadMesh(out)).closedManifold());
+}
