@@ -2,6 +2,7 @@
 // The interface render/ and meshing consume: any scalar field f with gradient and Hessian.
 // Convention (docs/maths.md, Conventions): f < 0 inside, f > 0 outside, ∇f points outward.
 
+#include <memory>
 #include <vector>
 
 #include "core/base/geometry.h"
@@ -57,8 +58,10 @@ class ImplicitField {
   // samples than the field's data reach (docs/maths.md, "No data"). valid(x) by default.
   virtual bool validOnZeroSet(const Vec<Dim>& x) const { return valid(x); }
   // valid() (margin 0) or validNear(·, margin) at the columns of X (Dim × N) into out (N entries,
-  // 1 = valid), in parallel.
-  void validBatch(const Points<Dim>& X, std::vector<char>& out, double margin = 0.0) const;
+  // 1 = valid), in parallel. A field from forGridCells may answer 2: valid only through its
+  // extension beyond the data (a cell with such a corner keeps a polygon only when all its
+  // vertices have data). Overrides keep the default margin 0.
+  virtual void validBatch(const Points<Dim>& X, std::vector<char>& out, double margin = 0.0) const;
   // validOnZeroSet() at the columns of X (Dim × N) into out (N entries, 1 = valid), in parallel.
   void validOnZeroSetBatch(const Points<Dim>& X, std::vector<char>& out) const;
   // f and valid() at the columns of X in one pass where the field can share the work (the
@@ -66,6 +69,14 @@ class ImplicitField {
   virtual void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const;
   // False when valid() may return false somewhere (callers skip the validity pass otherwise).
   virtual bool everywhereValid() const { return true; }
+  // The field as a contour of a grid with cells of diagonal `cellDiagonal` (world units) reads it,
+  // or null for the field itself: a field whose values end where its data ends (a partition of
+  // unity's supports) gives f a value up to a cell beyond, so that every corner of a cell its zero
+  // set crosses near the data has one (docs/maths.md, "No data").
+  virtual std::unique_ptr<ImplicitField<Dim>> forGridCells(double cellDiagonal) const {
+    (void)cellDiagonal;
+    return nullptr;
+  }
 
   // L ≥ sup over the box of ‖∇f‖: |f(x) − f(y)| ≤ L‖x − y‖ inside the box (safe ray steps).
   virtual double lipschitzBound(const Box<Dim>& box) const = 0;

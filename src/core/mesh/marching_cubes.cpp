@@ -104,15 +104,20 @@ std::array<int, 24> faceSegments(const std::array<double, 8>& v, int insideMask)
 // diagonals never lie on a cube face, else a fan around a centre vertex.
 void emitPolygon(const detail::MarchingGrid<3>& g, std::int64_t origin, const int* loop, int n, LayerOutput& out) {
   const CubeTables& T = tables();
+  const auto cornerIndex = [&](int c) {
+    return origin + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
+  };
+  // A corner valid only through the field's extension beyond its data (validBatch's 2): every
+  // vertex must have data, so the extension closes surfaces at the data's edge but grows none.
+  bool extended = false;
+  for (int c = 0; c < 8 && !g.valid.empty(); ++c) extended = extended || g.valid[static_cast<size_t>(cornerIndex(c))] == 2;
   int ids[12];
-  bool withData = false;
+  int withData = 0;
   for (int i = 0; i < n; ++i) {
-    const int c = loop[i] / 3, axis = loop[i] % 3;
-    const std::int64_t idx = origin + (c & 1) * g.stride[0] + ((c >> 1) & 1) * g.stride[1] + ((c >> 2) & 1) * g.stride[2];
-    ids[i] = g.vertexOn(idx, axis);
-    withData = withData || g.isVertexValid(ids[i]);
+    ids[i] = g.vertexOn(cornerIndex(loop[i] / 3), loop[i] % 3);
+    withData += g.isVertexValid(ids[i]);
   }
-  if (!withData) return;
+  if (extended ? withData < n : withData == 0) return;
   if (n == 3) {
     out.triangles.push_back({ids[0], ids[1], ids[2]});
     return;
@@ -361,7 +366,9 @@ TriMesh marchStreamed(const ImplicitField<3>& field, const Box<3>& box, const Ma
 TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
                       MarchingReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
-  TriMesh mesh = options.cull ? marchStreamed(field, box, options, report) : marchDense(field, box, options, report);
+  const std::unique_ptr<ImplicitField<3>> near = field.forGridCells(detail::marchingCellDiagonal<3>(box, options.resolution));
+  const ImplicitField<3>& f = near ? *near : field;
+  TriMesh mesh = options.cull ? marchStreamed(f, box, options, report) : marchDense(f, box, options, report);
   if (report) report->totalMs = msSince(t0);
   return mesh;
 }

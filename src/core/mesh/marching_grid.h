@@ -188,6 +188,16 @@ void checkMarchingInput(const Box<Dim>& box, int resolution) {
     throw InputError("marching: the box must be finite with min < max on every axis");
 }
 
+// The diagonal of the grid's cells (world units), after checkMarchingInput.
+template <int Dim>
+double marchingCellDiagonal(const Box<Dim>& box, int resolution) {
+  checkMarchingInput<Dim>(box, resolution);
+  const auto n = marchingCells<Dim>(box, resolution);
+  Vec<Dim> h;
+  for (int a = 0; a < Dim; ++a) h[a] = box.extent()[a] / n[a];
+  return h.norm();
+}
+
 // Grid layout and f at every grid point (batched by slabs of the last axis to bound memory).
 template <int Dim>
 MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& box, const MarchingOptions& options,

@@ -17,6 +17,7 @@
 #include "core/base/memory_check.h"
 #include "core/base/threading.h"
 #include "core/pu/pu_local_fit.h"
+#include "core/pu/pu_near_field.h"
 #include "core/rbf/dense_fit_memory.h"
 #include "core/rbf/dense_solver.h"
 
@@ -879,6 +880,44 @@ void PuModel<Dim>::evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, 
     f(i) = evaluateValid(X.col(i), nullptr, nullptr, &ok);
     valid[static_cast<std::size_t>(i)] = ok ? 1 : 0;
   }
+}
+
+template <int Dim>
+std::unique_ptr<ImplicitField<Dim>> PuModel<Dim>::forGridCells(double cellDiagonal) const {
+  if (options_.blend == PuBlend::Hard || !(cellDiagonal > 0)) return nullptr;
+  return std::make_unique<PuNearField<Dim>>(*this, cellDiagonal);
+}
+
+template <int Dim>
+int PuModel<Dim>::nearestSupport(const Vec<Dim>& x, double margin) const {
+  const Vec<Dim> y = identityFrame_ ? x : frame_.applyInverse(x);
+  const double m = margin / frame_.q;
+  const Box<Dim> query{y - Vec<Dim>::Constant(m), y + Vec<Dim>::Constant(m)};
+  int best = -1;
+  double bestDistance = std::numeric_limits<double>::infinity();
+  forSupportsTouching(query, [&](int i) {
+    const double d = leaves_[i].support.distanceTo(y);
+    if (d <= m && (d < bestDistance || (d == bestDistance && i < best))) best = i, bestDistance = d;
+  });
+  return best;
+}
+
+template <int Dim>
+bool PuModel<Dim>::supportNear(const Box<Dim>& box, double margin) const {
+  Box<Dim> yb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
+              Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
+  for (int corner = 0; corner < (1 << Dim); ++corner) {  // the frame box of the world box's corners
+    Vec<Dim> c;
+    for (int k = 0; k < Dim; ++k) c(k) = (corner >> k) & 1 ? box.hi(k) : box.lo(k);
+    const Vec<Dim> y = identityFrame_ ? c : frame_.applyInverse(c);
+    yb.lo = yb.lo.cwiseMin(y);
+    yb.hi = yb.hi.cwiseMax(y);
+  }
+  yb.lo.array() -= margin / frame_.q;
+  yb.hi.array() += margin / frame_.q;
+  bool found = false;
+  forSupportsTouching(yb, [&](int) { found = true; });
+  return found;
 }
 
 template <int Dim>

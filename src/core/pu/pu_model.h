@@ -115,6 +115,13 @@ class PuModel : public ImplicitField<Dim> {
   bool validOnZeroSet(const Vec<Dim>& x) const override;
   bool everywhereValid() const override { return options_.blend == PuBlend::Hard; }
   void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const override;
+  // The smooth blend extended by up to a cell beyond its supports (PuNearField); null for the hard blend.
+  std::unique_ptr<ImplicitField<Dim>> forGridCells(double cellDiagonal) const override;
+  // The blended leaf whose support lies nearest to x (world) and within `margin` (world units) of
+  // it, the smaller index on a tie; −1 when none.
+  int nearestSupport(const Vec<Dim>& x, double margin) const;
+  // Whether some blended support lies within `margin` (world units) of the world box.
+  bool supportNear(const Box<Dim>& box, double margin) const;
   // f where there is no data: the root box's diagonal in world units (positive: "outside").
   double noDataValue() const { return noData_; }
 

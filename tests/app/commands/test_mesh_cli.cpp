@@ -3,6 +3,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -270,4 +271,36 @@ TEST_CASE("mesh: an open scan fitted by partition of unity ends where its data e
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("open (the surface leaves view.bounds or ends where the field has no data)") != std::string::npos);
   CHECK_FALSE(hermite::checkMesh(hermite::loadMesh(out)).closedManifold());
+}
+
+TEST_CASE("mesh: a dense thin slab (flat faces at the data's extremes) closes as one watertight component") {
+  // 60 000 points uniform by area on the faces of a 1 × 0.7 × 0.13 box, exact outward normals.
+  // The partition of unity's boxes along the big flat faces are small, so their supports end
+  // closer to the faces than a grid cell; the grid's corners beyond must still get a value
+  // (PuNearField), or the cells across the faces are left out (half the slab was missing).
+  const double size[3] = {1.0, 0.7, 0.13};
+  const double area[3] = {size[1] * size[2], size[0] * size[2], size[0] * size[1]};  // faces ⟂ x, y, z
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::ostringstream points;
+  points.precision(9);
+  for (int i = 0; i < 60000; ++i) {
+    double pick = u(rng) * (area[0] + area[1] + area[2]);
+    int axis = 0;
+    while (axis < 2 && pick > area[axis]) pick -= area[axis++];
+    const double side = u(rng) < 0.5 ? 0.0 : 1.0;
+    double p[3], n[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) p[k] = (k == axis ? side : u(rng)) * size[k];
+    n[axis] = side > 0 ? 1.0 : -1.0;
+    points << p[0] << ' ' << p[1] << ' ' << p[2] << ' ' << n[0] << ' ' << n[1] << ' ' << n[2] << '\n';
+  }
+  const std::string file = writeTemp("mesh_thin_slab.xyzn", points.str());
+  const std::string out = tempPath("mesh_thin_slab.ply");
+  const auto r = runCli("mesh " + file + " -o " + out);
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("closed manifold") != std::string::npos);
+  const hermite::MeshCheck c = hermite::checkMesh(hermite::loadMesh(out));
+  CHECK(c.closedManifold());
+  CHECK(c.components == 1);
+  CHECK(c.eulerCharacteristic == 2);
 }
