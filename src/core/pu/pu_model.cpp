@@ -569,25 +569,6 @@ void PuModel<Dim>::buildReach() {
 }
 
 template <int Dim>
-template <class F>
-void PuModel<Dim>::forSupportsAt(const Vec<Dim>& y, F&& visit) const {
-  const auto& nodes = tree_.nodes();
-  int stack[64 * PuTree<Dim>::kChildren];
-  int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const int id = stack[--top];
-    if (!reach_[id].contains(y)) continue;
-    const auto& nd = nodes[id];
-    if (nd.firstChild < 0) {
-      visit(nd.leaf);
-    } else {
-      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
-    }
-  }
-}
-
-template <int Dim>
 template <class Accept>
 bool PuModel<Dim>::anySupportAt(const Vec<Dim>& y, Accept&& accept) const {
   const auto& nodes = tree_.nodes();
@@ -605,6 +586,15 @@ bool PuModel<Dim>::anySupportAt(const Vec<Dim>& y, Accept&& accept) const {
     }
   }
   return false;
+}
+
+template <int Dim>
+template <class F>
+void PuModel<Dim>::forSupportsAt(const Vec<Dim>& y, F&& visit) const {
+  anySupportAt(y, [&](int leaf) {
+    visit(leaf);
+    return false;  // every support
+  });
 }
 
 template <int Dim>
