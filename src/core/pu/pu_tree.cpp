@@ -281,28 +281,8 @@ void PuTree<Dim>::visitInBox(const Box<Dim>& query, int near, Take&& take, TakeR
   }
 }
 
-// Both queries append without a branch per sample: every candidate is written, and the end moves
-// on only past those inside (which of them are is unpredictable at a support's faces).
-template <int Dim>
-void PuTree<Dim>::samplesInBox(const Box<Dim>& query, std::vector<int>& out, int near) const {
-  out.clear();
-  std::size_t size = 0;
-  visitInBox(
-      query, near,
-      [&](int j, bool in) {
-        if (size == out.size()) out.resize(std::max<std::size_t>(64, 2 * size));
-        out[size] = order_[static_cast<std::size_t>(j)];
-        size += in ? 1 : 0;
-      },
-      [&](int begin, int end) {
-        out.resize(size);
-        out.insert(out.end(), order_.begin() + begin, order_.begin() + end);
-        size = out.size();
-      },
-      [] { return false; });
-  out.resize(size);
-}
-
+// Appends without a branch per sample: every candidate is written, and the end moves on only
+// past those inside (which of them are is unpredictable at a support's faces).
 template <int Dim>
 void PuTree<Dim>::positionsInBox(const Box<Dim>& query, std::vector<int>& out, int near) const {
   out.clear();

@@ -78,12 +78,11 @@ class PuTree {
   // to the upper child).
   int locateLeaf(const Vec<Dim>& y) const;
 
-  // Indices of the tree's samples inside the closed box `query`. The walk starts at the nearest
+  // The positions j in order() of the tree's samples inside the closed box `query`
+  // (sortedPoints().col(j) is the sample, order()[j] its index). The walk starts at the nearest
   // ancestor of node `near` (itself included) whose box holds `query` strictly inside — every
   // sample in `query` lies in that node — so a query about a leaf skips the walk down from the
   // root; the samples and their order are those of a walk from the root.
-  void samplesInBox(const Box<Dim>& query, std::vector<int>& out, int near = 0) const;
-  // Their positions j in order() instead (sortedPoints().col(j) is the sample).
   void positionsInBox(const Box<Dim>& query, std::vector<int>& out, int near = 0) const;
   // How many samples lie in `query`, counting stops above `limit`.
   int countInBox(const Box<Dim>& query, int limit, int near = 0) const;
