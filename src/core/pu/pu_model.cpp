@@ -873,6 +873,21 @@ void PuModel<Dim>::evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, 
 }
 
 template <int Dim>
+Box<Dim> PuModel<Dim>::frameBox(const Box<Dim>& box) const {
+  if (identityFrame_) return box;
+  Box<Dim> yb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
+              Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
+  for (int corner = 0; corner < (1 << Dim); ++corner) {
+    Vec<Dim> c;
+    for (int k = 0; k < Dim; ++k) c(k) = (corner >> k) & 1 ? box.hi(k) : box.lo(k);
+    const Vec<Dim> y = frame_.applyInverse(c);
+    yb.lo = yb.lo.cwiseMin(y);
+    yb.hi = yb.hi.cwiseMax(y);
+  }
+  return yb;
+}
+
+template <int Dim>
 std::unique_ptr<ImplicitField<Dim>> PuModel<Dim>::forGridCells(double cellDiagonal) const {
   if (options_.blend == PuBlend::Hard || !(cellDiagonal > 0)) return nullptr;
   return std::make_unique<PuNearField<Dim>>(*this, cellDiagonal);
@@ -894,15 +909,7 @@ int PuModel<Dim>::nearestSupport(const Vec<Dim>& x, double margin) const {
 
 template <int Dim>
 bool PuModel<Dim>::supportNear(const Box<Dim>& box, double margin) const {
-  Box<Dim> yb{Vec<Dim>::Constant(std::numeric_limits<double>::infinity()),
-              Vec<Dim>::Constant(-std::numeric_limits<double>::infinity())};
-  for (int corner = 0; corner < (1 << Dim); ++corner) {  // the frame box of the world box's corners
-    Vec<Dim> c;
-    for (int k = 0; k < Dim; ++k) c(k) = (corner >> k) & 1 ? box.hi(k) : box.lo(k);
-    const Vec<Dim> y = identityFrame_ ? c : frame_.applyInverse(c);
-    yb.lo = yb.lo.cwiseMin(y);
-    yb.hi = yb.hi.cwiseMax(y);
-  }
+  Box<Dim> yb = frameBox(box);
   yb.lo.array() -= margin / frame_.q;
   yb.hi.array() += margin / frame_.q;
   bool found = false;
@@ -934,21 +941,7 @@ std::vector<std::pair<int, double>> PuModel<Dim>::weights(const Vec<Dim>& x) con
 template <int Dim>
 double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
   if (options_.blend == PuBlend::Hard || !(minFactor_ > 1.0)) return std::numeric_limits<double>::infinity();
-  // The box in frame coordinates (bounding box of its mapped corners), clamped to the root.
-  Box<Dim> yb;
-  if (identityFrame_) {
-    yb = box;
-  } else {
-    yb.lo.setConstant(std::numeric_limits<double>::infinity());
-    yb.hi.setConstant(-std::numeric_limits<double>::infinity());
-    for (int corner = 0; corner < (1 << Dim); ++corner) {
-      Vec<Dim> c;
-      for (int k = 0; k < Dim; ++k) c(k) = (corner >> k) & 1 ? box.hi(k) : box.lo(k);
-      const Vec<Dim> y = frame_.applyInverse(c);
-      yb.lo = yb.lo.cwiseMin(y);
-      yb.hi = yb.hi.cwiseMax(y);
-    }
-  }
+  const Box<Dim> yb = frameBox(box);
   const Vec<Dim> xc = box.center();
   const double reach = 0.5 * box.extent().norm();
   double sumGF = 0, sumG = 0, fMax = 0, lMax = 0, sMin = 0, factorMin = std::numeric_limits<double>::infinity();

@@ -147,6 +147,8 @@ class PuModel : public ImplicitField<Dim> {
   bool anySupportAt(const Vec<Dim>& y, Accept&& accept) const;
   template <class F>
   void forSupportsTouching(const Box<Dim>& b, F&& visit) const;
+  // The world box in frame coordinates: the bounding box of its mapped corners.
+  Box<Dim> frameBox(const Box<Dim>& box) const;
   // Every point of the frame box yb lies in the root and in a blended leaf box.
   bool coveredByData(const Box<Dim>& yb) const;
   // f and derivatives where no support reaches y: the own data box's fit (overlap 1 on a shared
