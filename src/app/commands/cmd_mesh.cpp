@@ -105,6 +105,29 @@ void checkMeshGrid(const Scene& scene, int resolution) {
   else checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
 }
 
+// What the grid did about samples on parts thinner than a cell (MarchingOptions::anchors),
+// appended to the summary line.
+void appendRefinementText(const MarchingReport& r, char* line, std::size_t size) {
+  using Refinement = MarchingReport::Refinement;
+  const std::size_t used = std::strlen(line);
+  if (r.refinement == Refinement::Refined)
+    std::snprintf(line + used, size - used,
+                  "; refined to %dx%dx%d cells at %d samples on parts thinner than a cell (%d still missed)",
+                  r.refinedCells[0], r.refinedCells[1], r.refinedCells[2], r.missedAnchors, r.stillMissed);
+  else if (r.refinement == Refinement::OnePiece)
+    std::snprintf(line + used, size - used, "; %d samples on parts thinner than a cell lie off the mesh",
+                  r.missedAnchors);
+  else if (r.refinement == Refinement::NoGain)
+    std::snprintf(line + used, size - used,
+                  "; %d samples on parts thinner than a cell lie off the mesh (a refined grid gave no fewer pieces)",
+                  r.missedAnchors);
+  else if (r.refinement == Refinement::TooLarge)
+    std::snprintf(line + used, size - used,
+                  "; %d samples on parts thinner than a cell lie off the mesh, too many to refine the grid at: "
+                  "raise --resolution",
+                  r.missedAnchors);
+}
+
 }  // namespace
 
 int autoMeshResolution(int dimension, long long samples) {
@@ -137,6 +160,7 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
   char line[512];
   if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) {
     const Box<3> bounds = viewBounds<3>(scene.view, f3->data.points);
+    options.anchors = &f3->data.points;  // the samples the model interpolates lie on its zero set
     TriMesh mesh = marchingCubes(f3->field(), bounds, options, &report);
     ChordRefinementReport chords;
     if (chordTolerance > 0) {
@@ -145,7 +169,8 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
       mesh = refineChords(mesh, f3->field(), co, &chords);
     }
     saveMesh(output, mesh);
-    const MeshCheck c = checkMesh(mesh);
+    // Degenerate: far smaller than the triangles a vertex 10⁻³ of an edge from a grid point makes.
+    const MeshCheck c = checkMesh(mesh, std::min(1e-9 * report.minStep * report.minStep, 1e-12 * bounds.extent().squaredNorm()));
     // A degenerate field's flat regions are "no data": what is left is not closed over them.
     const bool degenerate = f3->degenerateField && f3->degenerateField->degenerate;
     std::snprintf(line, sizeof line,
@@ -157,6 +182,7 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
                   c.eulerCharacteristic,
                   cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF), report.totalMs + chords.ms,
                   report.evaluateMs);
+    appendRefinementText(report, line, sizeof line);
     if (chordTolerance > 0) {
       // The total above includes the chord refinement; its own share, after it.
       const std::size_t used = std::strlen(line);

@@ -7,9 +7,12 @@
 #include <chrono>
 #include <cstdint>
 #include <functional>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <vector>
 
+#include "core/mesh/marching_anchors.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_slab.h"
 
@@ -232,9 +235,13 @@ TriMesh assembleMesh(const ImplicitField<3>& field, const Points<3>& vertices, c
 }
 
 // The whole grid at once (MarchingOptions::cull off): f at every point, every cell marched.
-TriMesh marchDense(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
-                   MarchingReport* report) {
-  detail::MarchingGrid<3> g = detail::sampleGrid<3>(field, box, options, report);
+TriMesh marchDense(const ImplicitField<3>& field, const GridLines<3>& lines, const Vec<3>& h,
+                   const MarchingOptions& options, MarchingReport* report, detail::AnchorCells* anchors) {
+  detail::MarchingGrid<3> g = detail::sampleGrid<3>(field, lines, h, options, report);
+  if (anchors) {
+    const detail::CullBlock<3> whole{{0, 0, 0}, std::max({g.n[0], g.n[1], g.n[2]})};
+    detail::markSeenAnchors(*anchors, g, detail::signChangingCells(g, {whole}));
+  }
   detail::placeEdgeVertices<3>(g, field, options, report);
   const int layers = g.n[2];
   std::vector<LayerOutput> out(static_cast<size_t>(layers));
@@ -302,19 +309,21 @@ struct StreamState {
   double evaluateMs = 0, maxAbsF = 0;
 };
 
-void streamSlab(const ImplicitField<3>& field, const Vec<3>& lo, const Vec<3>& h, const std::array<int, 3>& n, int slab,
-                const MarchingOptions& options, StreamState& st) {
+void streamSlab(const ImplicitField<3>& field, const GridLines<3>& lines, const Vec<3>& h, int slab,
+                const MarchingOptions& options, StreamState& st, detail::AnchorCells* anchors) {
+  const std::array<int, 3> n = gridCells<3>(lines);
   const int slabs = (n[2] + detail::kSlabCells - 1) / detail::kSlabCells;
   const int k0 = slab * detail::kSlabCells, layers = std::min(detail::kSlabCells, n[2] - k0);
   const bool last = slab == slabs - 1;
   const auto t0 = std::chrono::steady_clock::now();
-  detail::MarchingGrid<3> g = detail::slabGrid(lo, h, n, k0, layers);
+  detail::MarchingGrid<3> g = detail::slabGrid(lines, h, k0, layers);
   const std::vector<detail::CullBlock<3>> blocks = detail::undecidedBlocks(g, field, options.cancel);
   std::function<void(double)> progress;
   if (options.progress) progress = [&](double f) { options.progress((slab + f) / slabs); };
   st.evaluated += detail::evaluateSlab(g, field, blocks, options.cancel, progress);
   st.evaluateMs += msSince(t0);
   const std::vector<std::int64_t> cells = detail::signChangingCells(g, blocks);
+  if (anchors) detail::markSeenAnchors(*anchors, g, cells);
   if (!field.everywhereValid()) detail::slabValidity(g, field, cells, options.cancel);
   detail::slabEdges(g, cells);
   if (st.havePending) resolveSlab(st.pending, g.edgeKeys, st.pending.base + st.pending.owned, st.done);
@@ -333,18 +342,15 @@ void streamSlab(const ImplicitField<3>& field, const Vec<3>& lo, const Vec<3>& h
 }
 
 // The grid in slabs of detail::kSlabCells cell layers (marching_slab.h): memory O(cross-section).
-TriMesh marchStreamed(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
-                      MarchingReport* report) {
-  detail::checkMarchingInput<3>(box, options.resolution);
-  checkMemory(marchingSlabPlan(box, options.resolution), kMarchingRemedy);
-  const std::array<int, 3> n = marchingCells<3>(box, options.resolution);
-  Vec<3> h;
-  for (int a = 0; a < 3; ++a) h[a] = box.extent()[a] / n[a];
+TriMesh marchStreamed(const ImplicitField<3>& field, const GridLines<3>& lines, const Vec<3>& h,
+                      const MarchingOptions& options, MarchingReport* report, detail::AnchorCells* anchors) {
+  const std::array<int, 3> n = gridCells<3>(lines);
+  checkMemory(marchingSlabPlan(n, options.resolution), kMarchingRemedy);
   const int slabs = (n[2] + detail::kSlabCells - 1) / detail::kSlabCells;
   StreamState st;
   for (int s = 0; s < slabs; ++s) {
     throwIfCancelled(options.cancel);
-    streamSlab(field, box.lo, h, n, s, options, st);
+    streamSlab(field, lines, h, s, options, st, anchors);
   }
   resolveSlab(st.pending, {}, 0, st.done);
   if (options.progress) options.progress(1.0);
@@ -361,6 +367,93 @@ TriMesh marchStreamed(const ImplicitField<3>& field, const Box<3>& box, const Ma
   return assembleMesh(field, vertices, gradients, st.done, !field.everywhereValid());
 }
 
+// One contouring pass over `lines`, recording which anchors it sees when `anchors` is given.
+TriMesh marchOnce(const ImplicitField<3>& field, const GridLines<3>& lines, const Vec<3>& h,
+                  const MarchingOptions& options, MarchingReport* report, detail::AnchorCells* anchors) {
+  return options.cull ? marchStreamed(field, lines, h, options, report, anchors)
+                      : marchDense(field, lines, h, options, report, anchors);
+}
+
+// The lines with the intervals near the missed anchors' cells split (MarchingOptions::anchors),
+// or none when even halving them would more than double an axis's cells, or the refined grid
+// (its slabs when streamed) would need more than half the available memory.
+std::optional<GridLines<3>> refinedLines(const GridLines<3>& lines, const std::vector<std::array<int, 3>>& missed,
+                                         const MarchingOptions& options) {
+  const std::array<std::vector<char>, 3> near = intervalsNear<3>(lines, missed, kAnchorReach);
+  const std::array<int, 3> n = gridCells<3>(lines);
+  for (const int factor : {kAnchorSplit, 2}) {
+    std::array<int, 3> m{};
+    bool fits = true;
+    for (int a = 0; a < 3; ++a) {
+      const auto marked = std::count(near[a].begin(), near[a].end(), char(1));
+      m[a] = n[a] + static_cast<int>(marked) * (factor - 1);
+      fits = fits && m[a] <= 2 * n[a];
+    }
+    if (!fits) continue;
+    const PlannedAllocation plan =
+        options.cull ? marchingSlabPlan(m, options.resolution) : marchingGridPlan<3>(m, options.resolution);
+    if (plan.bytes > availableMemory().bytes / 2) return std::nullopt;
+    return splitGridIntervals<3>(lines, near, factor);
+  }
+  return std::nullopt;
+}
+
+// The pass over refined lines. The report keeps the uniform grid's cells, adds this pass's
+// evaluations and says how many anchors it still misses.
+TriMesh contourRefined(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
+                       const Vec<3>& h, const MarchingOptions& options, MarchingReport* report) {
+  detail::AnchorCells seen = detail::locateAnchors(lines, *options.anchors);
+  MarchingReport pass;
+  TriMesh mesh = marchOnce(contoured, lines, h, options, &pass, &seen);
+  if (report) {
+    report->evaluateMs += pass.evaluateMs;
+    report->evaluatedPoints += pass.evaluatedPoints;
+    report->maxAbsF = pass.maxAbsF;
+    report->refinedCells = pass.cells;
+    report->stillMissed = static_cast<int>(detail::missedAnchorCells(seen, *options.anchors, field, h.norm()).size());
+  }
+  return mesh;
+}
+
+double minGridStep(const GridLines<3>& lines) {
+  double step = std::numeric_limits<double>::infinity();
+  for (const std::vector<double>& l : lines)
+    for (size_t i = 0; i + 1 < l.size(); ++i) step = std::min(step, l[i + 1] - l[i]);
+  return step;
+}
+
+// The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
+// (MarchingOptions::anchors); otherwise `mesh` as it is, the report saying why.
+TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
+                         const Vec<3>& h, const detail::AnchorCells& seen, TriMesh mesh, const MarchingOptions& options,
+                         MarchingReport* report) {
+  using Refinement = MarchingReport::Refinement;
+  const std::vector<std::array<int, 3>> missed = detail::missedAnchorCells(seen, *options.anchors, field, h.norm());
+  if (missed.empty()) return mesh;
+  MarchingReport local;
+  MarchingReport& r = report ? *report : local;
+  r.missedAnchors = r.stillMissed = static_cast<int>(missed.size());
+  // A thin part the grid steps over splits the surface; a thin rim it truncates (the edge of an
+  // ear) leaves one piece and is not worth a second pass.
+  r.refinement = Refinement::OnePiece;
+  if (connectedComponentCount(mesh) <= 1) return mesh;
+  r.refinement = Refinement::TooLarge;
+  const std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
+  if (!refined) return mesh;
+  MarchingReport pass = r;
+  TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass);
+  // Fewer pieces or none of it: more pieces on a finer grid are the field's own (a fit that
+  // breaks up), not steps the grid took over a thin part.
+  r.refinement = Refinement::NoGain;
+  r.evaluateMs = pass.evaluateMs;
+  r.evaluatedPoints = pass.evaluatedPoints;
+  if (connectedComponentCount(finer) >= connectedComponentCount(mesh)) return mesh;
+  pass.refinement = Refinement::Refined;
+  pass.minStep = minGridStep(*refined);
+  r = pass;
+  return finer;
+}
+
 }  // namespace
 
 TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
@@ -368,7 +461,13 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   const auto t0 = std::chrono::steady_clock::now();
   const std::unique_ptr<ImplicitField<3>> near = field.forGridCells(detail::marchingCellDiagonal<3>(box, options.resolution));
   const ImplicitField<3>& f = near ? *near : field;
-  TriMesh mesh = options.cull ? marchStreamed(f, box, options, report) : marchDense(f, box, options, report);
+  const GridLines<3> lines = detail::marchingLines<3>(box, options.resolution);
+  const Vec<3> h = detail::marchingCellSize<3>(box, options.resolution);
+  std::optional<detail::AnchorCells> seen;
+  if (options.anchors && options.anchors->cols() > 0) seen = detail::locateAnchors(lines, *options.anchors);
+  TriMesh mesh = marchOnce(f, lines, h, options, report, seen ? &*seen : nullptr);
+  if (report) report->minStep = minGridStep(lines);
+  if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report);
   if (report) report->totalMs = msSince(t0);
   return mesh;
 }

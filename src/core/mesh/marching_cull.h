@@ -42,8 +42,8 @@ template <int Dim>
 Box<Dim> cullBlockBox(const MarchingGrid<Dim>& g, const CullBlock<Dim>& b) {
   Box<Dim> box;
   for (int a = 0; a < Dim; ++a) {
-    box.lo[a] = g.lo[a] + g.h[a] * (b.lo[a] + g.origin[a]);
-    box.hi[a] = g.lo[a] + g.h[a] * (std::min(b.lo[a] + b.size, g.n[a]) + g.origin[a]);
+    box.lo[a] = g.lines[a][static_cast<size_t>(b.lo[a] + g.origin[a])];
+    box.hi[a] = g.lines[a][static_cast<size_t>(std::min(b.lo[a] + b.size, g.n[a]) + g.origin[a])];
   }
   return box;
 }

@@ -14,6 +14,7 @@
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
 #include "core/base/parallel_sort.h"
+#include "core/mesh/grid_lines.h"
 #include "core/mesh/marching_cull.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_options.h"
@@ -22,8 +23,10 @@ namespace hermite::detail {
 
 template <int Dim>
 struct MarchingGrid {
-  Vec<Dim> lo;
-  Vec<Dim> h;                          // cell size per axis
+  GridLines<Dim> lines;                // the whole grid's lines per axis (world coordinates)
+  // The uniform grid's cell size per axis (refined cells are smaller): its diagonal is the
+  // margin by which validNear widens the data's reach.
+  Vec<Dim> h;
   std::array<int, Dim> n{};            // cells per axis
   std::array<std::int64_t, Dim> stride{};  // point-index step per axis (points: n + 1 per axis)
   // Cells of the whole grid before this one's first, per axis: a slab of a streamed grid
@@ -58,8 +61,13 @@ struct MarchingGrid {
   Vec<Dim> point(std::int64_t idx) const {
     const std::array<int, Dim> c = coords(idx);
     Vec<Dim> x;
-    for (int a = 0; a < Dim; ++a) x[a] = lo[a] + h[a] * (c[a] + origin[a]);
+    for (int a = 0; a < Dim; ++a) x[a] = lines[a][static_cast<size_t>(c[a] + origin[a])];
     return x;
+  }
+  // The length of cell c (local) along axis a.
+  double step(int a, int c) const {
+    const size_t i = static_cast<size_t>(c + origin[a]);
+    return lines[a][i + 1] - lines[a][i];
   }
   bool inside(std::int64_t idx) const { return values[idx] < 0; }
   bool isValid(std::int64_t idx) const { return valid.empty() || valid[static_cast<size_t>(idx)]; }
@@ -188,30 +196,42 @@ void checkMarchingInput(const Box<Dim>& box, int resolution) {
     throw InputError("marching: the box must be finite with min < max on every axis");
 }
 
-// The diagonal of the grid's cells (world units), after checkMarchingInput.
+// The uniform grid's cell size per axis over the box (world units), after checkMarchingInput.
 template <int Dim>
-double marchingCellDiagonal(const Box<Dim>& box, int resolution) {
+Vec<Dim> marchingCellSize(const Box<Dim>& box, int resolution) {
   checkMarchingInput<Dim>(box, resolution);
   const auto n = marchingCells<Dim>(box, resolution);
   Vec<Dim> h;
   for (int a = 0; a < Dim; ++a) h[a] = box.extent()[a] / n[a];
-  return h.norm();
+  return h;
 }
 
-// Grid layout and f at every grid point (batched by slabs of the last axis to bound memory).
+// The diagonal of the uniform grid's cells (world units), after checkMarchingInput.
 template <int Dim>
-MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const Box<Dim>& box, const MarchingOptions& options,
-                             MarchingReport* report) {
-  checkMarchingInput<Dim>(box, options.resolution);
-  const Vec<Dim> ext = box.extent();
+double marchingCellDiagonal(const Box<Dim>& box, int resolution) {
+  return marchingCellSize<Dim>(box, resolution).norm();
+}
+
+// The uniform grid's lines over the box, after checkMarchingInput.
+template <int Dim>
+GridLines<Dim> marchingLines(const Box<Dim>& box, int resolution) {
+  checkMarchingInput<Dim>(box, resolution);
+  return uniformGridLines<Dim>(box, marchingCells<Dim>(box, resolution));
+}
+
+// The grid over `lines` (h: the uniform grid's cell size they refine) and f at every grid point
+// (batched to bound memory).
+template <int Dim>
+MarchingGrid<Dim> sampleGrid(const ImplicitField<Dim>& field, const GridLines<Dim>& lines, const Vec<Dim>& h,
+                             const MarchingOptions& options, MarchingReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
   MarchingGrid<Dim> g;
-  g.lo = box.lo;
-  checkMemory(marchingGridPlan<Dim>(box, options.resolution), kMarchingRemedy);
-  g.n = marchingCells<Dim>(box, options.resolution);
+  g.lines = lines;
+  g.h = h;
+  g.n = gridCells<Dim>(lines);
+  checkMemory(marchingGridPlan<Dim>(g.n, options.resolution), kMarchingRemedy);
   std::int64_t s = 1;
   for (int a = 0; a < Dim; ++a) {
-    g.h[a] = ext[a] / g.n[a];
     g.stride[a] = s;
     s *= g.n[a] + 1;
   }
@@ -296,12 +316,14 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
   constexpr double tau = 1e-3;
   const int V = static_cast<int>(g.edgeKeys.size());
   Eigen::VectorXd t(V), tLo(V), tHi(V), fLo(V), fHi(V);  // parameter along the edge, its bracket and f there
+  Eigen::VectorXd length(V);                                // the edge's length
   std::vector<std::int64_t> from(static_cast<size_t>(V));
   std::vector<int> axis(static_cast<size_t>(V));
   std::vector<signed char> lastMoved(static_cast<size_t>(V), 0);
   for (int v = 0; v < V; ++v) {
     from[v] = g.edgeKeys[v] / Dim;
     axis[v] = static_cast<int>(g.edgeKeys[v] % Dim);
+    length[v] = g.step(axis[v], g.coords(from[v])[axis[v]]);
     const double fa = g.values[from[v]], fb = g.values[from[v] + g.stride[axis[v]]];
     t[v] = std::clamp(fa / (fa - fb), tau, 1 - tau);
     tLo[v] = 0;
@@ -311,7 +333,7 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
   }
   auto position = [&](int v) {
     Vec<Dim> x = g.point(from[v]);
-    x[axis[v]] += t[v] * g.h[axis[v]];
+    x[axis[v]] += t[v] * length[v];
     return x;
   };
   Eigen::VectorXd f;
@@ -331,7 +353,7 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
     throwIfCancelled(options.cancel);
     next.clear();
     for (int v : active) {
-      const double slope = G(axis[v], v) * g.h[axis[v]];  // df/dt
+      const double slope = G(axis[v], v) * length[v];  // df/dt
       if (std::abs(f[v]) <= 1e-9 * std::abs(slope)) continue;  // converged
       // The end at t = 0 is the one whose sign is values[from]: keep the bracket on the sign change.
       const bool startInside = g.values[from[v]] < 0;

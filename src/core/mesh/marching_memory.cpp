@@ -17,8 +17,7 @@ std::array<int, Dim> marchingCells(const Box<Dim>& box, int resolution) {
 }
 
 template <int Dim>
-PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution) {
-  const std::array<int, Dim> n = marchingCells<Dim>(box, resolution);
+PlannedAllocation marchingGridPlan(const std::array<int, Dim>& n, int resolution) {
   std::uint64_t points = 1;
   std::string grid;
   for (int a = 0; a < Dim; ++a) {
@@ -31,8 +30,12 @@ PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution) {
               std::to_string(kMarchingBytesPerPoint) + " bytes each)"};
 }
 
-PlannedAllocation marchingSlabPlan(const Box<3>& box, int resolution) {
-  const std::array<int, 3> n = marchingCells<3>(box, resolution);
+template <int Dim>
+PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution) {
+  return marchingGridPlan<Dim>(marchingCells<Dim>(box, resolution), resolution);
+}
+
+PlannedAllocation marchingSlabPlan(const std::array<int, 3>& n, int resolution) {
   const int layers = std::min(n[2], kSlabPlanCells) + 1;
   const std::uint64_t points =
       saturatingProduct({std::uint64_t(n[0]) + 1, std::uint64_t(n[1]) + 1, std::uint64_t(layers)});
@@ -42,9 +45,15 @@ PlannedAllocation marchingSlabPlan(const Box<3>& box, int resolution) {
               std::to_string(kSlabPlanBytesPerPoint) + " bytes each)"};
 }
 
+PlannedAllocation marchingSlabPlan(const Box<3>& box, int resolution) {
+  return marchingSlabPlan(marchingCells<3>(box, resolution), resolution);
+}
+
 template std::array<int, 2> marchingCells<2>(const Box<2>&, int);
 template std::array<int, 3> marchingCells<3>(const Box<3>&, int);
 template PlannedAllocation marchingGridPlan<2>(const Box<2>&, int);
+template PlannedAllocation marchingGridPlan<2>(const std::array<int, 2>&, int);
+template PlannedAllocation marchingGridPlan<3>(const std::array<int, 3>&, int);
 template PlannedAllocation marchingGridPlan<3>(const Box<3>&, int);
 
 }  // namespace hermite

@@ -22,6 +22,9 @@ std::array<int, Dim> marchingCells(const Box<Dim>& box, int resolution);
 // The grid's plan: "marching cubes at resolution 4096 (a 4097 x 4097 x 4097 grid)".
 template <int Dim>
 PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution);
+// The same for a grid of n cells per axis (a refined grid, grid_lines.h); `resolution` names it.
+template <int Dim>
+PlannedAllocation marchingGridPlan(const std::array<int, Dim>& n, int resolution);
 
 // Streamed marching cubes (MarchingOptions::cull, the default) holds one slab of the grid at a
 // time: min(64, cells along z) + 1 point layers of the grid's cross-section, 10 bytes per point
@@ -30,5 +33,6 @@ PlannedAllocation marchingGridPlan(const Box<Dim>& box, int resolution);
 inline constexpr int kSlabPlanCells = 64;
 inline constexpr int kSlabPlanBytesPerPoint = 10;
 PlannedAllocation marchingSlabPlan(const Box<3>& box, int resolution);
+PlannedAllocation marchingSlabPlan(const std::array<int, 3>& n, int resolution);
 
 }  // namespace hermite

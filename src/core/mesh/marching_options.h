@@ -49,7 +49,20 @@ struct MarchingOptions {
   // Receives the fraction (0 … 1) of the grid evaluations done, on the calling thread, after each
   // batch (empty: none). The culling octree and the vertex refinement are not counted.
   std::function<void(double)> progress = {};
+  // Points on the zero set, world coordinates (the fit's samples; null: none; 3D only). An anchor
+  // is missed when its own cell has no sign change, the field passes through it and the zero set
+  // there is thinner than a cell diagonal along ∇f (marching_anchors.h): a part of the surface the
+  // grid steps over. When that splits the mesh into pieces, the grid is refined and contoured
+  // again: the cells of the missed anchors are cut into kAnchorSplit along every axis, each cut a
+  // whole grid plane, so the grid stays rectilinear and the mesh watertight; the finer mesh is
+  // kept when it has fewer pieces. Not refined (and reported) when the mesh is one piece anyway,
+  // or when the cuts would more than double an axis's cells or need more than half the
+  // available memory.
+  const Points<3>* anchors = nullptr;
 };
+
+inline constexpr int kAnchorReach = 0;  // cells around a missed anchor's own that are cut too, per side
+inline constexpr int kAnchorSplit = 4;  // parts each of them is cut into
 
 // What the contouring measured.
 struct MarchingReport {
@@ -59,6 +72,14 @@ struct MarchingReport {
   long long evaluatedPoints = 0;      // of which f was evaluated (the rest culled, plus block centres)
   double totalMs = 0;
   double maxAbsF = 0;                 // max |f| over the edge vertices after refinement
+  int missedAnchors = 0;              // anchors the uniform grid missed (MarchingOptions::anchors)
+  // What was done about them: Refined, or why not.
+  enum class Refinement { None, Refined, OnePiece, TooLarge, NoGain } refinement = Refinement::None;
+  std::array<int, 3> refinedCells{0, 0, 0};  // cells per axis of the refined grid; 0 when not refined
+  int stillMissed = 0;                // anchors the refined grid missed too (missedAnchors when not refined)
+  // The smallest grid step (world units). A vertex lies at least 10⁻³ of its edge from a grid
+  // point, so the mesh's smallest triangles scale with its square.
+  double minStep = 0;
 };
 
 }  // namespace hermite

@@ -26,11 +26,12 @@ namespace hermite::detail {
 inline constexpr int kSlabCells = kSlabPlanCells;
 static_assert(kSlabPlanBytesPerPoint == sizeof(double) + 2, "the slab plan counts f, needed, valid");
 
-// The slab of cell layers [k0, k0 + layers) of a grid of n cells per axis over lo with steps h:
-// its points are the grid's point layers [k0, k0 + layers], indexed locally, placed globally.
-inline MarchingGrid<3> slabGrid(const Vec<3>& lo, const Vec<3>& h, const std::array<int, 3>& n, int k0, int layers) {
+// The slab of cell layers [k0, k0 + layers) of the grid over `lines` (h: the uniform grid's cell
+// size): its points are the grid's point layers [k0, k0 + layers], indexed locally, placed globally.
+inline MarchingGrid<3> slabGrid(const GridLines<3>& lines, const Vec<3>& h, int k0, int layers) {
+  const std::array<int, 3> n = gridCells<3>(lines);
   MarchingGrid<3> g;
-  g.lo = lo;
+  g.lines = lines;
   g.h = h;
   g.n = {n[0], n[1], layers};
   g.origin = {0, 0, k0};

@@ -90,7 +90,9 @@ std::vector<Polyline2d> chainPolylines(const detail::MarchingGrid<2>& g, const S
 std::vector<Polyline2d> marchingSquares(const ImplicitField<2>& field, const Box<2>& box,
                                         const MarchingOptions& options, MarchingReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
-  detail::MarchingGrid<2> g = detail::sampleGrid<2>(field, box, options, report);
+  detail::MarchingGrid<2> g = detail::sampleGrid<2>(field, detail::marchingLines<2>(box, options.resolution),
+                                                          detail::marchingCellSize<2>(box, options.resolution),
+                                                          options, report);
   detail::placeEdgeVertices<2>(g, field, options, report);
   std::vector<Polyline2d> lines = chainPolylines(g, linkSegments(g));
   if (report) report->totalMs = msSince(t0);

@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -300,6 +301,48 @@ TEST_CASE("mesh: a dense thin slab (flat faces at the data's extremes) closes as
   REQUIRE(r.rc == 0);
   CHECK(r.out.find("closed manifold") != std::string::npos);
   const hermite::MeshCheck c = hermite::checkMesh(hermite::loadMesh(out));
+  CHECK(c.closedManifold());
+  CHECK(c.components == 1);
+  CHECK(c.eulerCharacteristic == 2);
+}
+
+TEST_CASE("mesh: a rod thinner than a grid cell between two balls stays joined (the grid is refined at its samples)") {
+  // Two balls of radius 0.3 at x = ±0.5 joined by a rod of radius 0.012 along x at y = z = 0.018,
+  // sampled with exact outward normals. At --resolution 64 over the default bounds the cells are
+  // 0.037 wide and y = z = 0 is a grid line, so the rod's axis lies 0.025 from every grid line
+  // along x and the uniform grid holds no point inside the rod: it meshes as two balls.
+  constexpr double kAxis = 0.018, kRod = 0.012;
+  const auto f = [&](const Eigen::Vector3d& q) {
+    const Eigen::Vector3d axis(std::clamp(q.x(), -0.5, 0.5), kAxis, kAxis);
+    return std::min({(q - Eigen::Vector3d(-0.5, 0, 0)).norm() - 0.3, (q - Eigen::Vector3d(0.5, 0, 0)).norm() - 0.3,
+                     (q - axis).norm() - kRod});
+  };
+  std::mt19937 rng(5);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::ostringstream points;
+  points.precision(9);
+  const auto add = [&](const Eigen::Vector3d& q, const Eigen::Vector3d& n) {
+    if (f(q) > -1e-9) points << q.x() << ' ' << q.y() << ' ' << q.z() << ' ' << n.x() << ' ' << n.y() << ' ' << n.z() << '\n';
+  };
+  for (double cx : {-0.5, 0.5})
+    for (int i = 0; i < 6000; ++i) {
+      const Eigen::Vector3d v = Eigen::Vector3d(normal(rng), normal(rng), normal(rng)).normalized();
+      add(Eigen::Vector3d(cx, 0, 0) + 0.3 * v, v);
+    }
+  for (int i = 0; i < 1500; ++i) {
+    const double x = -0.25 + 0.5 * u(rng), t = 2 * M_PI * u(rng);
+    const Eigen::Vector3d n(0, std::cos(t), std::sin(t));
+    add(Eigen::Vector3d(x, kAxis, kAxis) + kRod * n, n);
+  }
+  const std::string file = writeTemp("mesh_thin_rod.xyzn", points.str());
+  const std::string out = tempPath("mesh_thin_rod.ply");
+  const auto r = runCli("mesh " + file + " -o " + out + " --resolution 64");
+  REQUIRE(r.rc == 0);
+  CHECK(r.out.find("64x38x38 cells") != std::string::npos);
+  CHECK(r.out.find("samples on parts thinner than a cell (0 still missed)") != std::string::npos);
+  CHECK(r.out.find("closed manifold") != std::string::npos);
+  const hermite::MeshCheck c = hermite::checkMesh(hermite::loadMesh(out), 1e-16);
   CHECK(c.closedManifold());
   CHECK(c.components == 1);
   CHECK(c.eulerCharacteristic == 2);
