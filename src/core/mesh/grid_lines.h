@@ -37,11 +37,17 @@ std::array<int, Dim> gridCells(const GridLines<Dim>& lines) {
 
 // The cell interval of coordinate x on one axis's lines: i with lines[i] ≤ x < lines[i + 1]
 // (the last cell for x on the last line); −1 outside [lines.front(), lines.back()].
+// Starts where uniform lines would put x and searches only when that misses by more than a line.
 inline int gridCellOf(const std::vector<double>& lines, double x) {
   if (!(x >= lines.front() && x <= lines.back())) return -1;
+  const int last = static_cast<int>(lines.size()) - 2;  // the last cell
+  const double t = (x - lines.front()) / (lines.back() - lines.front());
+  int i = std::clamp(static_cast<int>(t * (last + 1)), 0, last);
+  if (lines[static_cast<size_t>(i)] > x) --i;
+  else if (i < last && lines[static_cast<size_t>(i) + 1] <= x) ++i;
+  if (i >= 0 && lines[static_cast<size_t>(i)] <= x && (i == last || x < lines[static_cast<size_t>(i) + 1])) return i;
   const auto it = std::upper_bound(lines.begin(), lines.end(), x);
-  const int i = static_cast<int>(it - lines.begin()) - 1;
-  return std::min(i, static_cast<int>(lines.size()) - 2);
+  return std::min(static_cast<int>(it - lines.begin()) - 1, last);
 }
 
 // The lines with each interval i of axis a where split[a][i] is set cut into `factor` equal

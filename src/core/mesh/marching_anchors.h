@@ -33,12 +33,18 @@ inline AnchorCells locateAnchors(const GridLines<3>& lines, const Points<3>& anc
     std::array<int, 3>& c = a.cell[static_cast<size_t>(i)];
     for (int k = 0; k < 3; ++k) c[k] = gridCellOf(lines[k], anchors(k, i));
   }
-  for (int i = 0; i < m; ++i) {
+  // A counting sort by the cell's z (stable: by index within a layer).
+  std::vector<int> start(lines[2].size() + 1, 0);
+  const auto inside = [&](int i) {
     const std::array<int, 3>& c = a.cell[static_cast<size_t>(i)];
-    if (c[0] >= 0 && c[1] >= 0 && c[2] >= 0) a.byLayer.push_back(i);
-  }
-  std::stable_sort(a.byLayer.begin(), a.byLayer.end(),
-                   [&](int x, int y) { return a.cell[static_cast<size_t>(x)][2] < a.cell[static_cast<size_t>(y)][2]; });
+    return c[0] >= 0 && c[1] >= 0 && c[2] >= 0;
+  };
+  for (int i = 0; i < m; ++i)
+    if (inside(i)) ++start[static_cast<size_t>(a.cell[static_cast<size_t>(i)][2]) + 1];
+  for (size_t k = 1; k < start.size(); ++k) start[k] += start[k - 1];
+  a.byLayer.resize(static_cast<size_t>(start.back()));
+  for (int i = 0; i < m; ++i)
+    if (inside(i)) a.byLayer[static_cast<size_t>(start[static_cast<size_t>(a.cell[static_cast<size_t>(i)][2])]++)] = i;
   return a;
 }
 
