@@ -89,29 +89,33 @@ inline std::vector<std::array<int, 3>> missedAnchorCells(const AnchorCells& a, c
   std::vector<int> unseen;
   for (int i : a.byLayer)
     if (!a.seen[static_cast<size_t>(i)]) unseen.push_back(i);
-  const Eigen::Index m = static_cast<Eigen::Index>(unseen.size());
-  Points<3> X(3, m);
-  for (Eigen::Index t = 0; t < m; ++t) X.col(t) = anchors.col(unseen[static_cast<size_t>(t)]);
+  Points<3> X(3, static_cast<Eigen::Index>(unseen.size()));
+  for (size_t t = 0; t < unseen.size(); ++t) X.col(static_cast<Eigen::Index>(t)) = anchors.col(unseen[t]);
   Eigen::VectorXd f, fs;
   Points<3> G;
   field.evaluateBatch(X, f, &G);
   std::vector<char> ok;
   field.validOnZeroSetBatch(X, ok);
+  // Probed only where the field passes through the anchor and has data there.
+  std::vector<Eigen::Index> through;
+  for (Eigen::Index t = 0; t < X.cols(); ++t)
+    if (ok[static_cast<size_t>(t)] && std::abs(f[t]) <= 0.25 * cellDiagonal * G.col(t).norm()) through.push_back(t);
+  const Eigen::Index m = static_cast<Eigen::Index>(through.size());
   Points<3> probes(3, m * 2 * kThinSteps);
-  for (Eigen::Index t = 0; t < m; ++t) {
+  for (Eigen::Index j = 0; j < m; ++j) {
+    const Eigen::Index t = through[static_cast<size_t>(j)];
     const Vec<3> n = G.col(t).normalized();
     for (int k = 0; k < kThinSteps; ++k) {
       const double s = cellDiagonal * (k + 1) / kThinSteps;
-      probes.col(t * 2 * kThinSteps + k) = X.col(t) - s * n;
-      probes.col(t * 2 * kThinSteps + kThinSteps + k) = X.col(t) + s * n;
+      probes.col(j * 2 * kThinSteps + k) = X.col(t) - s * n;
+      probes.col(j * 2 * kThinSteps + kThinSteps + k) = X.col(t) + s * n;
     }
   }
   field.evaluateBatch(probes, fs);
   std::vector<std::array<int, 3>> out;
-  for (Eigen::Index t = 0; t < m; ++t)
-    if (ok[static_cast<size_t>(t)] && std::abs(f[t]) <= 0.25 * cellDiagonal * G.col(t).norm() &&
-        thinAt(fs, t * 2 * kThinSteps))
-      out.push_back(a.cell[static_cast<size_t>(unseen[static_cast<size_t>(t)])]);
+  for (Eigen::Index j = 0; j < m; ++j)
+    if (thinAt(fs, j * 2 * kThinSteps))
+      out.push_back(a.cell[static_cast<size_t>(unseen[static_cast<size_t>(through[static_cast<size_t>(j)])])]);
   return out;
 }
 
