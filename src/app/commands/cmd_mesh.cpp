@@ -170,7 +170,8 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
     }
     saveMesh(output, mesh);
     // Degenerate: far smaller than the triangles a vertex 10⁻³ of an edge from a grid point makes.
-    const MeshCheck c = checkMesh(mesh, std::min(1e-9 * report.minStep * report.minStep, 1e-12 * bounds.extent().squaredNorm()));
+    const double tiny = std::min(1e-9 * report.minStep * report.minStep, 1e-12 * bounds.extent().squaredNorm());
+    const MeshCheck c = checkMesh(mesh, tiny);
     // A degenerate field's flat regions are "no data": what is left is not closed over them.
     const bool degenerate = f3->degenerateField && f3->degenerateField->degenerate;
     std::snprintf(line, sizeof line,
