@@ -184,6 +184,11 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
                   cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF), report.totalMs + chords.ms,
                   report.evaluateMs);
     appendRefinementText(report, line, sizeof line);
+    if (report.droppedSlivers > 0) {
+      const std::size_t used = std::strlen(line);
+      std::snprintf(line + used, sizeof line - used, "; %d open pieces smaller than a cell face left out",
+                    report.droppedSlivers);
+    }
     if (chordTolerance > 0) {
       // The total above includes the chord refinement; its own share, after it.
       const std::size_t used = std::strlen(line);

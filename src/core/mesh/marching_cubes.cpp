@@ -3,6 +3,7 @@
 
 #include "core/mesh/marching_cubes.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cstdint>
@@ -15,6 +16,7 @@
 #include "core/mesh/marching_anchors.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_slab.h"
+#include "core/mesh/open_slivers.h"
 
 namespace hermite {
 
@@ -164,26 +166,6 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
   }
 }
 
-// Removes vertices no triangle uses (edge vertices whose cubes all touch a no-data point),
-// renumbering the triangles; keeps the order of the rest.
-void dropUnusedVertices(TriMesh& mesh) {
-  std::vector<int> id(static_cast<size_t>(mesh.vertexCount()), -1);
-  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
-    for (int k = 0; k < 3; ++k) id[static_cast<size_t>(mesh.triangles(k, t))] = 0;
-  int kept = 0;
-  for (int v = 0; v < mesh.vertexCount(); ++v) {
-    if (id[static_cast<size_t>(v)] < 0) continue;
-    id[static_cast<size_t>(v)] = kept;
-    mesh.vertices.col(kept) = mesh.vertices.col(v);
-    if (mesh.hasNormals()) mesh.normals.col(kept) = mesh.normals.col(v);
-    ++kept;
-  }
-  const bool normals = mesh.hasNormals();
-  mesh.vertices.conservativeResize(3, kept);
-  if (normals) mesh.normals.conservativeResize(3, kept);
-  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
-    for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = id[static_cast<size_t>(mesh.triangles(k, t))];
-}
 
 
 // The mesh from the edge vertices (3 × V positions and ∇f), the cubes' triangles and their
@@ -493,6 +475,11 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   TriMesh mesh = marchOnce(f, lines, h, options, report, seen ? &*seen : nullptr);
   if (report) report->minStep = minGridStep(lines);
   if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report);
+  // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
+  if (!field.everywhereValid() && meshPieces(mesh) > 1) {
+    const int slivers = dropOpenSlivers(mesh, std::min({h[0] * h[1], h[1] * h[2], h[0] * h[2]}));
+    if (report) report->droppedSlivers = slivers;
+  }
   if (report) report->totalMs = msSince(t0);
   return mesh;
 }

@@ -80,6 +80,9 @@ struct MarchingReport {
   // The smallest grid step (world units). A vertex lies at least 10⁻³ of its edge from a grid
   // point, so the mesh's smallest triangles scale with its square.
   double minStep = 0;
+  // Open pieces (cut where the field has no data) with less area than the smallest face of a
+  // uniform grid cell, left out of the mesh (open_slivers.h).
+  int droppedSlivers = 0;
 };
 
 }  // namespace hermite

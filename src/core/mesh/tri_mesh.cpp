@@ -142,6 +142,25 @@ std::vector<int> triangleComponents(const TriMesh& mesh, int* count) {
   return label;
 }
 
+void dropUnusedVertices(TriMesh& mesh) {
+  std::vector<int> id(static_cast<size_t>(mesh.vertexCount()), -1);
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    for (int k = 0; k < 3; ++k) id[static_cast<size_t>(mesh.triangles(k, t))] = 0;
+  int kept = 0;
+  for (int v = 0; v < mesh.vertexCount(); ++v) {
+    if (id[static_cast<size_t>(v)] < 0) continue;
+    id[static_cast<size_t>(v)] = kept;
+    mesh.vertices.col(kept) = mesh.vertices.col(v);
+    if (mesh.hasNormals()) mesh.normals.col(kept) = mesh.normals.col(v);
+    ++kept;
+  }
+  const bool normals = mesh.hasNormals();
+  mesh.vertices.conservativeResize(3, kept);
+  if (normals) mesh.normals.conservativeResize(3, kept);
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = id[static_cast<size_t>(mesh.triangles(k, t))];
+}
+
 int connectedComponentCount(const TriMesh& mesh) {
   int n = 0;
   triangleComponents(mesh, &n);

@@ -41,6 +41,10 @@ std::vector<int> triangleComponents(const TriMesh& mesh, int* count = nullptr);
 // Number of connected components of the mesh's triangles (edge-connected).
 int connectedComponentCount(const TriMesh& mesh);
 
+// Removes the vertices no triangle uses (and their normals), renumbering the triangles; the rest
+// keep their order.
+void dropUnusedVertices(TriMesh& mesh);
+
 // ---- normals -------------------------------------------------------------------------------
 
 enum class NormalWeighting { Area, Angle };
