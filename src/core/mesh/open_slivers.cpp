@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/base/parallel_sort.h"
@@ -12,23 +13,20 @@ namespace {
 
 // Per component: whether one of its edges is used by a single triangle.
 std::vector<char> componentsWithBoundary(const TriMesh& mesh, const std::vector<int>& label, int count) {
-  std::vector<std::uint64_t> edges;
+  std::vector<std::pair<std::uint64_t, int>> edges;  // (edge, triangle)
   edges.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
   for (int t = 0; t < mesh.triangleCount(); ++t)
     for (int k = 0; k < 3; ++k) {
-      const auto a = static_cast<std::uint32_t>(mesh.triangles(k, t)), b = static_cast<std::uint32_t>(mesh.triangles((k + 1) % 3, t));
-      edges.push_back(std::uint64_t(std::min(a, b)) << 32 | std::max(a, b));
+      const auto a = static_cast<std::uint32_t>(mesh.triangles(k, t));
+      const auto b = static_cast<std::uint32_t>(mesh.triangles((k + 1) % 3, t));
+      edges.emplace_back(std::uint64_t(std::min(a, b)) << 32 | std::max(a, b), t);
     }
-  parallelSort(edges.begin(), edges.end());
-  // A vertex belongs to one component, so the edge's first vertex names it.
-  std::vector<int> vertexLabel(static_cast<size_t>(mesh.vertexCount()), -1);
-  for (int t = 0; t < mesh.triangleCount(); ++t)
-    for (int k = 0; k < 3; ++k) vertexLabel[static_cast<size_t>(mesh.triangles(k, t))] = label[static_cast<size_t>(t)];
+  parallelSort(edges.begin(), edges.end());  // (edge, triangle): a strict total order
   std::vector<char> open(static_cast<size_t>(count), 0);
   for (size_t i = 0; i < edges.size();) {
     size_t j = i + 1;
-    while (j < edges.size() && edges[j] == edges[i]) ++j;
-    if (j - i == 1) open[static_cast<size_t>(vertexLabel[static_cast<size_t>(edges[i] >> 32)])] = 1;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    if (j - i == 1) open[static_cast<size_t>(label[static_cast<size_t>(edges[i].second)])] = 1;
     i = j;
   }
   return open;
