@@ -148,7 +148,8 @@ const char* degenerateText(bool degenerate, bool closedManifold, bool everywhere
                          : "open (the surface leaves view.bounds or ends where the field has no data)";
 }
 
-std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance) {
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance,
+                          const CancelToken* cancel) {
   const Scene& scene = fit.scene;
   const int dim = scene.dimension();
   const std::string ext = dim == 3 ? requireExtension("mesh", output, {"glb", "gltf", "ply", "obj"})
@@ -156,6 +157,7 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
   requireWritableLocation("mesh", output);
   MarchingOptions options;
   options.resolution = resolution;
+  options.cancel = cancel;
   MarchingReport report;
   char line[512];
   if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) {
@@ -165,6 +167,7 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
     ChordRefinementReport chords;
     if (chordTolerance > 0) {
       ChordRefinementOptions co;
+      co.cancel = cancel;
       co.tolerance = chordTolerance * bounds.extent().maxCoeff() / resolution;  // cells → world units
       mesh = refineChords(mesh, f3->field(), co, &chords);
     }

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/base/cancel_token.h"
+
 namespace hermite::app {
 
 struct SceneArgs {
@@ -88,8 +90,10 @@ int runMesh(const MeshArgs& args);
 // Meshes a fitted implicit's zero set over view.bounds (marching cubes / squares) into `output`
 // (.glb .gltf .ply .obj; 2D .obj .svg); returns the one-line summary `mesh` prints. Also the GUI's
 // Export button. chordTolerance > 0 (3D): chord refinement (chord_refinement.h), in grid cells.
+// `cancel` (null: none) stops it between batches of evaluations (throws Cancelled).
 struct FitOutcome;
-std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance = 0);
+std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance = 0,
+                          const CancelToken* cancel = nullptr);
 
 struct HoleFillArgs {
   std::string input;                   // a triangle mesh (mesh_io.h formats)

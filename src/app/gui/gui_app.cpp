@@ -96,7 +96,7 @@ std::optional<std::array<float, 4>> GuiApp::widgetRect(const std::string& name) 
   return it->second;
 }
 
-bool GuiApp::busy() { return worker().busy() || viewPending() || explorer().running(); }
+bool GuiApp::busy() { return worker().busy() || viewPending() || explorer().running() || data_.exporting(); }
 
 void GuiApp::frame(const FrameInput& in) {
   FramePhaseTimer timer(phases_);

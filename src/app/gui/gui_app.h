@@ -66,9 +66,10 @@ class GuiApp {
   bool viewPending() const { return ctx_.image.pending(); }
   // A frame drawn now would show something new without input: a document changed since the last
   // frame (by a caller between frames), a finished fit to adopt, the view settling after a
-  // gesture, or background view work for the GL thread (frame_pacing.h).
+  // gesture, background view work for the GL thread (frame_pacing.h), or a finished mesh export.
   bool wantsFrame() const {
-    return ctx_.document.version() != framedVersion_ || ctx_.fits.worker().hasResult() || ctx_.image.wantsFrame();
+    return ctx_.document.version() != framedVersion_ || ctx_.fits.worker().hasResult() || ctx_.image.wantsFrame() ||
+           data_.exportFinished();
   }
   // A fit, a view job or a radius sweep runs: the window draws a few frames a second for progress.
   bool busy();

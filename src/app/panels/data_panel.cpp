@@ -101,17 +101,7 @@ void DataPanel::drawFiles() {
       ctx_.setStatus(e.what(), true);
     }
   }
-  inputText("##zeroset", zeroSetPath_);
-  ImGui::SameLine();
-  if (ImGui::Button("Export mesh")) {
-    try {
-      if (!ctx_.currentFit()) throw InputError("no fitted model yet");
-      ctx_.setStatus(exportZeroSet(*ctx_.currentFit(), zeroSetPath_, 96));
-    } catch (const std::exception& e) {
-      ctx_.setStatus(e.what(), true);
-    }
-  }
-  helpMarker("The zero set over view.bounds by marching cubes (3D: .glb .gltf .ply .obj) or squares (2D: .obj .svg).");
+  drawZeroSetExport();
   if (ImGui::Button("Export model (JSON)")) {
     try {
       if (!ctx_.currentFit()) throw InputError("no fitted model yet");
@@ -125,6 +115,23 @@ void DataPanel::drawFiles() {
 }
 
 // Every normal re-estimated (PCA + spanning-tree orientation) or flipped.
+// "Export mesh" runs on its own thread (zero_set_export.h); the button cancels it meanwhile and
+// the summary line or the error goes to the status bar when it ends.
+void DataPanel::drawZeroSetExport() {
+  if (const std::optional<ZeroSetExport::Result> r = zeroSetExport_.take()) ctx_.setStatus(r->message, !r->ok);
+  inputText("##zeroset", zeroSetPath_);
+  ImGui::SameLine();
+  if (zeroSetExport_.running()) {
+    if (ImGui::Button("Cancel export")) zeroSetExport_.cancel();
+  } else if (ImGui::Button("Export mesh")) {
+    if (!ctx_.currentFit()) ctx_.setStatus("no fitted model yet", true);
+    else if (zeroSetExport_.start(ctx_.fits.shown(), zeroSetPath_)) ctx_.setStatus("exporting " + zeroSetPath_ + " …");
+  }
+  helpMarker("The zero set over view.bounds as `hermite-lab mesh` makes it with its defaults: marching cubes (3D: "
+             ".glb .gltf .ply .obj) or squares (2D: .obj .svg) at the automatic resolution, with chord refinement; "
+             "the window keeps drawing meanwhile.");
+}
+
 void DataPanel::drawNormals() {
   const int dim = ctx_.dimension();
   if (ImGui::Button("Re-estimate normals")) {

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/gui/gui_context.h"
+#include "app/panels/zero_set_export.h"
 
 namespace hermite::app {
 
@@ -13,6 +14,9 @@ class DataPanel {
  public:
   explicit DataPanel(GuiContext& ctx);
   void draw();
+  // An "Export mesh" runs (zero_set_export.h), or has finished and its result waits for a frame.
+  bool exporting() const { return zeroSetExport_.running(); }
+  bool exportFinished() const { return zeroSetExport_.hasResult(); }
 
  private:
   void drawSource();
@@ -21,7 +25,10 @@ class DataPanel {
   void drawSummary();
 
   GuiContext& ctx_;
+  void drawZeroSetExport();
+
   std::string openPath_, exportPath_, zeroSetPath_ = "zero-set.glb";
+  ZeroSetExport zeroSetExport_;
 };
 
 }  // namespace hermite::app
