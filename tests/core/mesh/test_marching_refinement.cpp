@@ -70,6 +70,52 @@ class Dumbbell : public ImplicitField<3> {
 
 const Box<3> kBox{Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0)};
 
+// A ball of radius 0.3 at (−0.5, 0, 0) and, along x at y = z = 0.031 (off every grid line, as
+// the dumbbell's rod), either a rod of radius 0.02 from the ball to x = 0.6 (one piece with a
+// stub the grid steps over) or beads of radius 0.012 every 0.05 from x = −0.1 to 0.6 (pieces of
+// their own that a finer grid shows) and a ball of radius 0.1 at (0.75, 0, 0): the signed
+// distance to the union.
+class BallWith : public ImplicitField<3> {
+ public:
+  explicit BallWith(bool beads) : beads_(beads) {}
+  double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
+    const Vec<3> c(-0.5, 0, 0);
+    double best = (x - c).norm() - 0.3;
+    Vec<3> dir = (x - c).normalized();
+    const auto take = [&](const Vec<3>& p, double r) {
+      const double d = (x - p).norm() - r;
+      if (d < best) best = d, dir = (x - p).normalized();
+    };
+    if (beads_) {
+      for (int i = 0; i <= 14; ++i) take(Vec<3>(-0.1 + 0.05 * i, 0.031, 0.031), 0.012);
+      take(Vec<3>(0.75, 0, 0), 0.1);  // a ball the grid sees
+    }
+    else
+      take(Vec<3>(std::clamp(x.x(), -0.5, 0.6), 0.031, 0.031), 0.02);
+    if (g) *g = dir;
+    if (H) H->setZero();
+    return best;
+  }
+  double lipschitzBound(const Box<3>&) const override { return 1.0; }
+  // Points on the rod or the beads (their equators around x) that lie on the zero set.
+  Points<3> samples() const {
+    std::vector<Vec<3>> p;
+    const double r = beads_ ? 0.012 : 0.02;
+    for (int i = 0; i <= 70; ++i)
+      for (int k = 0; k < 8; ++k) {
+        const double t = 2 * M_PI * k / 8, x = beads_ ? -0.1 + 0.05 * (i / 5) : -0.1 + 0.7 * i / 70;
+        const Vec<3> q(x, 0.031 + r * std::cos(t), 0.031 + r * std::sin(t));
+        if (std::abs(evaluate(q)) < 1e-12) p.push_back(q);
+      }
+    Points<3> P(3, static_cast<Eigen::Index>(p.size()));
+    for (size_t i = 0; i < p.size(); ++i) P.col(static_cast<Eigen::Index>(i)) = p[i];
+    return P;
+  }
+
+ private:
+  bool beads_;
+};
+
 std::uint64_t gFakeBytes = 0;
 AvailableMemory fakeAvailable() { return {gFakeBytes, "test limit"}; }
 
@@ -127,6 +173,39 @@ TEST_CASE("marching cubes: a neck thinner than a cell joins again where anchors 
     CHECK(dense.triangleCount() == mesh.triangleCount());
     CHECK(connectedComponentCount(dense) == 1);
   }
+}
+
+TEST_CASE("marching cubes: a thin stub that leaves the mesh in one piece is not refined") {
+  const BallWith field(false);
+  const Points<3> anchors = field.samples();
+  MarchingOptions options;
+  options.resolution = 32;
+  const TriMesh plain = marchingCubes(field, kBox, options);
+  options.anchors = &anchors;
+  MarchingReport r;
+  const TriMesh mesh = marchingCubes(field, kBox, options, &r);
+  CHECK(r.missedAnchors > 0);
+  CHECK(r.refinement == MarchingReport::Refinement::OnePiece);
+  CHECK(r.refinedCells[0] == 0);
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(mesh.triangles == plain.triangles);
+}
+
+TEST_CASE("marching cubes: a refined pass that shows more pieces is dropped") {
+  const BallWith field(true);
+  const Points<3> anchors = field.samples();
+  MarchingOptions options;
+  options.resolution = 32;
+  const TriMesh plain = marchingCubes(field, kBox, options);
+  REQUIRE(connectedComponentCount(plain) == 2);  // the two balls; the grid catches no bead
+  options.anchors = &anchors;
+  MarchingReport r;
+  const TriMesh mesh = marchingCubes(field, kBox, options, &r);
+  CHECK(r.missedAnchors > 0);
+  CHECK(r.refinement == MarchingReport::Refinement::NoGain);
+  CHECK(r.refinedCells[0] == 0);
+  CHECK(r.evaluatedPoints > 0);
+  CHECK(mesh.triangles == plain.triangles);
 }
 
 TEST_CASE("marching cubes: anchors on a surface the grid resolves change nothing") {
