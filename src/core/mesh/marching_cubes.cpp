@@ -397,31 +397,6 @@ TriMesh contourRefined(const ImplicitField<3>& field, const ImplicitField<3>& co
   return mesh;
 }
 
-// The mesh's connected components through shared vertices (union-find): for marching cubes'
-// output, whose vertices each have one fan of triangles, the same as through shared edges
-// (connectedComponentCount) at a fraction of the cost.
-int meshPieces(const TriMesh& mesh) {
-  std::vector<int> parent(static_cast<size_t>(mesh.vertexCount()), -1);
-  const auto root = [&](int v) {
-    while (parent[static_cast<size_t>(v)] >= 0 && parent[static_cast<size_t>(v)] != v) {
-      const int up = parent[static_cast<size_t>(v)];
-      if (parent[static_cast<size_t>(up)] >= 0) parent[static_cast<size_t>(v)] = parent[static_cast<size_t>(up)];
-      v = up;
-    }
-    return v;
-  };
-  int pieces = 0;
-  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.triangles(k, t);
-      if (parent[static_cast<size_t>(v)] < 0) parent[static_cast<size_t>(v)] = v, ++pieces;
-      if (k == 0) continue;
-      const int a = root(mesh.triangles(0, t)), b = root(v);
-      if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b), --pieces;
-    }
-  return pieces;
-}
-
 double minGridStep(const GridLines<3>& lines) {
   double step = std::numeric_limits<double>::infinity();
   for (const std::vector<double>& l : lines)
@@ -443,7 +418,7 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   // A thin part the grid steps over splits the surface; a thin rim it truncates (the edge of an
   // ear) leaves one piece and is not worth a second pass.
   r.refinement = Refinement::OnePiece;
-  if (meshPieces(mesh) <= 1) return mesh;
+  if (vertexConnectedComponentCount(mesh) <= 1) return mesh;
   r.refinement = Refinement::TooLarge;
   const std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
   if (!refined) return mesh;
@@ -454,7 +429,7 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   r.refinement = Refinement::NoGain;
   r.evaluateMs = pass.evaluateMs;
   r.evaluatedPoints = pass.evaluatedPoints;
-  if (meshPieces(finer) >= meshPieces(mesh)) return mesh;
+  if (vertexConnectedComponentCount(finer) >= vertexConnectedComponentCount(mesh)) return mesh;
   pass.refinement = Refinement::Refined;
   pass.minStep = minGridStep(*refined);
   r = pass;
@@ -466,17 +441,17 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
 TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
                       MarchingReport* report) {
   const auto t0 = std::chrono::steady_clock::now();
-  const std::unique_ptr<ImplicitField<3>> near = field.forGridCells(detail::marchingCellDiagonal<3>(box, options.resolution));
+  const Vec<3> h = detail::marchingCellSize<3>(box, options.resolution);
+  const std::unique_ptr<ImplicitField<3>> near = field.forGridCells(h.norm());
   const ImplicitField<3>& f = near ? *near : field;
   const GridLines<3> lines = detail::marchingLines<3>(box, options.resolution);
-  const Vec<3> h = detail::marchingCellSize<3>(box, options.resolution);
   std::optional<detail::AnchorCells> seen;
   if (options.anchors && options.anchors->cols() > 0) seen = detail::locateAnchors(lines, *options.anchors);
   TriMesh mesh = marchOnce(f, lines, h, options, report, seen ? &*seen : nullptr);
   if (report) report->minStep = minGridStep(lines);
   if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report);
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
-  if (!field.everywhereValid() && meshPieces(mesh) > 1) {
+  if (!field.everywhereValid() && vertexConnectedComponentCount(mesh) > 1) {
     const int slivers = dropOpenSlivers(mesh, std::min({h[0] * h[1], h[1] * h[2], h[0] * h[2]}));
     if (report) report->droppedSlivers = slivers;
   }

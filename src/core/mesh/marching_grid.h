@@ -206,12 +206,6 @@ Vec<Dim> marchingCellSize(const Box<Dim>& box, int resolution) {
   return h;
 }
 
-// The diagonal of the uniform grid's cells (world units), after checkMarchingInput.
-template <int Dim>
-double marchingCellDiagonal(const Box<Dim>& box, int resolution) {
-  return marchingCellSize<Dim>(box, resolution).norm();
-}
-
 // The uniform grid's lines over the box, after checkMarchingInput.
 template <int Dim>
 GridLines<Dim> marchingLines(const Box<Dim>& box, int resolution) {

@@ -117,7 +117,7 @@ std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh) {
   return loops;
 }
 
-std::vector<int> triangleComponents(const TriMesh& mesh, int* count) {
+std::vector<int> triangleComponents(const TriMesh& mesh, int* count, std::vector<char>* open) {
   const int T = mesh.triangleCount();
   std::vector<std::pair<std::uint64_t, int>> edgeTri;
   edgeTri.reserve(3 * static_cast<size_t>(T));
@@ -139,6 +139,13 @@ std::vector<int> triangleComponents(const TriMesh& mesh, int* count) {
     label[t] = rootLabel[r];
   }
   if (count) *count = n;
+  if (open) {
+    open->assign(static_cast<size_t>(n), 0);
+    for (size_t i = 0; i < edgeTri.size(); ++i)  // an edge of a single triangle: its component is open
+      if ((i == 0 || edgeTri[i].first != edgeTri[i - 1].first) &&
+          (i + 1 == edgeTri.size() || edgeTri[i + 1].first != edgeTri[i].first))
+        (*open)[static_cast<size_t>(label[static_cast<size_t>(edgeTri[i].second)])] = 1;
+  }
   return label;
 }
 
@@ -159,6 +166,20 @@ void dropUnusedVertices(TriMesh& mesh) {
   if (normals) mesh.normals.conservativeResize(3, kept);
   for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
     for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = id[static_cast<size_t>(mesh.triangles(k, t))];
+}
+
+int vertexConnectedComponentCount(const TriMesh& mesh) {
+  std::vector<int> parent(static_cast<size_t>(mesh.vertexCount()), -1);  // −1: used by no triangle yet
+  int pieces = 0;
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    for (int k = 0; k < 3; ++k) {
+      const int v = mesh.triangles(k, t);
+      if (parent[static_cast<size_t>(v)] < 0) parent[static_cast<size_t>(v)] = v, ++pieces;
+      if (k == 0) continue;
+      const int a = findRoot(parent, mesh.triangles(0, t)), b = findRoot(parent, v);
+      if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b), --pieces;
+    }
+  return pieces;
 }
 
 int connectedComponentCount(const TriMesh& mesh) {

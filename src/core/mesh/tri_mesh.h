@@ -35,11 +35,17 @@ using BoundaryLoop = std::vector<int>;
 std::vector<BoundaryLoop> boundaryLoops(const TriMesh& mesh);
 
 // Component index (0-based, in order of first triangle) per triangle, triangles connected when
-// they share an edge; `count` receives the number of components when not null.
-std::vector<int> triangleComponents(const TriMesh& mesh, int* count = nullptr);
+// they share an edge; `count` receives the number of components when not null, `open` (when not
+// null) one flag per component: 1 when one of its edges belongs to a single triangle.
+std::vector<int> triangleComponents(const TriMesh& mesh, int* count = nullptr, std::vector<char>* open = nullptr);
 
 // Number of connected components of the mesh's triangles (edge-connected).
 int connectedComponentCount(const TriMesh& mesh);
+
+// Number of components of triangles connected through shared vertices: one union-find pass, no
+// sort. Equals connectedComponentCount where each vertex's triangles form one fan (marching
+// cubes' output); smaller where pieces only touch at a vertex.
+int vertexConnectedComponentCount(const TriMesh& mesh);
 
 // Removes the vertices no triangle uses (and their normals), renumbering the triangles; the rest
 // keep their order.
