@@ -105,27 +105,25 @@ void checkMeshGrid(const Scene& scene, int resolution) {
   else checkMemory(marchingGridPlan<Dim>(box, resolution), kMarchingRemedy);
 }
 
-// What the grid did about samples on parts thinner than a cell (MarchingOptions::anchors),
-// appended to the summary line.
-void appendRefinementText(const MarchingReport& r, char* line, std::size_t size) {
+// What the contouring did beyond the uniform grid, appended to the summary line: about samples
+// on parts thinner than a cell (MarchingOptions::anchors), and the open slivers it left out.
+void appendContourText(const MarchingReport& r, char* line, std::size_t size) {
   using Refinement = MarchingReport::Refinement;
-  const std::size_t used = std::strlen(line);
-  if (r.refinement == Refinement::Refined)
+  std::size_t used = std::strlen(line);
+  if (r.refinement == Refinement::Refined) {
     std::snprintf(line + used, size - used,
                   "; refined to %dx%dx%d cells at %d samples on parts thinner than a cell (%d still missed)",
                   r.refinedCells[0], r.refinedCells[1], r.refinedCells[2], r.missedAnchors, r.stillMissed);
-  else if (r.refinement == Refinement::OnePiece)
-    std::snprintf(line + used, size - used, "; %d samples on parts thinner than a cell lie off the mesh",
-                  r.missedAnchors);
-  else if (r.refinement == Refinement::NoGain)
-    std::snprintf(line + used, size - used,
-                  "; %d samples on parts thinner than a cell lie off the mesh (a refined grid gave no fewer pieces)",
-                  r.missedAnchors);
-  else if (r.refinement == Refinement::TooLarge)
-    std::snprintf(line + used, size - used,
-                  "; %d samples on parts thinner than a cell lie off the mesh, too many to refine the grid at: "
-                  "raise --resolution",
-                  r.missedAnchors);
+  } else if (r.refinement != Refinement::None) {
+    const char* why = r.refinement == Refinement::NoGain     ? " (a refined grid gave no fewer pieces)"
+                      : r.refinement == Refinement::TooLarge ? ", too many to refine the grid at: raise --resolution"
+                                                             : "";
+    std::snprintf(line + used, size - used, "; %d samples on parts thinner than a cell lie off the mesh%s",
+                  r.missedAnchors, why);
+  }
+  used = std::strlen(line);
+  if (r.droppedSlivers > 0)
+    std::snprintf(line + used, size - used, "; %d open pieces smaller than a cell face left out", r.droppedSlivers);
 }
 
 }  // namespace
@@ -186,12 +184,7 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
                   c.eulerCharacteristic,
                   cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF), report.totalMs + chords.ms,
                   report.evaluateMs);
-    appendRefinementText(report, line, sizeof line);
-    if (report.droppedSlivers > 0) {
-      const std::size_t used = std::strlen(line);
-      std::snprintf(line + used, sizeof line - used, "; %d open pieces smaller than a cell face left out",
-                    report.droppedSlivers);
-    }
+    appendContourText(report, line, sizeof line);
     if (chordTolerance > 0) {
       // The total above includes the chord refinement; its own share, after it.
       const std::size_t used = std::strlen(line);
