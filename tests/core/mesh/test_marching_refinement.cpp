@@ -6,7 +6,9 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/base/memory_check.h"
@@ -18,106 +20,118 @@ using namespace hermite;
 
 namespace {
 
-// Two balls of radius 0.3 at x = ±0.5 joined by a rod of radius `rod` along x at y = z = 0.031:
-// the signed distance to their union (1-Lipschitz). On the 32-cell grid over [−1, 1]³ (lines at
-// multiples of 0.0625) the rod's axis lies 0.044 from every grid line along x, so a rod of
-// radius 0.02 holds no grid point.
-class Dumbbell : public ImplicitField<3> {
- public:
-  explicit Dumbbell(double rod) : rod_(rod) {}
-  double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
-    const Vec<3> c[2] = {Vec<3>(-0.5, 0, 0), Vec<3>(0.5, 0, 0)};
-    double best = 1e300;
-    Vec<3> dir = Vec<3>::UnitX();
-    for (const Vec<3>& ci : c) {
-      const double d = (x - ci).norm() - 0.3;
-      if (d < best) best = d, dir = (x - ci).normalized();
-    }
-    const Vec<3> axis(std::clamp(x.x(), -0.5, 0.5), kAxis, kAxis);
-    const double d = (x - axis).norm() - rod_;
-    if (d < best) best = d, dir = (x - axis).normalized();
-    if (g) *g = dir;
-    if (H) H->setZero();
-    return best;
-  }
-  double lipschitzBound(const Box<3>&) const override { return 1.0; }
+const Box<3> kBox{Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0)};
+// Rods run along x at y = z = kAxis. On the 32-cell grid over kBox (lines at multiples of 0.0625)
+// that axis lies 0.044 from every grid line, so a rod of radius 0.02 holds no grid point.
+constexpr double kAxis = 0.031;
 
-  // Points on the rod's surface (outside the balls) and on the balls (outside the rod).
-  Points<3> samples() const {
-    std::vector<Vec<3>> p;
-    for (int i = 0; i <= 40; ++i)
-      for (int k = 0; k < 8; ++k) {
-        const double t = 2 * M_PI * k / 8;
-        const Vec<3> q(-0.2 + 0.4 * i / 40, kAxis + rod_ * std::cos(t), kAxis + rod_ * std::sin(t));
-        if (std::abs(evaluate(q)) < 1e-12) p.push_back(q);
-      }
-    for (int i = 0; i < 400; ++i) {  // a Fibonacci sphere on each ball
-      const double z = 1 - (2.0 * i + 1) / 400, r = std::sqrt(1 - z * z), phi = i * M_PI * (3 - std::sqrt(5.0));
-      for (double cx : {-0.5, 0.5}) {
-        const Vec<3> q = Vec<3>(cx, 0, 0) + 0.3 * Vec<3>(r * std::cos(phi), r * std::sin(phi), z);
-        if (std::abs(evaluate(q)) < 1e-12) p.push_back(q);
-      }
-    }
-    Points<3> P(3, static_cast<Eigen::Index>(p.size()));
-    for (size_t i = 0; i < p.size(); ++i) P.col(static_cast<Eigen::Index>(i)) = p[i];
-    return P;
-  }
-
- private:
-  static constexpr double kAxis = 0.031;
-  double rod_;
+struct Ball {
+  Vec<3> centre;
+  double radius;
 };
 
-const Box<3> kBox{Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0)};
-
-// A ball of radius 0.3 at (−0.5, 0, 0) and, along x at y = z = 0.031 (off every grid line, as
-// the dumbbell's rod), either a rod of radius 0.02 from the ball to x = 0.6 (one piece with a
-// stub the grid steps over) or beads of radius 0.012 every 0.05 from x = −0.1 to 0.6 (pieces of
-// their own that a finer grid shows) and a ball of radius 0.1 at (0.75, 0, 0): the signed
-// distance to the union.
-class BallWith : public ImplicitField<3> {
+// The signed distance to a union of balls and at most one rod (radius 0: none) along x from x0
+// to x1 (1-Lipschitz).
+class BallsAndRod : public ImplicitField<3> {
  public:
-  explicit BallWith(bool beads) : beads_(beads) {}
+  BallsAndRod(std::vector<Ball> balls, double x0 = 0, double x1 = 0, double rod = 0)
+      : balls_(std::move(balls)), x0_(x0), x1_(x1), rod_(rod) {}
   double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
-    const Vec<3> c(-0.5, 0, 0);
-    double best = (x - c).norm() - 0.3;
-    Vec<3> dir = (x - c).normalized();
+    double best = 1e300;
+    Vec<3> dir = Vec<3>::UnitX();
     const auto take = [&](const Vec<3>& p, double r) {
       const double d = (x - p).norm() - r;
       if (d < best) best = d, dir = (x - p).normalized();
     };
-    if (beads_) {
-      for (int i = 0; i <= 14; ++i) take(Vec<3>(-0.1 + 0.05 * i, 0.031, 0.031), 0.012);
-      take(Vec<3>(0.75, 0, 0), 0.1);  // a ball the grid sees
-    }
-    else
-      take(Vec<3>(std::clamp(x.x(), -0.5, 0.6), 0.031, 0.031), 0.02);
+    for (const Ball& b : balls_) take(b.centre, b.radius);
+    if (rod_ > 0) take(Vec<3>(std::clamp(x.x(), x0_, x1_), kAxis, kAxis), rod_);
     if (g) *g = dir;
     if (H) H->setZero();
     return best;
   }
   double lipschitzBound(const Box<3>&) const override { return 1.0; }
-  // Points on the rod or the beads (their equators around x) that lie on the zero set.
-  Points<3> samples() const {
-    std::vector<Vec<3>> p;
-    const double r = beads_ ? 0.012 : 0.02;
-    for (int i = 0; i <= 70; ++i)
-      for (int k = 0; k < 8; ++k) {
-        const double t = 2 * M_PI * k / 8, x = beads_ ? -0.1 + 0.05 * (i / 5) : -0.1 + 0.7 * i / 70;
-        const Vec<3> q(x, 0.031 + r * std::cos(t), 0.031 + r * std::sin(t));
-        if (std::abs(evaluate(q)) < 1e-12) p.push_back(q);
-      }
-    Points<3> P(3, static_cast<Eigen::Index>(p.size()));
-    for (size_t i = 0; i < p.size(); ++i) P.col(static_cast<Eigen::Index>(i)) = p[i];
-    return P;
-  }
 
  private:
-  bool beads_;
+  std::vector<Ball> balls_;
+  double x0_, x1_, rod_;
+};
+
+// Points of the field's zero set among 8 around each circle of radius r about (x, kAxis, kAxis)
+// in the plane x = const, for x in xs: a rod's surface, or the equators of beads on the axis.
+std::vector<Vec<3>> ringSamples(const ImplicitField<3>& f, const std::vector<double>& xs, double r) {
+  std::vector<Vec<3>> p;
+  for (double x : xs)
+    for (int k = 0; k < 8; ++k) {
+      const double t = 2 * M_PI * k / 8;
+      const Vec<3> q(x, kAxis + r * std::cos(t), kAxis + r * std::sin(t));
+      if (std::abs(f.evaluate(q)) < 1e-12) p.push_back(q);
+    }
+  return p;
+}
+
+// Points of the field's zero set among n on the sphere (centre c, radius r), a Fibonacci spiral.
+std::vector<Vec<3>> sphereSamples(const ImplicitField<3>& f, const Vec<3>& c, double r, int n) {
+  std::vector<Vec<3>> p;
+  for (int i = 0; i < n; ++i) {
+    const double z = 1 - (2.0 * i + 1) / n, s = std::sqrt(1 - z * z), phi = i * M_PI * (3 - std::sqrt(5.0));
+    const Vec<3> q = c + r * Vec<3>(s * std::cos(phi), s * std::sin(phi), z);
+    if (std::abs(f.evaluate(q)) < 1e-12) p.push_back(q);
+  }
+  return p;
+}
+
+// n values from a to b, evenly spaced.
+std::vector<double> spaced(double a, double b, int n) {
+  std::vector<double> v;
+  for (int i = 0; i < n; ++i) v.push_back(a + (b - a) * i / (n - 1));
+  return v;
+}
+
+Points<3> toPoints(const std::vector<std::vector<Vec<3>>>& parts) {
+  std::vector<Vec<3>> all;
+  for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+  Points<3> P(3, static_cast<Eigen::Index>(all.size()));
+  for (size_t i = 0; i < all.size(); ++i) P.col(static_cast<Eigen::Index>(i)) = all[i];
+  return P;
+}
+
+// Two balls of radius 0.3 at x = ±0.5 joined by a rod of radius `rod` along kAxis, with samples
+// on the rod (outside the balls) and on the balls (outside the rod).
+struct Dumbbell {
+  BallsAndRod field;
+  Points<3> samples;
+  explicit Dumbbell(double rod)
+      : field({{Vec<3>(-0.5, 0, 0), 0.3}, {Vec<3>(0.5, 0, 0), 0.3}}, -0.5, 0.5, rod),
+        samples(toPoints({ringSamples(field, spaced(-0.2, 0.2, 41), rod),
+                          sphereSamples(field, Vec<3>(-0.5, 0, 0), 0.3, 400),
+                          sphereSamples(field, Vec<3>(0.5, 0, 0), 0.3, 400)})) {}
 };
 
 std::uint64_t gFakeBytes = 0;
 AvailableMemory fakeAvailable() { return {gFakeBytes, "test limit"}; }
+
+// The 32-cell grid over kBox that the fields above are laid out for.
+MarchingOptions grid32() {
+  MarchingOptions o;
+  o.resolution = 32;
+  return o;
+}
+
+// The mesh with anchors, and its report, for a field whose refinement is left out for `why`:
+// the anchors are missed, yet the mesh is the one without anchors.
+std::pair<TriMesh, MarchingReport> meshLeftUnrefined(const ImplicitField<3>& field, const Points<3>& anchors,
+                                                     MarchingReport::Refinement why) {
+  MarchingOptions options = grid32();
+  const TriMesh plain = marchingCubes(field, kBox, options);
+  options.anchors = &anchors;
+  MarchingReport r;
+  TriMesh mesh = marchingCubes(field, kBox, options, &r);
+  CHECK(r.missedAnchors > 0);
+  CHECK(r.refinement == why);
+  CHECK(r.refinedCells[0] == 0);
+  CHECK(mesh.triangles == plain.triangles);
+  return {std::move(mesh), r};
+}
 
 MeshCheck check(const TriMesh& mesh, const MarchingReport& r) { return checkMesh(mesh, 1e-9 * r.minStep * r.minStep); }
 
@@ -143,14 +157,13 @@ TEST_CASE("grid lines: uniform, cell lookup and split intervals") {
 }
 
 TEST_CASE("marching cubes: a neck thinner than a cell joins again where anchors lie on it") {
-  const Dumbbell field(0.02);
-  const Points<3> anchors = field.samples();
-  MarchingOptions options;
-  options.resolution = 32;
+  const Dumbbell dumbbell(0.02);
+  const ImplicitField<3>& field = dumbbell.field;
+  MarchingOptions options = grid32();
   MarchingReport plain;
   const TriMesh uniform = marchingCubes(field, kBox, options, &plain);
   REQUIRE(connectedComponentCount(uniform) == 2);  // the grid steps over the rod
-  options.anchors = &anchors;
+  options.anchors = &dumbbell.samples;
   MarchingReport r;
   const TriMesh mesh = marchingCubes(field, kBox, options, &r);
   CHECK(r.missedAnchors > 0);
@@ -176,45 +189,32 @@ TEST_CASE("marching cubes: a neck thinner than a cell joins again where anchors 
 }
 
 TEST_CASE("marching cubes: a thin stub that leaves the mesh in one piece is not refined") {
-  const BallWith field(false);
-  const Points<3> anchors = field.samples();
-  MarchingOptions options;
-  options.resolution = 32;
-  const TriMesh plain = marchingCubes(field, kBox, options);
-  options.anchors = &anchors;
-  MarchingReport r;
-  const TriMesh mesh = marchingCubes(field, kBox, options, &r);
-  CHECK(r.missedAnchors > 0);
-  CHECK(r.refinement == MarchingReport::Refinement::OnePiece);
-  CHECK(r.refinedCells[0] == 0);
+  // A ball with a rod of radius 0.02 from it to x = 0.6: one piece with a stub the grid steps over.
+  const BallsAndRod field({{Vec<3>(-0.5, 0, 0), 0.3}}, -0.5, 0.6, 0.02);
+  const Points<3> anchors = toPoints({ringSamples(field, spaced(-0.1, 0.6, 71), 0.02)});
+  const auto [mesh, r] = meshLeftUnrefined(field, anchors, MarchingReport::Refinement::OnePiece);
   CHECK(connectedComponentCount(mesh) == 1);
-  CHECK(mesh.triangles == plain.triangles);
 }
 
 TEST_CASE("marching cubes: a refined pass that shows more pieces is dropped") {
-  const BallWith field(true);
-  const Points<3> anchors = field.samples();
-  MarchingOptions options;
-  options.resolution = 32;
-  const TriMesh plain = marchingCubes(field, kBox, options);
-  REQUIRE(connectedComponentCount(plain) == 2);  // the two balls; the grid catches no bead
-  options.anchors = &anchors;
-  MarchingReport r;
-  const TriMesh mesh = marchingCubes(field, kBox, options, &r);
-  CHECK(r.missedAnchors > 0);
-  CHECK(r.refinement == MarchingReport::Refinement::NoGain);
-  CHECK(r.refinedCells[0] == 0);
+  // A ball, beads of radius 0.012 every 0.05 along kAxis from x = −0.1 to 0.6 (pieces of their
+  // own, which a finer grid shows) and a ball of radius 0.1 at (0.75, 0, 0) that the grid sees.
+  std::vector<Ball> balls{{Vec<3>(-0.5, 0, 0), 0.3}, {Vec<3>(0.75, 0, 0), 0.1}};
+  const std::vector<double> beads = spaced(-0.1, 0.6, 15);
+  for (double x : beads) balls.push_back({Vec<3>(x, kAxis, kAxis), 0.012});
+  const BallsAndRod field(balls);
+  const Points<3> anchors = toPoints({ringSamples(field, beads, 0.012)});
+  const auto [mesh, r] = meshLeftUnrefined(field, anchors, MarchingReport::Refinement::NoGain);
+  CHECK(connectedComponentCount(mesh) == 2);  // the two balls; the grid catches no bead
   CHECK(r.evaluatedPoints > 0);
-  CHECK(mesh.triangles == plain.triangles);
 }
 
 TEST_CASE("marching cubes: anchors on a surface the grid resolves change nothing") {
-  const Dumbbell field(0.09);  // a rod thicker than a cell
-  const Points<3> anchors = field.samples();
-  MarchingOptions options;
-  options.resolution = 32;
+  const Dumbbell dumbbell(0.09);  // a rod thicker than a cell
+  const ImplicitField<3>& field = dumbbell.field;
+  MarchingOptions options = grid32();
   const TriMesh plain = marchingCubes(field, kBox, options);
-  options.anchors = &anchors;
+  options.anchors = &dumbbell.samples;
   MarchingReport r;
   const TriMesh mesh = marchingCubes(field, kBox, options, &r);
   CHECK(r.missedAnchors == 0);
@@ -225,11 +225,10 @@ TEST_CASE("marching cubes: anchors on a surface the grid resolves change nothing
 }
 
 TEST_CASE("marching cubes: a refinement beyond half the available memory is left out and reported") {
-  const Dumbbell field(0.02);
-  const Points<3> anchors = field.samples();
-  MarchingOptions options;
-  options.resolution = 32;
-  options.anchors = &anchors;
+  const Dumbbell dumbbell(0.02);
+  const ImplicitField<3>& field = dumbbell.field;
+  MarchingOptions options = grid32();
+  options.anchors = &dumbbell.samples;
   gFakeBytes = 300 * 1024;  // the uniform slabs (33 × 33 × 33 points) are below the checked size
   setAvailableMemorySource(fakeAvailable);
   MarchingReport r;
