@@ -44,6 +44,9 @@ def load_truth(name):
     path = name if os.path.exists(name) else os.path.join(MESH_DIR, name + ".off")
     mesh = o3d.io.read_triangle_mesh(path)
     mesh.remove_duplicated_vertices()
+    # Zero-area triangles (the Stanford dragon's vrip mesh has 108) abort open3d's distance queries.
+    mesh.remove_degenerate_triangles()
+    mesh.remove_unreferenced_vertices()
     mesh.compute_triangle_normals()
     if len(mesh.triangles) == 0:
         sys.exit(f"{path}: no triangles")
