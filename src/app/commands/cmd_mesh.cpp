@@ -3,6 +3,7 @@
 // closed polylines as OBJ `l` elements or SVG paths). One summary line on stdout.
 
 #include <algorithm>
+#include <chrono>
 #include <climits>
 #include <cmath>
 #include <cstdio>
@@ -23,6 +24,8 @@
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_squares.h"
+#include "core/mesh/stray_pockets.h"
+#include "core/base/ms_since.h"
 #include "io/atomic_file.h"
 #include "io/mesh_file.h"
 #include "scene/scene_fit.h"
@@ -126,6 +129,25 @@ void appendContourText(const MarchingReport& r, char* line, std::size_t size) {
     std::snprintf(line + used, size - used, "; %d open pieces smaller than a cell face left out", r.droppedSlivers);
 }
 
+// What the winding-number check did (stray_pockets.h), appended to the summary line.
+void appendStrayText(const StrayReport& r, char* line, std::size_t size) {
+  std::size_t used = std::strlen(line);
+  if (r.tooMany)
+    std::snprintf(line + used, size - used,
+                  "; %d vertices strayed from the samples to where their winding number decides the side, too many "
+                  "to trust it: left as they are",
+                  r.strayVertices);
+  else if (r.rounds > 0)
+    std::snprintf(line + used, size - used,
+                  "; %d vertices strayed from the samples to where their winding number decides the side: "
+                  "contoured %d more time%s with that side",
+                  r.strayVertices, r.rounds, r.rounds == 1 ? "" : "s");
+  used = std::strlen(line);
+  if (r.droppedPieces > 0)
+    std::snprintf(line + used, size - used, "; %d pieces off the samples' surface (by winding number) left out",
+                  r.droppedPieces);
+}
+
 }  // namespace
 
 int autoMeshResolution(int dimension, long long samples) {
@@ -146,6 +168,54 @@ const char* degenerateText(bool degenerate, bool closedManifold, bool everywhere
                          : "open (the surface leaves view.bounds or ends where the field has no data)";
 }
 
+namespace {
+
+// The 3D branch of exportZeroSet: contours, refines chords, saves, and writes the summary line
+// (without the output path) into `line`.
+void exportZeroSet3d(const SceneFit<3>& f3, const Box<3>& bounds, MarchingOptions options, double chordTolerance,
+                     const std::string& output, char* line, std::size_t size) {
+  options.anchors = &f3.data.points;  // the samples the model interpolates lie on its zero set
+  MarchingReport report;
+  StrayReport stray;
+  std::unique_ptr<ImplicitField<3>> guarded;  // the field as the contour read it, when guarded
+  const auto start = std::chrono::steady_clock::now();
+  TriMesh mesh = contourWithoutStrays(f3.field(), bounds, options, f3.data, &report, &stray, &guarded);
+  const double contourMs = msSince(start);
+  const ImplicitField<3>& field = guarded ? *guarded : f3.field();
+  ChordRefinementReport chords;
+  if (chordTolerance > 0) {
+    ChordRefinementOptions co;
+    co.cancel = options.cancel;
+    co.tolerance = chordTolerance * bounds.extent().maxCoeff() / options.resolution;  // cells → world units
+    mesh = refineChords(mesh, field, co, &chords);
+  }
+  saveMesh(output, mesh);
+  // Degenerate: far smaller than the triangles a vertex 10⁻³ of an edge from a grid point makes.
+  const double tiny = std::min(1e-9 * report.minStep * report.minStep, 1e-12 * bounds.extent().squaredNorm());
+  const MeshCheck c = checkMesh(mesh, tiny);
+  // A degenerate field's flat regions are "no data": what is left is not closed over them.
+  const bool degenerate = f3.degenerateField && f3.degenerateField->degenerate;
+  std::snprintf(line, size,
+                "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
+                "%.1f ms (field %.1f ms)",
+                mesh.vertexCount(), mesh.triangleCount(),
+                degenerateText(degenerate, mesh.triangleCount() > 0 && c.closedManifold(),
+                               f3.field().everywhereValid()),
+                c.eulerCharacteristic, cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF),
+                contourMs + chords.ms, report.evaluateMs);
+  appendContourText(report, line, size);
+  appendStrayText(stray, line, size);
+  if (chordTolerance > 0) {
+    // The total above includes the chord refinement; its own share, after it.
+    const std::size_t used = std::strlen(line);
+    std::snprintf(line + used, size - used, "; %d edges split by chord refinement (%d left whole), %.1f ms",
+                  chords.splitEdges, chords.unsplitEdges, chords.ms);
+  }
+  std::strncat(line, " -> ", size - std::strlen(line) - 1);
+}
+
+}  // namespace
+
 std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int resolution, double chordTolerance,
                           const CancelToken* cancel) {
   const Scene& scene = fit.scene;
@@ -157,41 +227,10 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
   options.resolution = resolution;
   options.cancel = cancel;
   MarchingReport report;
-  char line[512];
+  char line[768];
   if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) {
-    const Box<3> bounds = viewBounds<3>(scene.view, f3->data.points);
-    options.anchors = &f3->data.points;  // the samples the model interpolates lie on its zero set
-    TriMesh mesh = marchingCubes(f3->field(), bounds, options, &report);
-    ChordRefinementReport chords;
-    if (chordTolerance > 0) {
-      ChordRefinementOptions co;
-      co.cancel = cancel;
-      co.tolerance = chordTolerance * bounds.extent().maxCoeff() / resolution;  // cells → world units
-      mesh = refineChords(mesh, f3->field(), co, &chords);
-    }
-    saveMesh(output, mesh);
-    // Degenerate: far smaller than the triangles a vertex 10⁻³ of an edge from a grid point makes.
-    const double tiny = std::min(1e-9 * report.minStep * report.minStep, 1e-12 * bounds.extent().squaredNorm());
-    const MeshCheck c = checkMesh(mesh, tiny);
-    // A degenerate field's flat regions are "no data": what is left is not closed over them.
-    const bool degenerate = f3->degenerateField && f3->degenerateField->degenerate;
-    std::snprintf(line, sizeof line,
-                  "mesh: %d vertices, %d triangles, %s, Euler characteristic %d; %s cells, max |f| %.3g; "
-                  "%.1f ms (field %.1f ms)",
-                  mesh.vertexCount(), mesh.triangleCount(),
-                  degenerateText(degenerate, mesh.triangleCount() > 0 && c.closedManifold(),
-                                 f3->field().everywhereValid()),
-                  c.eulerCharacteristic,
-                  cellsText(report, 3).c_str(), std::max(report.maxAbsF, chords.maxAbsF), report.totalMs + chords.ms,
-                  report.evaluateMs);
-    appendContourText(report, line, sizeof line);
-    if (chordTolerance > 0) {
-      // The total above includes the chord refinement; its own share, after it.
-      const std::size_t used = std::strlen(line);
-      std::snprintf(line + used, sizeof line - used, "; %d edges split by chord refinement (%d left whole), %.1f ms",
-                    chords.splitEdges, chords.unsplitEdges, chords.ms);
-    }
-    std::strncat(line, " -> ", sizeof line - std::strlen(line) - 1);
+    exportZeroSet3d(*f3, viewBounds<3>(scene.view, f3->data.points), options, chordTolerance, output, line,
+                    sizeof line);
   } else if (const SceneFit<2>* f2 = fit.as<SceneFit<2>>()) {
     const Box<2> bounds = viewBounds<2>(scene.view, f2->data.points);
     const std::vector<Polyline2d> lines = marchingSquares(f2->field(), bounds, options, &report);

@@ -424,6 +424,7 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   if (!refined) return mesh;
   MarchingReport pass = r;
   TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass);
+  if (options.review) options.review(finer);
   // Fewer pieces or none of it: more pieces on a finer grid are the field's own (a fit that
   // breaks up), not steps the grid took over a thin part.
   r.refinement = Refinement::NoGain;
@@ -448,8 +449,9 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   std::optional<detail::AnchorCells> seen;
   if (options.anchors && options.anchors->cols() > 0) seen = detail::locateAnchors(lines, *options.anchors);
   TriMesh mesh = marchOnce(f, lines, h, options, report, seen ? &*seen : nullptr);
+  const bool refine = !options.review || options.review(mesh);
   if (report) report->minStep = minGridStep(lines);
-  if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report);
+  if (seen && refine) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report);
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
   if (!field.everywhereValid() && vertexConnectedComponentCount(mesh) > 1) {
     const int slivers = dropOpenSlivers(mesh, std::min({h[0] * h[1], h[1] * h[2], h[0] * h[2]}));

@@ -29,6 +29,7 @@
 
 #include "core/base/cancel_token.h"
 #include "core/base/geometry.h"
+#include "core/mesh/tri_mesh.h"
 
 namespace hermite {
 
@@ -59,6 +60,11 @@ struct MarchingOptions {
   // or when the cuts would more than double an axis's cells or need more than half the
   // available memory.
   const Points<3>* anchors = nullptr;
+  // Reviews each contour marching cubes makes — the uniform one, and the refined one the anchors
+  // ask for — before its pieces are counted (empty: none; 3D only): it may leave out pieces that
+  // are not surface, and returns false when the caller will contour again anyway, so the uniform
+  // contour is returned as it is, without a refined pass (stray_pockets.h).
+  std::function<bool(TriMesh&)> review = {};
 };
 
 inline constexpr int kAnchorReach = 0;  // cells around a missed anchor's own that are cut too, per side

@@ -130,7 +130,8 @@ void CloudWinding<Dim>::summarise(Node& node) const {
   node.centre = total > 0 ? Vec<Dim>(centre / total) : Vec<Dim>(points_.col(node.begin));
   node.moment = moment;
   node.radius = 0;
-  for (int j = node.begin; j < node.end; ++j) node.radius = std::max(node.radius, (points_.col(j) - node.centre).norm());
+  for (int j = node.begin; j < node.end; ++j)
+    node.radius = std::max(node.radius, (points_.col(j) - node.centre).norm());
 }
 
 template <int Dim>

@@ -1,0 +1,208 @@
+#include "core/mesh/stray_pockets.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/base/ms_since.h"
+#include "core/mesh/winding_guard_field.h"
+
+namespace hermite {
+
+namespace {
+
+constexpr int kMaxOccupancyCells = 512;  // per axis: the occupancy grid's cells are never finer
+constexpr int kPieceProbes = 64;         // vertices of a piece whose winding number is averaged
+// Pieces with more than this share of the mesh's triangles stay whatever their winding number: a
+// stray pocket is small, and a large piece off ½ means samples whose normals disagree (an
+// inconsistently oriented or self-intersecting source), not a pocket.
+constexpr double kPieceShare = 0.05;
+
+// Which cells of a grid over the box hold a sample: one bit per cell.
+class OccupiedCells {
+ public:
+  OccupiedCells(const Points<3>& samples, const Box<3>& box, int resolution) : lo_(box.lo) {
+    const double longest = box.extent().maxCoeff();
+    cell_ = longest / std::min(2 * std::max(resolution, 1), kMaxOccupancyCells);
+    dims_ = ((box.extent() / cell_).array().floor().cast<int>() + 1).matrix();
+    bits_.assign(static_cast<std::size_t>(dims_.cast<long long>().prod() / 64 + 1), 0);
+    for (Eigen::Index i = 0; i < samples.cols(); ++i) {
+      const Eigen::Vector3i c = cellOf(samples.col(i));
+      if (inside(c)) set(index(c));
+    }
+  }
+  // No sample lies in x's cell or the 26 around it.
+  bool farFromSamples(const Vec<3>& x) const {
+    const Eigen::Vector3i c = cellOf(x);
+    for (int dz = -1; dz <= 1; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const Eigen::Vector3i n = c + Eigen::Vector3i(dx, dy, dz);
+          if (inside(n) && test(index(n))) return false;
+        }
+    return true;
+  }
+
+ private:
+  Eigen::Vector3i cellOf(const Vec<3>& x) const { return ((x - lo_) / cell_).array().floor().cast<int>(); }
+  bool inside(const Eigen::Vector3i& c) const { return (c.array() >= 0).all() && (c.array() < dims_.array()).all(); }
+  std::size_t index(const Eigen::Vector3i& c) const {
+    return static_cast<std::size_t>((static_cast<long long>(c.z()) * dims_.y() + c.y()) * dims_.x() + c.x());
+  }
+  void set(std::size_t i) { bits_[i / 64] |= std::uint64_t{1} << (i % 64); }
+  bool test(std::size_t i) const { return (bits_[i / 64] >> (i % 64)) & 1U; }
+
+  Vec<3> lo_;
+  double cell_ = 1;
+  Eigen::Vector3i dims_;
+  std::vector<std::uint64_t> bits_;
+};
+
+bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
+
+// The mesh's vertices far from the samples whose winding number is decided.
+std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occupied,
+                                  const std::shared_ptr<const CloudWinding<3>>& winding) {
+  std::vector<Eigen::Index> far;
+  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
+    if (occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
+  Points<3> X(3, static_cast<Eigen::Index>(far.size()));
+  for (std::size_t i = 0; i < far.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = mesh.vertices.col(far[i]);
+  const std::vector<double> w = winding->at(X);
+  std::vector<Vec<3>> strays;
+  for (std::size_t i = 0; i < far.size(); ++i)
+    if (decided(w[i])) strays.push_back(X.col(static_cast<Eigen::Index>(i)));
+  return strays;
+}
+
+bool anyFarVertex(const TriMesh& mesh, const OccupiedCells& occupied) {
+  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
+    if (occupied.farFromSamples(mesh.vertices.col(v))) return true;
+  return false;
+}
+
+// Leaves out the components other than the largest, of at most kPieceShare of the triangles,
+// whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
+// or below kWindingOutside. Returns how many.
+int dropStrayPieces(TriMesh& mesh, const CloudWinding<3>& winding) {
+  int count = 0;
+  const std::vector<int> comp = triangleComponents(mesh, &count);
+  if (count <= 1) return 0;
+  std::vector<int> size(static_cast<std::size_t>(count), 0);
+  for (int c : comp) ++size[static_cast<std::size_t>(c)];
+  const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+  std::vector<std::vector<int>> probes(static_cast<std::size_t>(count));
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    std::vector<int>& p = probes[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])];
+    if (static_cast<int>(p.size()) < kPieceProbes) p.push_back(mesh.triangles(0, t));
+  }
+  std::vector<char> drop(static_cast<std::size_t>(count), 0);
+  int dropped = 0;
+  for (int c = 0; c < count; ++c) {
+    if (c == largest || size[static_cast<std::size_t>(c)] > kPieceShare * mesh.triangleCount()) continue;
+    double sum = 0;
+    for (int v : probes[static_cast<std::size_t>(c)]) sum += winding.at(Vec<3>(mesh.vertices.col(v)));
+    const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
+    if (mean > kPieceInside || mean < kWindingOutside) drop[static_cast<std::size_t>(c)] = 1, ++dropped;
+  }
+  if (dropped == 0) return 0;
+  Eigen::Matrix3Xi kept(3, mesh.triangleCount());
+  Eigen::Index k = 0;
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    if (!drop[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])]) kept.col(k++) = mesh.triangles.col(t);
+  mesh.triangles = kept.leftCols(k);
+  dropUnusedVertices(mesh);
+  return dropped;
+}
+
+}  // namespace
+
+namespace {
+
+// The contours of one field and its guarded versions, sharing the samples' occupancy, their
+// winding number (built on first use) and the guard region.
+class StrayContour {
+ public:
+  StrayContour(const HermiteSamples<3>& samples, const Box<3>& box, const MarchingOptions& options)
+      : samples_(samples),
+        box_(box),
+        options_(options),
+        occupied_(samples.points, box, options.resolution),
+        region_(kGuardCells * std::sqrt(3.0) * box.extent().maxCoeff() / std::max(options.resolution, 1)) {
+    options_.review = [this](TriMesh& mesh) { return review(mesh); };
+  }
+  // marchingCubes with the review below; strays() are those of the contour it returns.
+  TriMesh contour(const ImplicitField<3>& field, MarchingReport* report, int& dropped) {
+    reviews_.clear();
+    MarchingReport local;
+    MarchingReport& r = report ? *report : local;
+    TriMesh mesh = marchingCubes(field, box_, options_, &r);
+    const bool refined = r.refinement == MarchingReport::Refinement::Refined;
+    if (reviews_.empty()) reviews_.emplace_back();
+    kept_ = refined ? reviews_.back() : reviews_.front();
+    dropped = kept_.dropped;
+    return mesh;
+  }
+  const std::vector<Vec<3>>& strays() const { return kept_.strays; }
+  // The field guarded around every stray found so far (those of the last contour added).
+  std::unique_ptr<WindingGuardField> guard(const ImplicitField<3>& field) {
+    for (const Vec<3>& p : kept_.strays) region_.add(p);
+    return std::make_unique<WindingGuardField>(field, winding(), region_);
+  }
+
+ private:
+  const std::shared_ptr<const CloudWinding<3>>& winding() {
+    if (!winding_)
+      winding_ = std::make_shared<const CloudWinding<3>>(samples_.points, samples_.normals, options_.cancel);
+    return winding_;
+  }
+  // Leaves out stray pieces and finds the strays; false (no refined pass) when there are some.
+  bool review(TriMesh& mesh) {
+    Review r;
+    r.dropped = vertexConnectedComponentCount(mesh) > 1 ? dropStrayPieces(mesh, *winding()) : 0;
+    if (anyFarVertex(mesh, occupied_)) r.strays = strayVertices(mesh, occupied_, winding());
+    reviews_.push_back(std::move(r));
+    return reviews_.back().strays.empty();
+  }
+
+  struct Review {
+    int dropped = 0;             // stray pieces left out
+    std::vector<Vec<3>> strays;  // stray vertices of what is left
+  };
+
+  const HermiteSamples<3>& samples_;
+  Box<3> box_;
+  MarchingOptions options_;
+  OccupiedCells occupied_;
+  GuardRegion region_;
+  std::shared_ptr<const CloudWinding<3>> winding_;
+  std::vector<Review> reviews_;  // per contour of the last marchingCubes: the uniform one, then a refined one
+  Review kept_;                  // the one of the contour it returned
+};
+
+}  // namespace
+
+TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
+                             const HermiteSamples<3>& samples, MarchingReport* report, StrayReport* stray,
+                             std::unique_ptr<ImplicitField<3>>* guarded) {
+  if (field.everywhereValid() || samples.size() < kGuardMinSamples) return marchingCubes(field, box, options, report);
+  const auto start = std::chrono::steady_clock::now();
+  StrayReport local;
+  StrayReport& out = stray ? *stray : local;
+  StrayContour contours(samples, box, options);
+  TriMesh mesh = contours.contour(field, report, out.droppedPieces);
+  out.strayVertices = static_cast<int>(contours.strays().size());
+  out.tooMany = out.strayVertices > kMaxStrayShare * mesh.vertexCount();
+  for (int round = 0; !out.tooMany && round < kGuardRounds && !contours.strays().empty(); ++round) {
+    std::unique_ptr<WindingGuardField> guard = contours.guard(field);
+    mesh = contours.contour(*guard, report, out.droppedPieces);
+    if (guarded) *guarded = std::move(guard);
+    ++out.rounds;
+  }
+  out.ms = msSince(start);
+  return mesh;
+}
+
+}  // namespace hermite

@@ -1,0 +1,56 @@
+#pragma once
+// Contouring a partition-of-unity fit without its stray pockets (docs/maths.md, "Stray pockets").
+//
+// Far from its samples a local fit extrapolates, and where a support had to grow (a sparse
+// region, or a crack or fin thinner than the sample spacing) it can put f's zero set where no
+// surface is: a small void inside the solid or a blob outside, sometimes joined to the true
+// surface. The samples' winding number (cloud_winding.h) knows the side there: about 1 inside,
+// 0 outside, ½ only near the sampled surface. So after marching cubes:
+//  1. vertices with no sample in the 3 × 3 × 3 cells around their own (cells half the contour
+//     grid's, about a sample spacing at the automatic resolution; at most 512 per axis) whose
+//     winding number is decided (above kWindingInside or below kWindingOutside) are strays;
+//  2. if there are any, the grid is contoured again with f's sign overruled by the winding
+//     number within kGuardCells cell diagonals of each stray (winding_guard_field.h), and again
+//     while new strays appear, at most kGuardRounds times — unless they are more than
+//     kMaxStrayShare of the vertices: then the samples do not describe a closed surface densely
+//     enough for their winding number to be trusted (parts thinner than the sampling: CGAL's
+//     boeing has 7 %; the Stanford dragon 0–0.04 %), and the contour stays as it is;
+//  3. pieces other than the largest, of at most 5 % of the triangles, whose vertices' mean
+//     winding number is above kPieceInside (a void in the solid) or below kWindingOutside (a
+//     blob outside) are left out. A true piece of the surface has about ½ on it; the tip of a
+//     part thinner than a few spacings that the grid cut off has less (0.27–0.41 on the dino's
+//     claws), so the bound on that side is the stray's. This runs on every contour, before the
+//     anchors count pieces.
+// Only for fields with no-data regions (the smooth blend) and at least kGuardMinSamples samples:
+// the winding number needs a densely sampled surface.
+
+#include <memory>
+
+#include "core/base/implicit_field.h"
+#include "core/mesh/marching_cubes.h"
+#include "core/points/hermite_samples.h"
+
+namespace hermite {
+
+inline constexpr int kGuardMinSamples = 1000;
+inline constexpr double kGuardCells = 3.0;
+inline constexpr int kGuardRounds = 2;
+inline constexpr double kMaxStrayShare = 0.01;
+inline constexpr double kPieceInside = 0.65;
+
+struct StrayReport {
+  int strayVertices = 0;  // strays of the first contour
+  int rounds = 0;         // contours again with the guard
+  bool tooMany = false;   // more strays than kMaxStrayShare of the vertices: no guard
+  int droppedPieces = 0;  // pieces left out for their winding number
+  double ms = 0;          // the whole check, guarded contours included
+};
+
+// marchingCubes(field, box, options, report), then the steps above with the fit's samples.
+// `guarded` receives the guard field when step 2 ran (null otherwise): the field later passes
+// over the mesh (chord refinement) should read.
+TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
+                             const HermiteSamples<3>& samples, MarchingReport* report, StrayReport* stray,
+                             std::unique_ptr<ImplicitField<3>>* guarded);
+
+}  // namespace hermite
