@@ -62,12 +62,28 @@ class OccupiedCells {
 
 bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
 
-// The mesh's vertices far from the samples whose winding number is decided.
+// 1 for the vertices of the mesh's largest piece (by triangles), else 0.
+std::vector<char> largestPieceVertices(const TriMesh& mesh) {
+  int count = 0;
+  const std::vector<int> comp = triangleComponents(mesh, &count);
+  std::vector<int> size(static_cast<std::size_t>(count), 0);
+  for (int c : comp) ++size[static_cast<std::size_t>(c)];
+  const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+  std::vector<char> on(static_cast<std::size_t>(mesh.vertexCount()), 0);
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    if (comp[static_cast<std::size_t>(t)] == largest)
+      for (int k = 0; k < 3; ++k) on[static_cast<std::size_t>(mesh.triangles(k, t))] = 1;
+  return on;
+}
+
+// The vertices of the mesh's largest piece far from the samples whose winding number is decided:
+// a pocket joined to the surface (a piece of its own is the piece rule's).
 std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occupied,
                                   const std::shared_ptr<const CloudWinding<3>>& winding) {
+  const std::vector<char> main = largestPieceVertices(mesh);
   std::vector<Eigen::Index> far;
   for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
-    if (occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
+    if (main[static_cast<std::size_t>(v)] && occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
   Points<3> X(3, static_cast<Eigen::Index>(far.size()));
   for (std::size_t i = 0; i < far.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = mesh.vertices.col(far[i]);
   const std::vector<double> w = winding->at(X);
@@ -130,12 +146,14 @@ class StrayContour {
         box_(box),
         options_(options),
         occupied_(samples.points, box, options.resolution),
-        region_(kGuardCells * std::sqrt(3.0) * box.extent().maxCoeff() / std::max(options.resolution, 1)) {
+        cell_(box.extent().maxCoeff() / std::max(options.resolution, 1)),
+        region_(kGuardCells * std::sqrt(3.0) * cell_) {
     options_.review = [this](TriMesh& mesh) { return review(mesh); };
   }
   // marchingCubes with the review below; strays() are those of the contour it returns.
   TriMesh contour(const ImplicitField<3>& field, MarchingReport* report, int& dropped) {
     reviews_.clear();
+    field_ = &field;
     MarchingReport local;
     MarchingReport& r = report ? *report : local;
     TriMesh mesh = marchingCubes(field, box_, options_, &r);
@@ -163,8 +181,24 @@ class StrayContour {
     Review r;
     r.dropped = vertexConnectedComponentCount(mesh) > 1 ? dropStrayPieces(mesh, *winding()) : 0;
     if (anyFarVertex(mesh, occupied_)) r.strays = strayVertices(mesh, occupied_, winding());
+    // Only strays a guard can still act on: new, and with f on the wrong side near them.
+    const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p); };
+    r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
     reviews_.push_back(std::move(r));
     return reviews_.back().strays.empty();
+  }
+
+  // Whether a corner of the cell-sized cube about p has f on the other side of a decided winding
+  // number: otherwise a guard there overrules nothing (a stray on a true surface whose winding
+  // number is off ½, as beside a sharp concave edge).
+  bool overruledNear(const Vec<3>& p) {
+    for (int k = 0; k < 8; ++k) {
+      Vec<3> c = p;
+      for (int a = 0; a < 3; ++a) c[a] += ((k >> a) & 1 ? 0.5 : -0.5) * cell_;
+      const double f = field_->evaluate(c), w = winding()->at(c);
+      if ((w > kWindingInside && f > 0) || (w < kWindingOutside && f < 0)) return true;
+    }
+    return false;
   }
 
   struct Review {
@@ -176,7 +210,9 @@ class StrayContour {
   Box<3> box_;
   MarchingOptions options_;
   OccupiedCells occupied_;
+  double cell_;  // the contour grid's cell size (its longest axis's)
   GuardRegion region_;
+  const ImplicitField<3>* field_ = nullptr;  // the field of the contour under review
   std::shared_ptr<const CloudWinding<3>> winding_;
   std::vector<Review> reviews_;  // per contour of the last marchingCubes: the uniform one, then a refined one
   Review kept_;                  // the one of the contour it returned

@@ -6,9 +6,10 @@
 // surface is: a small void inside the solid or a blob outside, sometimes joined to the true
 // surface. The samples' winding number (cloud_winding.h) knows the side there: about 1 inside,
 // 0 outside, ½ only near the sampled surface. So after marching cubes:
-//  1. vertices with no sample in the 3 × 3 × 3 cells around their own (cells half the contour
-//     grid's, about a sample spacing at the automatic resolution; at most 512 per axis) whose
-//     winding number is decided (above kWindingInside or below kWindingOutside) are strays;
+//  1. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
+//     (cells half the contour grid's, about a sample spacing at the automatic resolution; at
+//     most 512 per axis) whose winding number is decided (above kWindingInside or below
+//     kWindingOutside) are strays: a pocket joined to the surface (a piece of its own is step 3's);
 //  2. if there are any, the grid is contoured again with f's sign overruled by the winding
 //     number within kGuardCells cell diagonals of each stray (winding_guard_field.h), and again
 //     while new strays appear, at most kGuardRounds times — unless they are more than
