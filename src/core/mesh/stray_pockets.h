@@ -37,7 +37,7 @@ inline constexpr int kGuardMinSamples = 1000;
 inline constexpr double kGuardCells = 3.0;
 inline constexpr int kGuardRounds = 2;
 inline constexpr double kMaxStrayShare = 0.01;
-inline constexpr double kPieceInside = 0.65;
+inline constexpr double kPieceInside = 0.6;
 
 struct StrayReport {
   int strayVertices = 0;  // strays of the first contour
