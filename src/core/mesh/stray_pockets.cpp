@@ -62,16 +62,27 @@ class OccupiedCells {
 
 bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
 
-// 1 for the vertices of the mesh's largest piece (by triangles), else 0.
+// The mesh's pieces (edge-connected components of triangles) and the largest.
+struct Pieces {
+  std::vector<int> of;    // per triangle: its piece
+  std::vector<int> size;  // per piece: its triangles
+  int largest = -1;       // the piece with the most triangles (the first of them on a tie)
+  explicit Pieces(const TriMesh& mesh) {
+    int count = 0;
+    of = triangleComponents(mesh, &count);
+    size.assign(static_cast<std::size_t>(count), 0);
+    for (int c : of) ++size[static_cast<std::size_t>(c)];
+    if (count > 0) largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+  }
+  int count() const { return static_cast<int>(size.size()); }
+};
+
+// 1 for the vertices of the mesh's largest piece, else 0.
 std::vector<char> largestPieceVertices(const TriMesh& mesh) {
-  int count = 0;
-  const std::vector<int> comp = triangleComponents(mesh, &count);
-  std::vector<int> size(static_cast<std::size_t>(count), 0);
-  for (int c : comp) ++size[static_cast<std::size_t>(c)];
-  const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+  const Pieces pieces(mesh);
   std::vector<char> on(static_cast<std::size_t>(mesh.vertexCount()), 0);
   for (int t = 0; t < mesh.triangleCount(); ++t)
-    if (comp[static_cast<std::size_t>(t)] == largest)
+    if (pieces.of[static_cast<std::size_t>(t)] == pieces.largest)
       for (int k = 0; k < 3; ++k) on[static_cast<std::size_t>(mesh.triangles(k, t))] = 1;
   return on;
 }
@@ -103,21 +114,18 @@ bool anyFarVertex(const TriMesh& mesh, const OccupiedCells& occupied) {
 // whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
 // or below kWindingOutside. Returns how many.
 int dropStrayPieces(TriMesh& mesh, const CloudWinding<3>& winding) {
-  int count = 0;
-  const std::vector<int> comp = triangleComponents(mesh, &count);
-  if (count <= 1) return 0;
-  std::vector<int> size(static_cast<std::size_t>(count), 0);
-  for (int c : comp) ++size[static_cast<std::size_t>(c)];
-  const int largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
-  std::vector<std::vector<int>> probes(static_cast<std::size_t>(count));
+  const Pieces pieces(mesh);
+  if (pieces.count() <= 1) return 0;
+  const std::vector<int>& comp = pieces.of;
+  std::vector<std::vector<int>> probes(static_cast<std::size_t>(pieces.count()));
   for (int t = 0; t < mesh.triangleCount(); ++t) {
     std::vector<int>& p = probes[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])];
     if (static_cast<int>(p.size()) < kPieceProbes) p.push_back(mesh.triangles(0, t));
   }
-  std::vector<char> drop(static_cast<std::size_t>(count), 0);
+  std::vector<char> drop(static_cast<std::size_t>(pieces.count()), 0);
   int dropped = 0;
-  for (int c = 0; c < count; ++c) {
-    if (c == largest || size[static_cast<std::size_t>(c)] > kPieceShare * mesh.triangleCount()) continue;
+  for (int c = 0; c < pieces.count(); ++c) {
+    if (c == pieces.largest || pieces.size[static_cast<std::size_t>(c)] > kPieceShare * mesh.triangleCount()) continue;
     double sum = 0;
     for (int v : probes[static_cast<std::size_t>(c)]) sum += winding.at(Vec<3>(mesh.vertices.col(v)));
     const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
