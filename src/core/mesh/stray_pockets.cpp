@@ -141,10 +141,6 @@ int dropStrayPieces(TriMesh& mesh, const CloudWinding<3>& winding) {
   return dropped;
 }
 
-}  // namespace
-
-namespace {
-
 // The contours of one field and its guarded versions, sharing the samples' occupancy, their
 // winding number (built on first use) and the guard region.
 class StrayContour {
@@ -196,13 +192,14 @@ class StrayContour {
     return reviews_.back().strays.empty();
   }
 
-  // Whether a corner of the cell-sized cube about p has f on the other side of a decided winding
-  // number: otherwise a guard there overrules nothing (a stray on a true surface whose winding
-  // number is off ½, as beside a sharp concave edge).
+  // Whether a corner of the cell-sized cube about p, where the field has data, has f on the other
+  // side of a decided winding number: otherwise a guard there overrules nothing (a stray on a true
+  // surface whose winding number is off ½, as beside a sharp concave edge).
   bool overruledNear(const Vec<3>& p) {
     for (int k = 0; k < 8; ++k) {
       Vec<3> c = p;
       for (int a = 0; a < 3; ++a) c[a] += ((k >> a) & 1 ? 0.5 : -0.5) * cell_;
+      if (!field_->valid(c)) continue;
       const double f = field_->evaluate(c), w = winding()->at(c);
       if ((w > kWindingInside && f > 0) || (w < kWindingOutside && f < 0)) return true;
     }

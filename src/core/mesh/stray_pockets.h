@@ -9,7 +9,9 @@
 //  1. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
 //     (cells half the contour grid's, about a sample spacing at the automatic resolution; at
 //     most 512 per axis) whose winding number is decided (above kWindingInside or below
-//     kWindingOutside) are strays: a pocket joined to the surface (a piece of its own is step 3's);
+//     kWindingOutside) are strays: a pocket joined to the surface (a piece of its own is step 3's)
+//     — those outside the guard region so far, with f on the other side of a decided winding
+//     number at a corner of the cell-sized cube about them (else a guard would change nothing);
 //  2. if there are any, the grid is contoured again with f's sign overruled by the winding
 //     number within kGuardCells cell diagonals of each stray (winding_guard_field.h), and again
 //     while new strays appear, at most kGuardRounds times — unless they are more than
