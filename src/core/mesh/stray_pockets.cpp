@@ -62,14 +62,15 @@ class OccupiedCells {
 
 bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
 
-// The mesh's pieces (edge-connected components of triangles) and the largest.
+// The mesh's pieces and the largest. Marching cubes' pieces meet at no vertex, so the vertex
+// union-find (no edge sort) finds them.
 struct Pieces {
   std::vector<int> of;    // per triangle: its piece
   std::vector<int> size;  // per piece: its triangles
   int largest = -1;       // the piece with the most triangles (the first of them on a tie)
   explicit Pieces(const TriMesh& mesh) {
     int count = 0;
-    of = triangleComponents(mesh, &count);
+    of = vertexConnectedComponents(mesh, &count);
     size.assign(static_cast<std::size_t>(count), 0);
     for (int c : of) ++size[static_cast<std::size_t>(c)];
     if (count > 0) largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
@@ -112,10 +113,18 @@ bool anyFarVertex(const TriMesh& mesh, const OccupiedCells& occupied) {
 
 // Leaves out the components other than the largest, of at most kPieceShare of the triangles,
 // whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
-// or below kWindingOutside. Returns how many.
-int dropStrayPieces(TriMesh& mesh, const CloudWinding<3>& winding) {
+// or below kWindingOutside. Returns how many. `windingOf()` gives the winding number; it is
+// called only when there is such a small piece (a mesh of two large true pieces never builds it).
+template <class WindingOf>
+int dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   const Pieces pieces(mesh);
-  if (pieces.count() <= 1) return 0;
+  const auto small = [&](int c) {
+    return c != pieces.largest && pieces.size[static_cast<std::size_t>(c)] <= kPieceShare * mesh.triangleCount();
+  };
+  bool any = false;
+  for (int c = 0; c < pieces.count() && !any; ++c) any = small(c);
+  if (!any) return 0;
+  const CloudWinding<3>& winding = windingOf();
   const std::vector<int>& comp = pieces.of;
   std::vector<std::vector<int>> probes(static_cast<std::size_t>(pieces.count()));
   for (int t = 0; t < mesh.triangleCount(); ++t) {
@@ -125,7 +134,7 @@ int dropStrayPieces(TriMesh& mesh, const CloudWinding<3>& winding) {
   std::vector<char> drop(static_cast<std::size_t>(pieces.count()), 0);
   int dropped = 0;
   for (int c = 0; c < pieces.count(); ++c) {
-    if (c == pieces.largest || pieces.size[static_cast<std::size_t>(c)] > kPieceShare * mesh.triangleCount()) continue;
+    if (!small(c)) continue;
     double sum = 0;
     for (int v : probes[static_cast<std::size_t>(c)]) sum += winding.at(Vec<3>(mesh.vertices.col(v)));
     const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
@@ -183,7 +192,8 @@ class StrayContour {
   // Leaves out stray pieces and finds the strays; false (no refined pass) when there are some.
   bool review(TriMesh& mesh) {
     Review r;
-    r.dropped = vertexConnectedComponentCount(mesh) > 1 ? dropStrayPieces(mesh, *winding()) : 0;
+    const auto windingOf = [&]() -> const CloudWinding<3>& { return *winding(); };
+    if (vertexConnectedComponentCount(mesh) > 1) r.dropped = dropStrayPieces(mesh, windingOf);
     if (anyFarVertex(mesh, occupied_)) r.strays = strayVertices(mesh, occupied_, winding());
     // Only strays a guard can still act on: new, and with f on the wrong side near them.
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p); };

@@ -182,6 +182,25 @@ int vertexConnectedComponentCount(const TriMesh& mesh) {
   return pieces;
 }
 
+std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count) {
+  std::vector<int> parent(static_cast<size_t>(mesh.vertexCount()));
+  for (size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<int>(v);
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    for (int k = 1; k < 3; ++k) {
+      const int a = findRoot(parent, mesh.triangles(0, t)), b = findRoot(parent, mesh.triangles(k, t));
+      if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b);
+    }
+  std::vector<int> label(parent.size(), -1), out(static_cast<size_t>(mesh.triangles.cols()));
+  int n = 0;
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t) {
+    int& l = label[static_cast<size_t>(findRoot(parent, mesh.triangles(0, t)))];
+    if (l < 0) l = n++;
+    out[static_cast<size_t>(t)] = l;
+  }
+  if (count) *count = n;
+  return out;
+}
+
 int connectedComponentCount(const TriMesh& mesh) {
   int n = 0;
   triangleComponents(mesh, &n);

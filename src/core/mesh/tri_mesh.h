@@ -46,6 +46,9 @@ int connectedComponentCount(const TriMesh& mesh);
 // sort. Equals connectedComponentCount where each vertex's triangles form one fan (marching
 // cubes' output); smaller where pieces only touch at a vertex.
 int vertexConnectedComponentCount(const TriMesh& mesh);
+// The piece of each triangle (0 … count − 1, numbered in order of first triangle) by the same
+// vertex union-find; *count (when not null) receives their number.
+std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count = nullptr);
 
 // Removes the vertices no triangle uses (and their normals), renumbering the triangles; the rest
 // keep their order.

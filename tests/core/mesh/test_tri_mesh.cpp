@@ -120,4 +120,9 @@ TEST_CASE("tri mesh: connected components") {
   CHECK(label[0] == 0);
   CHECK(label[15] == 1);
   CHECK(checkMesh(two).eulerCharacteristic == 4);
+  // The vertex union-find finds the same pieces, numbered the same way (by first triangle).
+  int byVertex = 0;
+  CHECK(vertexConnectedComponents(two, &byVertex) == label);
+  CHECK(byVertex == 2);
+  CHECK(vertexConnectedComponentCount(two) == 2);
 }
