@@ -5,25 +5,26 @@
 // region, or a crack or fin thinner than the sample spacing) it can put f's zero set where no
 // surface is: a small void inside the solid or a blob outside, sometimes joined to the true
 // surface. The samples' winding number (cloud_winding.h) knows the side there: about 1 inside,
-// 0 outside, ½ only near the sampled surface. So after marching cubes:
-//  1. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
-//     (cells half the contour grid's, about a sample spacing at the automatic resolution; at
-//     most 512 per axis) whose winding number is decided (above kWindingInside or below
-//     kWindingOutside) are strays: a pocket joined to the surface (a piece of its own is step 3's)
-//     — those outside the guard region so far, with f on the other side of a decided winding
-//     number at a corner of the cell-sized cube about them (else a guard would change nothing);
-//  2. if there are any, the grid is contoured again with f's sign overruled by the winding
-//     number within kGuardCells cell diagonals of each stray (winding_guard_field.h), and again
-//     while new strays appear, at most kGuardRounds times — unless they are more than
-//     kMaxStrayShare of the vertices: then the samples do not describe a closed surface densely
-//     enough for their winding number to be trusted (parts thinner than the sampling: CGAL's
-//     boeing has 7 %; the Stanford dragon 0–0.04 %), and the contour stays as it is;
-//  3. pieces other than the largest, of at most 5 % of the triangles, whose vertices' mean
+// 0 outside, ½ only near the sampled surface. So each contour marching cubes makes is reviewed
+// before the anchors count its pieces:
+//  1. pieces other than the largest, of at most 5 % of the triangles, whose vertices' mean
 //     winding number is above kPieceInside (a void in the solid) or below kWindingOutside (a
 //     blob outside) are left out. A true piece of the surface has about ½ on it; the tip of a
 //     part thinner than a few spacings that the grid cut off has less (0.27–0.41 on the dino's
-//     claws), so the bound on that side is the stray's. This runs on every contour, before the
-//     anchors count pieces.
+//     claws), so the bound on that side is the stray's;
+//  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
+//     (cells half the contour grid's, about a sample spacing at the automatic resolution; at
+//     most 512 per axis) whose winding number is decided (above kWindingInside or below
+//     kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
+//     region so far count, with f on the other side of a decided winding number at a corner of
+//     the cell-sized cube about them (else a guard would change nothing); with strays the
+//     contour gets no refined pass.
+// Then, if the contour kept has strays, the grid is contoured again with f's sign overruled by
+// the winding number within kGuardCells cell diagonals of each stray (winding_guard_field.h),
+// and again while new strays appear, at most kGuardRounds times — unless the first contour's
+// strays are more than kMaxStrayShare of its vertices: then the samples do not describe a closed
+// surface densely enough for their winding number to be trusted (parts thinner than the
+// sampling: CGAL's boeing has 7–9 %; the Stanford dragon 0–0.04 %), and it stays as it is.
 // Only for fields with no-data regions (the smooth blend) and at least kGuardMinSamples samples:
 // the winding number needs a densely sampled surface.
 

@@ -24,9 +24,7 @@ class GuardRegion {
  public:
   explicit GuardRegion(double radius) : radius_(radius) {}
   void add(const Vec<3>& centre);
-  bool empty() const { return centres_.empty(); }
   int size() const { return static_cast<int>(centres_.size()); }
-  double radius() const { return radius_; }
   bool contains(const Vec<3>& x) const;
   // Whether some ball meets the box.
   bool touches(const Box<3>& box) const;
@@ -62,10 +60,9 @@ class WindingGuardField : public ImplicitField<3> {
   std::unique_ptr<ImplicitField<3>> forGridCells(double cellDiagonal) const override;
   double lipschitzBound(const Box<3>& box) const override;
 
+ private:
   // Whether f at x changes sign here.
   bool overrules(const Vec<3>& x, double f) const;
-
- private:
   // Changes the sign of f (and G's columns) where overrules() says so.
   void guardBatch(const Points<3>& X, Eigen::VectorXd& f, Points<3>* G) const;
 
