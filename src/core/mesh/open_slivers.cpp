@@ -16,16 +16,9 @@ int dropOpenSlivers(TriMesh& mesh, double maxArea) {
     area[static_cast<size_t>(label[static_cast<size_t>(t)])] += 0.5 * (b - a).cross(c - a).norm();
   }
   std::vector<char> drop(static_cast<size_t>(count), 0);
-  int dropped = 0;
   for (int c = 0; c < count; ++c)
-    if (open[static_cast<size_t>(c)] && area[static_cast<size_t>(c)] < maxArea) drop[static_cast<size_t>(c)] = 1, ++dropped;
-  if (dropped == 0) return 0;
-  Eigen::Index kept = 0;
-  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
-    if (!drop[static_cast<size_t>(label[static_cast<size_t>(t)])]) mesh.triangles.col(kept++) = mesh.triangles.col(t);
-  mesh.triangles.conservativeResize(3, kept);
-  dropUnusedVertices(mesh);
-  return dropped;
+    drop[static_cast<size_t>(c)] = open[static_cast<size_t>(c)] && area[static_cast<size_t>(c)] < maxArea;
+  return dropComponents(mesh, label, drop);
 }
 
 }  // namespace hermite

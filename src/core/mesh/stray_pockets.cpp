@@ -89,26 +89,25 @@ std::vector<char> largestPieceVertices(const TriMesh& mesh) {
 }
 
 // The vertices of the mesh's largest piece far from the samples whose winding number is decided:
-// a pocket joined to the surface (a piece of its own is the piece rule's).
-std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occupied,
-                                  const std::shared_ptr<const CloudWinding<3>>& winding) {
-  const std::vector<char> main = largestPieceVertices(mesh);
+// a pocket joined to the surface (a piece of its own is the piece rule's). `windingOf()` gives the
+// winding number; it is called only when some vertex is far (a clean contour never builds it).
+template <class WindingOf>
+std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occupied, WindingOf&& windingOf) {
   std::vector<Eigen::Index> far;
   for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
-    if (main[static_cast<std::size_t>(v)] && occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
+    if (occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
+  if (far.empty()) return {};
+  const std::vector<char> main = largestPieceVertices(mesh);
+  far.erase(std::remove_if(far.begin(), far.end(), [&](Eigen::Index v) { return !main[static_cast<std::size_t>(v)]; }),
+            far.end());
+  if (far.empty()) return {};
   Points<3> X(3, static_cast<Eigen::Index>(far.size()));
   for (std::size_t i = 0; i < far.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = mesh.vertices.col(far[i]);
-  const std::vector<double> w = winding->at(X);
+  const std::vector<double> w = windingOf().at(X);
   std::vector<Vec<3>> strays;
   for (std::size_t i = 0; i < far.size(); ++i)
     if (decided(w[i])) strays.push_back(X.col(static_cast<Eigen::Index>(i)));
   return strays;
-}
-
-bool anyFarVertex(const TriMesh& mesh, const OccupiedCells& occupied) {
-  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
-    if (occupied.farFromSamples(mesh.vertices.col(v))) return true;
-  return false;
 }
 
 // Leaves out the components other than the largest, of at most kPieceShare of the triangles,
@@ -132,22 +131,14 @@ int dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
     if (static_cast<int>(p.size()) < kPieceProbes) p.push_back(mesh.triangles(0, t));
   }
   std::vector<char> drop(static_cast<std::size_t>(pieces.count()), 0);
-  int dropped = 0;
   for (int c = 0; c < pieces.count(); ++c) {
     if (!small(c)) continue;
     double sum = 0;
     for (int v : probes[static_cast<std::size_t>(c)]) sum += winding.at(Vec<3>(mesh.vertices.col(v)));
     const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
-    if (mean > kPieceInside || mean < kWindingOutside) drop[static_cast<std::size_t>(c)] = 1, ++dropped;
+    drop[static_cast<std::size_t>(c)] = mean > kPieceInside || mean < kWindingOutside;
   }
-  if (dropped == 0) return 0;
-  Eigen::Matrix3Xi kept(3, mesh.triangleCount());
-  Eigen::Index k = 0;
-  for (int t = 0; t < mesh.triangleCount(); ++t)
-    if (!drop[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])]) kept.col(k++) = mesh.triangles.col(t);
-  mesh.triangles = kept.leftCols(k);
-  dropUnusedVertices(mesh);
-  return dropped;
+  return dropComponents(mesh, comp, drop);
 }
 
 // The contours of one field and its guarded versions, sharing the samples' occupancy, their
@@ -194,7 +185,7 @@ class StrayContour {
     Review r;
     const auto windingOf = [&]() -> const CloudWinding<3>& { return *winding(); };
     if (vertexConnectedComponentCount(mesh) > 1) r.dropped = dropStrayPieces(mesh, windingOf);
-    if (anyFarVertex(mesh, occupied_)) r.strays = strayVertices(mesh, occupied_, winding());
+    r.strays = strayVertices(mesh, occupied_, windingOf);
     // Only strays a guard can still act on: new, and with f on the wrong side near them.
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());

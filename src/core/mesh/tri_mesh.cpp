@@ -168,20 +168,6 @@ void dropUnusedVertices(TriMesh& mesh) {
     for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = id[static_cast<size_t>(mesh.triangles(k, t))];
 }
 
-int vertexConnectedComponentCount(const TriMesh& mesh) {
-  std::vector<int> parent(static_cast<size_t>(mesh.vertexCount()), -1);  // −1: used by no triangle yet
-  int pieces = 0;
-  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
-    for (int k = 0; k < 3; ++k) {
-      const int v = mesh.triangles(k, t);
-      if (parent[static_cast<size_t>(v)] < 0) parent[static_cast<size_t>(v)] = v, ++pieces;
-      if (k == 0) continue;
-      const int a = findRoot(parent, mesh.triangles(0, t)), b = findRoot(parent, v);
-      if (a != b) parent[static_cast<size_t>(std::max(a, b))] = std::min(a, b), --pieces;
-    }
-  return pieces;
-}
-
 std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count) {
   std::vector<int> parent(static_cast<size_t>(mesh.vertexCount()));
   for (size_t v = 0; v < parent.size(); ++v) parent[v] = static_cast<int>(v);
@@ -199,6 +185,24 @@ std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count) {
   }
   if (count) *count = n;
   return out;
+}
+
+int vertexConnectedComponentCount(const TriMesh& mesh) {
+  int n = 0;
+  vertexConnectedComponents(mesh, &n);
+  return n;
+}
+
+int dropComponents(TriMesh& mesh, const std::vector<int>& label, const std::vector<char>& drop) {
+  int dropped = 0;
+  for (char d : drop) dropped += d != 0;
+  if (dropped == 0) return 0;
+  Eigen::Index kept = 0;
+  for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t)
+    if (!drop[static_cast<size_t>(label[static_cast<size_t>(t)])]) mesh.triangles.col(kept++) = mesh.triangles.col(t);
+  mesh.triangles.conservativeResize(3, kept);
+  dropUnusedVertices(mesh);
+  return dropped;
 }
 
 int connectedComponentCount(const TriMesh& mesh) {

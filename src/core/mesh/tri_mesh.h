@@ -54,6 +54,11 @@ std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count = nul
 // keep their order.
 void dropUnusedVertices(TriMesh& mesh);
 
+// Removes the triangles of every component c with drop[c] set (label: a component per triangle,
+// as triangleComponents or vertexConnectedComponents give), then the vertices no triangle uses;
+// the rest keep their order. Returns how many components were removed.
+int dropComponents(TriMesh& mesh, const std::vector<int>& label, const std::vector<char>& drop);
+
 // ---- normals -------------------------------------------------------------------------------
 
 enum class NormalWeighting { Area, Angle };

@@ -121,18 +121,8 @@ TEST_CASE("stray pockets: a void joined to the surface by a tunnel is contoured 
 
 TEST_CASE("stray pockets: a second true piece stays") {
   // A second unit sphere beside the first, sampled too: the field is their union.
-  class TwoBalls : public ImplicitField<3> {
-   public:
-    double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
-      const Vec<3> c(2.5, 0, 0);
-      const double a = x.norm() - 1.0, b = (x - c).norm() - 1.0;
-      if (g) *g = a < b ? x.normalized() : (x - c).normalized();
-      if (H) H->setZero();
-      return std::min(a, b);
-    }
-    double lipschitzBound(const Box<3>&) const override { return 1.0; }
-    bool everywhereValid() const override { return false; }
-  } two;
+  BallWithExtras two;
+  two.blobs = {{Vec<3>(2.5, 0, 0), 1.0}};
   const HermiteSamples<3> one = sphereSamples();
   HermiteSamples<3> both;
   both.points.resize(3, 2 * one.size());
