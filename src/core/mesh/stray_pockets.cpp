@@ -1,12 +1,10 @@
 #include "core/mesh/stray_pockets.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
-#include "core/base/ms_since.h"
 #include "core/mesh/winding_guard_field.h"
 
 namespace hermite {
@@ -230,7 +228,6 @@ TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, c
                              const HermiteSamples<3>& samples, MarchingReport* report, StrayReport* stray,
                              std::unique_ptr<ImplicitField<3>>* guarded) {
   if (field.everywhereValid() || samples.size() < kGuardMinSamples) return marchingCubes(field, box, options, report);
-  const auto start = std::chrono::steady_clock::now();
   StrayReport local;
   StrayReport& out = stray ? *stray : local;
   StrayContour contours(samples, box, options);
@@ -243,7 +240,6 @@ TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, c
     if (guarded) *guarded = std::move(guard);
     ++out.rounds;
   }
-  out.ms = msSince(start);
   return mesh;
 }
 

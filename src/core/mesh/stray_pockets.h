@@ -47,7 +47,6 @@ struct StrayReport {
   int rounds = 0;         // contours again with the guard
   bool tooMany = false;   // more strays than kMaxStrayShare of the vertices: no guard
   int droppedPieces = 0;  // pieces left out for their winding number
-  double ms = 0;          // the whole check, guarded contours included
 };
 
 // marchingCubes(field, box, options, report), then the steps above with the fit's samples.
