@@ -405,10 +405,11 @@ double minGridStep(const GridLines<3>& lines) {
 }
 
 // The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
-// (MarchingOptions::anchors); otherwise `mesh` as it is, the report saying why.
+// (MarchingOptions::anchors), `usedLines` receiving them; otherwise `mesh` as it is, the report
+// saying why.
 TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
                          const Vec<3>& h, const detail::AnchorCells& seen, TriMesh mesh, const MarchingOptions& options,
-                         MarchingReport* report) {
+                         MarchingReport* report, std::optional<GridLines<3>>* usedLines) {
   using Refinement = MarchingReport::Refinement;
   const std::vector<std::array<int, 3>> missed = detail::missedAnchorCells(seen, *options.anchors, field, h.norm());
   if (missed.empty()) return mesh;
@@ -420,7 +421,7 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   r.refinement = Refinement::OnePiece;
   if (vertexConnectedComponentCount(mesh) <= 1) return mesh;
   r.refinement = Refinement::TooLarge;
-  const std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
+  std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
   if (!refined) return mesh;
   MarchingReport pass = r;
   TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass);
@@ -434,13 +435,14 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   pass.refinement = Refinement::Refined;
   pass.minStep = minGridStep(*refined);
   r = pass;
+  *usedLines = std::move(refined);
   return finer;
 }
 
 }  // namespace
 
 TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
-                      MarchingReport* report) {
+                      MarchingReport* report, GridLines<3>* usedLines) {
   const auto t0 = std::chrono::steady_clock::now();
   const Vec<3> h = detail::marchingCellSize<3>(box, options.resolution);
   const std::unique_ptr<ImplicitField<3>> near = field.forGridCells(h.norm());
@@ -449,9 +451,11 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   std::optional<detail::AnchorCells> seen;
   if (options.anchors && options.anchors->cols() > 0) seen = detail::locateAnchors(lines, *options.anchors);
   TriMesh mesh = marchOnce(f, lines, h, options, report, seen ? &*seen : nullptr);
-  const bool refine = !options.review || options.review(mesh);
+  if (options.review) options.review(mesh);
   if (report) report->minStep = minGridStep(lines);
-  if (seen && refine) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report);
+  std::optional<GridLines<3>> refined;
+  if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined);
+  if (usedLines) *usedLines = refined ? std::move(*refined) : lines;
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
   if (!field.everywhereValid() && vertexConnectedComponentCount(mesh) > 1) {
     const int slivers = dropOpenSlivers(mesh, std::min({h[0] * h[1], h[1] * h[2], h[0] * h[2]}));
@@ -459,6 +463,12 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   }
   if (report) report->totalMs = msSince(t0);
   return mesh;
+}
+
+TriMesh marchingCubesPass(const ImplicitField<3>& field, const GridLines<3>& lines, const Vec<3>& h,
+                          const MarchingOptions& options) {
+  const std::unique_ptr<ImplicitField<3>> near = field.forGridCells(h.norm());
+  return marchOnce(near ? *near : field, lines, h, options, nullptr, nullptr);
 }
 
 }  // namespace hermite

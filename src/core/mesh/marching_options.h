@@ -62,9 +62,8 @@ struct MarchingOptions {
   const Points<3>* anchors = nullptr;
   // Reviews each contour marching cubes makes — the uniform one, and the refined one the anchors
   // ask for — before its pieces are counted (empty: none; 3D only): it may leave out pieces that
-  // are not surface, and returns false when the caller will contour again anyway, so the uniform
-  // contour is returned as it is, without a refined pass (stray_pockets.h).
-  std::function<bool(TriMesh&)> review = {};
+  // are not surface (stray_pockets.h).
+  std::function<void(TriMesh&)> review = {};
 };
 
 inline constexpr int kAnchorReach = 0;  // cells around a missed anchor's own that are cut too, per side

@@ -3,60 +3,33 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
+#include "core/mesh/contour_patch.h"
+#include "core/mesh/marching_grid.h"
+#include "core/mesh/occupied_cells.h"
+#include "core/mesh/open_slivers.h"
 #include "core/mesh/winding_guard_field.h"
 
 namespace hermite {
 
 namespace {
 
-constexpr int kMaxOccupancyCells = 512;  // per axis: the occupancy grid's cells are never finer
+// The occupancy cells are half the contour grid's, and never wider than this share of the
+// sample spacing √(A / N) (A the contour's area): at the automatic resolution and at 256³ for
+// 200 000 samples the half cell is 0.5–0.85 of it on CGAL's models and the dragon; on a grid
+// coarse for its samples (a million at 256³: 1.5) the cells follow the samples instead, so that
+// "far" keeps meaning a few spacings.
+constexpr double kOccupancySpacing = 0.85;
 constexpr int kPieceProbes = 64;         // vertices of a piece whose winding number is averaged
 // Pieces with more than this share of the mesh's triangles stay whatever their winding number: a
 // stray pocket is small, and a large piece off ½ means samples whose normals disagree (an
 // inconsistently oriented or self-intersecting source), not a pocket.
 constexpr double kPieceShare = 0.05;
-
-// Which cells of a grid over the box hold a sample: one bit per cell.
-class OccupiedCells {
- public:
-  OccupiedCells(const Points<3>& samples, const Box<3>& box, int resolution) : lo_(box.lo) {
-    const double longest = box.extent().maxCoeff();
-    cell_ = longest / std::min(2 * std::max(resolution, 1), kMaxOccupancyCells);
-    dims_ = ((box.extent() / cell_).array().floor().cast<int>() + 1).matrix();
-    bits_.assign(static_cast<std::size_t>(dims_.cast<long long>().prod() / 64 + 1), 0);
-    for (Eigen::Index i = 0; i < samples.cols(); ++i) {
-      const Eigen::Vector3i c = cellOf(samples.col(i));
-      if (inside(c)) set(index(c));
-    }
-  }
-  // No sample lies in x's cell or the 26 around it.
-  bool farFromSamples(const Vec<3>& x) const {
-    const Eigen::Vector3i c = cellOf(x);
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const Eigen::Vector3i n = c + Eigen::Vector3i(dx, dy, dz);
-          if (inside(n) && test(index(n))) return false;
-        }
-    return true;
-  }
-
- private:
-  Eigen::Vector3i cellOf(const Vec<3>& x) const { return ((x - lo_) / cell_).array().floor().cast<int>(); }
-  bool inside(const Eigen::Vector3i& c) const { return (c.array() >= 0).all() && (c.array() < dims_.array()).all(); }
-  std::size_t index(const Eigen::Vector3i& c) const {
-    return static_cast<std::size_t>((static_cast<long long>(c.z()) * dims_.y() + c.y()) * dims_.x() + c.x());
-  }
-  void set(std::size_t i) { bits_[i / 64] |= std::uint64_t{1} << (i % 64); }
-  bool test(std::size_t i) const { return (bits_[i / 64] >> (i % 64)) & 1U; }
-
-  Vec<3> lo_;
-  double cell_ = 1;
-  Eigen::Vector3i dims_;
-  std::vector<std::uint64_t> bits_;
-};
+// A guard round contours again only the cells about the new strays while they are at most this
+// share of the grid's; beyond it, the whole grid (contour_patch.h).
+constexpr double kMaxPatchShare = 0.25;
 
 bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
 
@@ -147,10 +120,10 @@ class StrayContour {
       : samples_(samples),
         box_(box),
         options_(options),
-        occupied_(samples.points, box, options.resolution),
         cell_(box.extent().maxCoeff() / std::max(options.resolution, 1)),
+        h_(detail::marchingCellSize<3>(box, options.resolution)),
         region_(kGuardCells * std::sqrt(3.0) * cell_) {
-    options_.review = [this](TriMesh& mesh) { return review(mesh); };
+    options_.review = [this](TriMesh& mesh) { review(mesh); };
   }
   // marchingCubes with the review below; strays() are those of the contour it returns.
   TriMesh contour(const ImplicitField<3>& field, MarchingReport* report, int& dropped) {
@@ -158,7 +131,7 @@ class StrayContour {
     field_ = &field;
     MarchingReport local;
     MarchingReport& r = report ? *report : local;
-    TriMesh mesh = marchingCubes(field, box_, options_, &r);
+    TriMesh mesh = marchingCubes(field, box_, options_, &r, &lines_);
     const bool refined = r.refinement == MarchingReport::Refinement::Refined;
     if (reviews_.empty()) reviews_.emplace_back();
     kept_ = refined ? reviews_.back() : reviews_.front();
@@ -171,6 +144,27 @@ class StrayContour {
     for (const Vec<3>& p : kept_.strays) region_.add(p);
     return std::make_unique<WindingGuardField>(field, winding(), region_);
   }
+  // The contour of `guard` (the last contour's field guarded about its strays): `mesh`, the last
+  // contour, with the cells about those strays contoured again (contour_patch.h), or the whole
+  // grid again when they are more than kMaxPatchShare of it or the patch's seams disagree.
+  TriMesh contourAgain(const ImplicitField<3>& guard, TriMesh mesh, MarchingReport* report, int& dropped) {
+    const std::vector<CellBlock> blocks = cellBlocksAround(lines_, kept_.strays, region_.radius());
+    double cells = 0;
+    for (const CellBlock& b : blocks)
+      cells += double(b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]);
+    const double all = double(lines_[0].size() - 1) * (lines_[1].size() - 1) * (lines_[2].size() - 1);
+    std::optional<TriMesh> patched;
+    if (cells <= kMaxPatchShare * all) patched = patchContour(mesh, guard, lines_, h_, blocks, options_);
+    if (!patched) return contour(guard, report, dropped);
+    field_ = &guard;
+    if (!guard.everywhereValid() && vertexConnectedComponentCount(*patched) > 1)
+      dropOpenSlivers(*patched, std::min({h_[0] * h_[1], h_[1] * h_[2], h_[0] * h_[2]}));
+    reviews_.clear();
+    review(*patched);
+    kept_ = reviews_.back();
+    dropped += kept_.dropped;  // the pieces left out before stay out
+    return std::move(*patched);
+  }
 
  private:
   const std::shared_ptr<const CloudWinding<3>>& winding() {
@@ -178,17 +172,23 @@ class StrayContour {
       winding_ = std::make_shared<const CloudWinding<3>>(samples_.points, samples_.normals, options_.cancel);
     return winding_;
   }
-  // Leaves out stray pieces and finds the strays; false (no refined pass) when there are some.
-  bool review(TriMesh& mesh) {
+  // Leaves out stray pieces and finds the strays.
+  void review(TriMesh& mesh) {
+    if (!occupied_) occupied_.emplace(samples_.points, box_.lo, occupancyCell(mesh));
     Review r;
     const auto windingOf = [&]() -> const CloudWinding<3>& { return *winding(); };
     if (vertexConnectedComponentCount(mesh) > 1) r.dropped = dropStrayPieces(mesh, windingOf);
-    r.strays = strayVertices(mesh, occupied_, windingOf);
+    r.strays = strayVertices(mesh, *occupied_, windingOf);
     // Only strays a guard can still act on: new, and with f on the wrong side near them.
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
     reviews_.push_back(std::move(r));
-    return reviews_.back().strays.empty();
+  }
+
+  // Half the grid's cell, at most kOccupancySpacing · √(A / N) for the contour's area A.
+  double occupancyCell(const TriMesh& mesh) const {
+    const double spacing = std::sqrt(surfaceArea(mesh) / static_cast<double>(samples_.size()));
+    return spacing > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing) : 0.5 * cell_;
   }
 
   // Whether a corner of the cell-sized cube about p, where the field has data, has f on the other
@@ -213,8 +213,10 @@ class StrayContour {
   const HermiteSamples<3>& samples_;
   Box<3> box_;
   MarchingOptions options_;
-  OccupiedCells occupied_;
+  std::optional<OccupiedCells> occupied_;  // built at the first review, from its contour's area
   double cell_;  // the contour grid's cell size (its longest axis's)
+  Vec<3> h_;     // the uniform grid's cell
+  GridLines<3> lines_;  // those of the last contour (refined ones when it was refined)
   GuardRegion region_;
   const ImplicitField<3>* field_ = nullptr;  // the field of the contour under review
   std::shared_ptr<const CloudWinding<3>> winding_;
@@ -236,7 +238,7 @@ TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, c
   out.tooMany = out.strayVertices > kMaxStrayShare * mesh.vertexCount();
   for (int round = 0; !out.tooMany && round < kGuardRounds && !contours.strays().empty(); ++round) {
     std::unique_ptr<WindingGuardField> guard = contours.guard(field);
-    mesh = contours.contour(*guard, report, out.droppedPieces);
+    mesh = contours.contourAgain(*guard, std::move(mesh), report, out.droppedPieces);
     if (guarded) *guarded = std::move(guard);
     ++out.rounds;
   }

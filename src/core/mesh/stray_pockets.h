@@ -13,14 +13,14 @@
 //     part thinner than a few spacings that the grid cut off has less (0.27–0.41 on the dino's
 //     claws), so the bound on that side is the stray's;
 //  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
-//     (cells half the contour grid's, about a sample spacing at the automatic resolution; at
-//     most 512 per axis) whose winding number is decided (above kWindingInside or below
+//     (occupied_cells.h; cells half the contour grid's, but never wider than 0.85 of the sample
+//     spacing √(A / N)) whose winding number is decided (above kWindingInside or below
 //     kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
 //     region so far count, with f on the other side of a decided winding number at a corner of
-//     the cell-sized cube about them (else a guard would change nothing); with strays the
-//     contour gets no refined pass.
-// Then, if the contour kept has strays, the grid is contoured again with f's sign overruled by
-// the winding number within kGuardCells cell diagonals of each stray (winding_guard_field.h),
+//     the cell-sized cube about them (else a guard would change nothing).
+// Then, if the contour kept has strays, f's sign is overruled by the winding number within
+// kGuardCells cell diagonals of each stray (winding_guard_field.h) and the cells about them are
+// contoured again (contour_patch.h; the whole grid when they are many or the seams disagree),
 // and again while new strays appear, at most kGuardRounds times — unless the first contour's
 // strays are more than kMaxStrayShare of its vertices: then the samples do not describe a closed
 // surface densely enough for their winding number to be trusted (parts thinner than the

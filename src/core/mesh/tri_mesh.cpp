@@ -287,6 +287,16 @@ int countFlippedTriangles(const TriMesh& mesh, const Eigen::Matrix3Xd& reference
   return flipped;
 }
 
+double surfaceArea(const TriMesh& mesh) {
+  double a = 0;
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const Eigen::Vector3i tri = mesh.triangles.col(t);
+    const Eigen::Vector3d p = mesh.vertices.col(tri[0]);
+    a += (mesh.vertices.col(tri[1]) - p).cross(mesh.vertices.col(tri[2]) - p).norm();
+  }
+  return a / 2.0;
+}
+
 double signedVolume(const TriMesh& mesh) {
   double v = 0;
   for (int t = 0; t < mesh.triangleCount(); ++t) {

@@ -93,6 +93,9 @@ MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea = -1);
 // corners (3 × V unit normals, e.g. vertexNormals or ∇f): a "flipped" triangle.
 int countFlippedTriangles(const TriMesh& mesh, const Eigen::Matrix3Xd& referenceNormals);
 
+// Total area of the triangles.
+double surfaceArea(const TriMesh& mesh);
+
 // Signed volume enclosed by a closed mesh (positive when it is oriented outward).
 double signedVolume(const TriMesh& mesh);
 

@@ -25,6 +25,7 @@ class GuardRegion {
   explicit GuardRegion(double radius) : radius_(radius) {}
   void add(const Vec<3>& centre);
   int size() const { return static_cast<int>(centres_.size()); }
+  double radius() const { return radius_; }
   bool contains(const Vec<3>& x) const;
   // Whether some ball meets the box.
   bool touches(const Box<3>& box) const;

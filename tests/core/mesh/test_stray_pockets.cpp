@@ -12,6 +12,7 @@
 #include "core/mesh/tri_mesh.h"
 #include "core/mesh/winding_guard_field.h"
 #include "core/shapes/presets.h"
+#include "support/triangle_set.h"
 
 using namespace hermite;
 
@@ -117,6 +118,16 @@ TEST_CASE("stray pockets: a void joined to the surface by a tunnel is contoured 
   // The guard turns f's sign inside the void and nowhere near the surface.
   CHECK(guarded->evaluate(Vec<3>(2.4, 0.1, 0)) < 0);
   CHECK(guarded->evaluate(Vec<3>(0, 0, 3.2)) == f.evaluate(Vec<3>(0, 0, 3.2)));
+  // Only the cells about the strays were contoured again (contour_patch.h), and the result is the
+  // whole grid's contour of the guarded field but for the remnants of the void (small pieces
+  // inside the solid, left out).
+  TriMesh full = marchingCubes(*guarded, box, grid(132));
+  int pieces = 0;
+  const std::vector<int> piece = vertexConnectedComponents(full, &pieces);
+  std::vector<char> remnant(static_cast<size_t>(pieces), 1);
+  remnant[static_cast<size_t>(piece[0])] = 0;  // the sphere's (its first triangle is on it)
+  CHECK(dropComponents(full, piece, remnant) == stray.droppedPieces);
+  CHECK(testing::triangleSet(mesh) == testing::triangleSet(full));
 }
 
 TEST_CASE("stray pockets: a second true piece stays") {
