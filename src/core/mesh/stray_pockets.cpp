@@ -17,11 +17,11 @@ namespace hermite {
 namespace {
 
 // The occupancy cells are half the contour grid's, and never wider than this share of the
-// sample spacing √(A / N) (A the contour's area): at the automatic resolution and at 256³ for
-// 200 000 samples the half cell is 0.5–0.85 of it on CGAL's models and the dragon; on a grid
-// coarse for its samples (a million at 256³: 1.5) the cells follow the samples instead, so that
-// "far" keeps meaning a few spacings.
-constexpr double kOccupancySpacing = 0.85;
+// sample spacing √(A / N) (A the contour's area): at 256³ for 200 000 samples the half cell is
+// up to 1.27 of it on CGAL's models and the dragon (the dino; femur, long and thin, 1.68); on a
+// grid coarse for its samples (the dragon's million at 256³: 2.24) the cells follow the samples
+// instead, so that "far" keeps meaning a few spacings.
+constexpr double kOccupancySpacing = 1.3;
 constexpr int kPieceProbes = 64;         // vertices of a piece whose winding number is averaged
 // Pieces with more than this share of the mesh's triangles stay whatever their winding number: a
 // stray pocket is small, and a large piece off ½ means samples whose normals disagree (an

@@ -13,8 +13,8 @@
 //     part thinner than a few spacings that the grid cut off has less (0.27–0.41 on the dino's
 //     claws), so the bound on that side is the stray's;
 //  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
-//     (occupied_cells.h; cells half the contour grid's, but never wider than 0.85 of the sample
-//     spacing √(A / N)) whose winding number is decided (above kWindingInside or below
+//     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
+//     spacings √(A / N)) whose winding number is decided (above kWindingInside or below
 //     kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
 //     region so far count, with f on the other side of a decided winding number at a corner of
 //     the cell-sized cube about them (else a guard would change nothing).
