@@ -12,32 +12,11 @@ namespace {
 
 constexpr int kIndexBits = 20;  // per axis: grids of up to 2²⁰ lines
 
-// A grid edge: its axis and the indices of its lower end.
-struct GridEdge {
-  int axis = -1;
-  std::array<int, 3> at{};
-  std::uint64_t key() const {
-    std::uint64_t k = static_cast<std::uint64_t>(axis);
-    for (int a = 0; a < 3; ++a) k = k << kIndexBits | static_cast<std::uint64_t>(at[a]);
-    return k;
-  }
-};
-
-// The grid edge a contour vertex lies on: two of its coordinates are grid lines exactly (a vertex
-// is placed along its edge, t ∈ [τ, 1 − τ], so the third is strictly between two lines). Axis −1
-// for a vertex on no edge (a cube's centre vertex).
-GridEdge edgeOf(const GridLines<3>& lines, const Vec<3>& p) {
-  GridEdge e;
-  for (int a = 0; a < 3; ++a) {
-    const std::vector<double>& l = lines[a];
-    const auto it = std::lower_bound(l.begin(), l.end(), p[a]);
-    e.at[a] = static_cast<int>(it - l.begin());
-    if (it != l.end() && *it == p[a]) continue;
-    if (e.axis >= 0 || it == l.begin() || it == l.end()) return GridEdge{};
-    e.axis = a;
-    --e.at[a];
-  }
-  return e;
+// A grid edge as a hash key: its axis and the indices of its lower end.
+std::uint64_t edgeKey(const GridEdge& e) {
+  std::uint64_t k = static_cast<std::uint64_t>(e.axis);
+  for (int a = 0; a < 3; ++a) k = k << kIndexBits | static_cast<std::uint64_t>(e.at[a]);
+  return k;
 }
 
 // Whether the edge lies on a face of the block (within its closed extent, on one of its planes).
@@ -114,8 +93,8 @@ class Patch {
     }
     for (std::size_t v = 0; v < V; ++v)
       if (onGone[v]) {
-        const GridEdge e = edgeOf(lines, mesh.vertices.col(static_cast<Eigen::Index>(v)));
-        if (e.axis >= 0) faceVertex_.emplace(e.key(), static_cast<int>(v));
+        const GridEdge e = gridEdgeOf(lines, mesh.vertices.col(static_cast<Eigen::Index>(v)));
+        if (e.axis >= 0) faceVertex_.emplace(edgeKey(e), static_cast<int>(v));
       }
   }
 
@@ -123,9 +102,9 @@ class Patch {
   bool add(const TriMesh& pass, const CellBlock& b) {
     std::vector<int> id(static_cast<std::size_t>(pass.vertexCount()));
     for (int v = 0; v < pass.vertexCount(); ++v) {
-      const GridEdge e = edgeOf(lines_, pass.vertices.col(v));
+      const GridEdge e = gridEdgeOf(lines_, pass.vertices.col(v));
       if (e.axis >= 0 && onBlockFace(e, b)) {
-        const auto it = faceVertex_.find(e.key());
+        const auto it = faceVertex_.find(edgeKey(e));
         if (it == faceVertex_.end()) return false;
         id[static_cast<std::size_t>(v)] = it->second;
         matched_[static_cast<std::size_t>(it->second)] = 1;

@@ -82,4 +82,27 @@ std::array<std::vector<char>, Dim> intervalsNear(const GridLines<Dim>& lines,
   return near;
 }
 
+// A grid edge: its axis and the line indices of its lower end (axis −1: none).
+struct GridEdge {
+  int axis = -1;
+  std::array<int, 3> at{};
+};
+
+// The grid edge a contour vertex lies on: two of its coordinates are grid lines exactly (marching
+// cubes places a vertex along its edge at t ∈ [τ, 1 − τ], so the third lies strictly between two
+// lines). Axis −1 for a point on no edge (a cube's centre vertex, a point off the grid).
+inline GridEdge gridEdgeOf(const GridLines<3>& lines, const Vec<3>& p) {
+  GridEdge e;
+  for (int a = 0; a < 3; ++a) {
+    const std::vector<double>& l = lines[a];
+    const auto it = std::lower_bound(l.begin(), l.end(), p[a]);
+    e.at[a] = static_cast<int>(it - l.begin());
+    if (it != l.end() && *it == p[a]) continue;
+    if (e.axis >= 0 || it == l.begin() || it == l.end()) return GridEdge{};
+    e.axis = a;
+    --e.at[a];
+  }
+  return e;
+}
+
 }  // namespace hermite

@@ -425,7 +425,7 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   if (!refined) return mesh;
   MarchingReport pass = r;
   TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass);
-  if (options.review) options.review(finer);
+  if (options.review) options.review(finer, *refined);
   // Fewer pieces or none of it: more pieces on a finer grid are the field's own (a fit that
   // breaks up), not steps the grid took over a thin part.
   r.refinement = Refinement::NoGain;
@@ -451,7 +451,7 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   std::optional<detail::AnchorCells> seen;
   if (options.anchors && options.anchors->cols() > 0) seen = detail::locateAnchors(lines, *options.anchors);
   TriMesh mesh = marchOnce(f, lines, h, options, report, seen ? &*seen : nullptr);
-  if (options.review) options.review(mesh);
+  if (options.review) options.review(mesh, lines);
   if (report) report->minStep = minGridStep(lines);
   std::optional<GridLines<3>> refined;
   if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined);

@@ -29,6 +29,7 @@
 
 #include "core/base/cancel_token.h"
 #include "core/base/geometry.h"
+#include "core/mesh/grid_lines.h"
 #include "core/mesh/tri_mesh.h"
 
 namespace hermite {
@@ -61,9 +62,9 @@ struct MarchingOptions {
   // available memory.
   const Points<3>* anchors = nullptr;
   // Reviews each contour marching cubes makes — the uniform one, and the refined one the anchors
-  // ask for — before its pieces are counted (empty: none; 3D only): it may leave out pieces that
-  // are not surface (stray_pockets.h).
-  std::function<void(TriMesh&)> review = {};
+  // ask for — with the grid lines it was made on, before its pieces are counted (empty: none; 3D
+  // only): it may leave out pieces that are not surface (stray_pockets.h).
+  std::function<void(TriMesh&, const GridLines<3>&)> review = {};
 };
 
 inline constexpr int kAnchorReach = 0;  // cells around a missed anchor's own that are cut too, per side

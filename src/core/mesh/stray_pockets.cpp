@@ -123,7 +123,7 @@ class StrayContour {
         cell_(box.extent().maxCoeff() / std::max(options.resolution, 1)),
         h_(detail::marchingCellSize<3>(box, options.resolution)),
         region_(kGuardCells * std::sqrt(3.0) * cell_) {
-    options_.review = [this](TriMesh& mesh) { review(mesh); };
+    options_.review = [this](TriMesh& mesh, const GridLines<3>& lines) { review(mesh, lines); };
   }
   // marchingCubes with the review below; strays() are those of the contour it returns.
   TriMesh contour(const ImplicitField<3>& field, MarchingReport* report, int& dropped) {
@@ -160,7 +160,7 @@ class StrayContour {
     if (!guard.everywhereValid() && vertexConnectedComponentCount(*patched) > 1)
       dropOpenSlivers(*patched, std::min({h_[0] * h_[1], h_[1] * h_[2], h_[0] * h_[2]}));
     reviews_.clear();
-    review(*patched);
+    review(*patched, lines_);
     kept_ = reviews_.back();
     dropped += kept_.dropped;  // the pieces left out before stay out
     return std::move(*patched);
@@ -172,15 +172,15 @@ class StrayContour {
       winding_ = std::make_shared<const CloudWinding<3>>(samples_.points, samples_.normals, options_.cancel);
     return winding_;
   }
-  // Leaves out stray pieces and finds the strays.
-  void review(TriMesh& mesh) {
+  // Leaves out stray pieces and finds the strays of a contour on `lines`.
+  void review(TriMesh& mesh, const GridLines<3>& lines) {
     if (!occupied_) occupied_.emplace(samples_.points, box_.lo, occupancyCell(mesh));
     Review r;
     const auto windingOf = [&]() -> const CloudWinding<3>& { return *winding(); };
     if (vertexConnectedComponentCount(mesh) > 1) r.dropped = dropStrayPieces(mesh, windingOf);
     r.strays = strayVertices(mesh, *occupied_, windingOf);
     // Only strays a guard can still act on: new, and with f on the wrong side near them.
-    const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p); };
+    const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p, lines); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
     reviews_.push_back(std::move(r));
   }
@@ -191,16 +191,35 @@ class StrayContour {
     return spacing > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing) : 0.5 * cell_;
   }
 
-  // Whether a corner of the cell-sized cube about p, where the field has data, has f on the other
-  // side of a decided winding number: otherwise a guard there overrules nothing (a stray on a true
-  // surface whose winding number is off ½, as beside a sharp concave edge).
-  bool overruledNear(const Vec<3>& p) {
+  // Whether f is on the other side of a decided winding number along p's grid edge (a quarter,
+  // half, three quarters of the way to each end, and the ends) or at a corner of the cell-sized
+  // cube about p: otherwise a guard there overrules nothing (a stray on a true surface whose
+  // winding number is off ½, as beside a sharp concave edge). Along the edge, f counts where the
+  // contour took it (data within a cell diagonal, validNear, as marching cubes asks): a zero of f
+  // that strayed along an edge whose ends agree with the winding number is seen there. At the
+  // corners, only where the field has data itself: a no-data stand-in deep in the solid is
+  // positive.
+  bool overruledNear(const Vec<3>& p, const GridLines<3>& lines) {
+    const auto disagree = [&](const Vec<3>& c) {
+      const double f = field_->evaluate(c), w = winding()->at(c);
+      return (w > kWindingInside && f > 0) || (w < kWindingOutside && f < 0);
+    };
+    const GridEdge e = gridEdgeOf(lines, p);
+    if (e.axis >= 0) {
+      Vec<3> lo;
+      for (int a = 0; a < 3; ++a) lo[a] = lines[a][static_cast<std::size_t>(e.at[a])];
+      Vec<3> hi = lo;
+      hi[e.axis] = lines[e.axis][static_cast<std::size_t>(e.at[e.axis]) + 1];
+      for (const Vec<3>& end : {lo, hi})
+        for (const double t : {0.25, 0.5, 0.75, 1.0}) {
+          const Vec<3> c = p + t * (end - p);
+          if (field_->validNear(c, h_.norm()) && disagree(c)) return true;
+        }
+    }
     for (int k = 0; k < 8; ++k) {
       Vec<3> c = p;
       for (int a = 0; a < 3; ++a) c[a] += ((k >> a) & 1 ? 0.5 : -0.5) * cell_;
-      if (!field_->valid(c)) continue;
-      const double f = field_->evaluate(c), w = winding()->at(c);
-      if ((w > kWindingInside && f > 0) || (w < kWindingOutside && f < 0)) return true;
+      if (field_->valid(c) && disagree(c)) return true;
     }
     return false;
   }
