@@ -98,17 +98,18 @@ class Patch {
       }
   }
 
-  // Adds the block's pass; false when a vertex on its faces has no old twin.
-  bool add(const TriMesh& pass, const CellBlock& b) {
+  // Adds the block's pass. A vertex on the block's faces is its old twin; one without (the
+  // old contour's review left out a piece there) is an orphan, kept as a new vertex.
+  void add(const TriMesh& pass, const CellBlock& b) {
     std::vector<int> id(static_cast<std::size_t>(pass.vertexCount()));
     for (int v = 0; v < pass.vertexCount(); ++v) {
       const GridEdge e = gridEdgeOf(lines_, pass.vertices.col(v));
-      if (e.axis >= 0 && onBlockFace(e, b)) {
-        const auto it = faceVertex_.find(edgeKey(e));
-        if (it == faceVertex_.end()) return false;
+      const auto it = e.axis >= 0 && onBlockFace(e, b) ? faceVertex_.find(edgeKey(e)) : faceVertex_.end();
+      if (it != faceVertex_.end()) {
         id[static_cast<std::size_t>(v)] = it->second;
         matched_[static_cast<std::size_t>(it->second)] = 1;
       } else {
+        if (e.axis >= 0 && onBlockFace(e, b)) orphans_.push_back(pass.vertices.col(v));
         id[static_cast<std::size_t>(v)] = static_cast<int>(added_.size()) + mesh_.vertexCount();
         added_.push_back(v);
       }
@@ -118,7 +119,6 @@ class Patch {
       triangles_.emplace_back(id[static_cast<std::size_t>(pass.triangles(0, t))],
                               id[static_cast<std::size_t>(pass.triangles(1, t))],
                               id[static_cast<std::size_t>(pass.triangles(2, t))]);
-    return true;
   }
 
   // The patched mesh; null when an old vertex joining kept triangles to replaced ones has no twin
@@ -136,6 +136,7 @@ class Patch {
     dropUnusedVertices(out_);
     return std::move(out_);
   }
+  const std::vector<Vec<3>>& orphans() const { return orphans_; }
 
  private:
   void appendVertices(const TriMesh& pass) {
@@ -157,6 +158,7 @@ class Patch {
   std::unordered_map<std::uint64_t, int> faceVertex_;  // grid edge → old vertex on it (of replaced triangles)
   std::vector<Eigen::Vector3i> triangles_;
   std::vector<int> added_;      // per new vertex: its index in its pass
+  std::vector<Vec<3>> orphans_; // new vertices on a block's faces
   TriMesh out_;
 };
 
@@ -197,9 +199,20 @@ std::optional<TriMesh> patchContour(const TriMesh& mesh, const ImplicitField<3>&
   pass.review = {};
   pass.progress = {};
   Patch patch(mesh, lines, blocks);
-  for (const CellBlock& b : blocks)
-    if (!patch.add(marchingCubesPass(field, blockLines(lines, b), h, pass), b)) return std::nullopt;
-  return patch.finish();
+  for (const CellBlock& b : blocks) patch.add(marchingCubesPass(field, blockLines(lines, b), h, pass), b);
+  std::optional<TriMesh> out = patch.finish();
+  if (!out) return out;
+  if (options.review) options.review(*out, lines);
+  // An orphan still there is a seam that opened: the review did not leave its piece out again.
+  if (patch.orphans().empty()) return out;
+  std::vector<std::array<double, 3>> orphans;
+  for (const Vec<3>& p : patch.orphans()) orphans.push_back({p[0], p[1], p[2]});
+  std::sort(orphans.begin(), orphans.end());
+  for (Eigen::Index v = 0; v < out->vertices.cols(); ++v)
+    if (std::binary_search(orphans.begin(), orphans.end(),
+                           std::array<double, 3>{out->vertices(0, v), out->vertices(1, v), out->vertices(2, v)}))
+      return std::nullopt;
+  return out;
 }
 
 }  // namespace hermite

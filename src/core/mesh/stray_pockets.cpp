@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -30,6 +31,12 @@ constexpr double kPieceShare = 0.05;
 // A guard round contours again only the cells about the new strays while they are at most this
 // share of the grid's; beyond it, the whole grid (contour_patch.h).
 constexpr double kMaxPatchShare = 0.25;
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+bool overlap(const Box<3>& a, const Box<3>& b) {
+  return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
+}
 
 bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
 
@@ -83,17 +90,17 @@ std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occu
 
 // Leaves out the components other than the largest, of at most kPieceShare of the triangles,
 // whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
-// or below kWindingOutside. Returns how many. `windingOf()` gives the winding number; it is
+// or below kWindingOutside. Returns their bounding boxes. `windingOf()` gives the winding number; it is
 // called only when there is such a small piece (a mesh of two large true pieces never builds it).
 template <class WindingOf>
-int dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
+std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   const Pieces pieces(mesh);
   const auto small = [&](int c) {
     return c != pieces.largest && pieces.size[static_cast<std::size_t>(c)] <= kPieceShare * mesh.triangleCount();
   };
   bool any = false;
   for (int c = 0; c < pieces.count() && !any; ++c) any = small(c);
-  if (!any) return 0;
+  if (!any) return {};
   const CloudWinding<3>& winding = windingOf();
   const std::vector<int>& comp = pieces.of;
   std::vector<std::vector<int>> probes(static_cast<std::size_t>(pieces.count()));
@@ -109,7 +116,20 @@ int dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
     const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
     drop[static_cast<std::size_t>(c)] = mean > kPieceInside || mean < kWindingOutside;
   }
-  return dropComponents(mesh, comp, drop);
+  std::vector<Box<3>> boxes(static_cast<std::size_t>(pieces.count()),
+                            Box<3>{Vec<3>::Constant(kInfinity), Vec<3>::Constant(-kInfinity)});
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    Box<3>& b = boxes[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])];
+    for (int k = 0; k < 3; ++k) {
+      b.lo = b.lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
+      b.hi = b.hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
+    }
+  }
+  dropComponents(mesh, comp, drop);
+  std::vector<Box<3>> out;
+  for (int c = 0; c < pieces.count(); ++c)
+    if (drop[static_cast<std::size_t>(c)]) out.push_back(boxes[static_cast<std::size_t>(c)]);
+  return out;
 }
 
 // The contours of one field and its guarded versions, sharing the samples' occupancy, their
@@ -135,7 +155,8 @@ class StrayContour {
     const bool refined = r.refinement == MarchingReport::Refinement::Refined;
     if (reviews_.empty()) reviews_.emplace_back();
     kept_ = refined ? reviews_.back() : reviews_.front();
-    dropped = kept_.dropped;
+    dropped_ = kept_.dropped;
+    dropped = static_cast<int>(dropped_.size());
     return mesh;
   }
   const std::vector<Vec<3>>& strays() const { return kept_.strays; }
@@ -145,8 +166,8 @@ class StrayContour {
     return std::make_unique<WindingGuardField>(field, winding(), region_);
   }
   // The contour of `guard` (the last contour's field guarded about its strays): `mesh`, the last
-  // contour, with the cells about those strays contoured again (contour_patch.h), or the whole
-  // grid again when they are more than kMaxPatchShare of it or the patch's seams disagree.
+  // contour, with the cells about those strays contoured again and reviewed (contour_patch.h),
+  // or the whole grid again when they are more than kMaxPatchShare of it or a seam stays open.
   TriMesh contourAgain(const ImplicitField<3>& guard, TriMesh mesh, MarchingReport* report, int& dropped) {
     const std::vector<CellBlock> blocks = cellBlocksAround(lines_, kept_.strays, region_.radius());
     double cells = 0;
@@ -154,15 +175,20 @@ class StrayContour {
       cells += double(b.hi[0] - b.lo[0]) * (b.hi[1] - b.lo[1]) * (b.hi[2] - b.lo[2]);
     const double all = double(lines_[0].size() - 1) * (lines_[1].size() - 1) * (lines_[2].size() - 1);
     std::optional<TriMesh> patched;
+    reviews_.clear();
+    field_ = &guard;
     if (cells <= kMaxPatchShare * all) patched = patchContour(mesh, guard, lines_, h_, blocks, options_);
     if (!patched) return contour(guard, report, dropped);
-    field_ = &guard;
     if (!guard.everywhereValid() && vertexConnectedComponentCount(*patched) > 1)
       dropOpenSlivers(*patched, std::min({h_[0] * h_[1], h_[1] * h_[2], h_[0] * h_[2]}));
-    reviews_.clear();
-    review(*patched, lines_);
     kept_ = reviews_.back();
-    dropped += kept_.dropped;  // the pieces left out before stay out
+    // Pieces left out before stay out, but those in a block were contoured again and reviewed again.
+    const auto inBlock = [&](const Box<3>& piece) {
+      return std::any_of(blocks.begin(), blocks.end(), [&](const CellBlock& b) { return overlap(piece, blockBox(b)); });
+    };
+    dropped_.erase(std::remove_if(dropped_.begin(), dropped_.end(), inBlock), dropped_.end());
+    dropped_.insert(dropped_.end(), kept_.dropped.begin(), kept_.dropped.end());
+    dropped = static_cast<int>(dropped_.size());
     return std::move(*patched);
   }
 
@@ -183,6 +209,16 @@ class StrayContour {
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p, lines); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
     reviews_.push_back(std::move(r));
+  }
+
+  // The block's cells in world coordinates (on the last contour's lines).
+  Box<3> blockBox(const CellBlock& b) const {
+    Box<3> box;
+    for (int a = 0; a < 3; ++a) {
+      box.lo[a] = lines_[a][static_cast<std::size_t>(b.lo[a])];
+      box.hi[a] = lines_[a][static_cast<std::size_t>(b.hi[a])];
+    }
+    return box;
   }
 
   // Half the grid's cell, at most kOccupancySpacing · √(A / N) for the contour's area A.
@@ -225,7 +261,7 @@ class StrayContour {
   }
 
   struct Review {
-    int dropped = 0;             // stray pieces left out
+    std::vector<Box<3>> dropped;  // the stray pieces left out, by their bounding boxes
     std::vector<Vec<3>> strays;  // stray vertices of what is left
   };
 
@@ -239,6 +275,7 @@ class StrayContour {
   GuardRegion region_;
   const ImplicitField<3>* field_ = nullptr;  // the field of the contour under review
   std::shared_ptr<const CloudWinding<3>> winding_;
+  std::vector<Box<3>> dropped_;  // the stray pieces left out of the contour kept, by their boxes
   std::vector<Review> reviews_;  // per contour of the last marchingCubes: the uniform one, then a refined one
   Review kept_;                  // the one of the contour it returned
 };
