@@ -22,13 +22,20 @@ const Vec<3> kBumpCentre(1, 0, 0);
 constexpr double kBumpRadius = 0.3;
 
 // The unit sphere's signed distance, plus an outward bump of height `bump` within kBumpRadius of
-// kBumpCentre, plus a constant `shift` everywhere.
+// kBumpCentre, plus a constant `shift` everywhere; with a blob, the union with a ball of that
+// radius at kBlobCentre.
+const Vec<3> kBlobCentre(1.3, 0.3, 0);
+
 class BumpySphere final : public ImplicitField<3> {
  public:
-  double bump = 0, shift = 0;
+  double bump = 0, shift = 0, blob = 0;
   double evaluate(const Vec<3>& x, Vec<3>* g, Mat<3>* H) const override {
     double f = x.norm() - 1 + shift;
     Vec<3> grad = x.normalized();
+    if (blob > 0 && (x - kBlobCentre).norm() - blob < f) {
+      f = (x - kBlobCentre).norm() - blob;
+      grad = (x - kBlobCentre).normalized();
+    }
     const Vec<3> d = x - kBumpCentre;
     const double s = d.squaredNorm() / (kBumpRadius * kBumpRadius);
     if (s < 1) {
@@ -88,6 +95,40 @@ TEST_CASE("contour patch: a field that changed on a block's faces is refused") {
   const std::vector<CellBlock> blocks = cellBlocksAround(lines, {kBumpCentre}, kBumpRadius);
   const Vec<3> h = Vec<3>::Constant(3.0 / 24);
   CHECK_FALSE(patchContour(old, shifted, lines, h, blocks, options).has_value());
+}
+
+TEST_CASE("contour patch: a piece the review left out that reaches into a block must be left out again") {
+  // A sphere and a small ball beside it; the review keeps the largest piece only. A block about
+  // the bump's centre cuts through the ball, so its pass makes the ball's part inside, whose
+  // vertices on the block's faces have no old twin.
+  BumpySphere field;
+  field.blob = 0.15;
+  MarchingOptions options;
+  options.resolution = 40;
+  int reviews = 0;
+  options.review = [&](TriMesh& mesh, const GridLines<3>&) {
+    ++reviews;
+    int pieces = 0;
+    const std::vector<int> piece = vertexConnectedComponents(mesh, &pieces);
+    std::vector<int> size(static_cast<size_t>(pieces), 0);
+    for (int c : piece) ++size[static_cast<size_t>(c)];
+    std::vector<char> small(static_cast<size_t>(pieces), 0);
+    for (int c = 0; c < pieces; ++c) small[static_cast<size_t>(c)] = size[static_cast<size_t>(c)] * 10 < mesh.triangleCount();
+    dropComponents(mesh, piece, small);
+  };
+  GridLines<3> lines;
+  const TriMesh old = marchingCubes(field, kBox, options, nullptr, &lines);
+  REQUIRE(connectedComponentCount(old) == 1);
+  const Vec<3> h = Vec<3>::Constant(3.0 / 40);
+  const std::vector<CellBlock> blocks = cellBlocksAround(lines, {kBumpCentre}, kBumpRadius);
+  reviews = 0;
+  const std::optional<TriMesh> patched = patchContour(old, field, lines, h, blocks, options);
+  CHECK(reviews == 1);
+  REQUIRE(patched.has_value());
+  CHECK(triangleSet(*patched) == triangleSet(old));  // the same field: the same contour
+  MarchingOptions unreviewed = options;
+  unreviewed.review = {};
+  CHECK_FALSE(patchContour(old, field, lines, h, blocks, unreviewed).has_value());
 }
 
 TEST_CASE("contour patch: blocks about nearby centres merge, far ones stay apart, all within the grid") {
