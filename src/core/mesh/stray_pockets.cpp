@@ -88,10 +88,25 @@ std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occu
   return strays;
 }
 
+// The bounding box of each of the mesh's `count` pieces (`piece`: one per triangle).
+std::vector<Box<3>> pieceBoxes(const TriMesh& mesh, const std::vector<int>& piece, int count) {
+  std::vector<Box<3>> boxes(static_cast<std::size_t>(count),
+                            Box<3>{Vec<3>::Constant(kInfinity), Vec<3>::Constant(-kInfinity)});
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    Box<3>& b = boxes[static_cast<std::size_t>(piece[static_cast<std::size_t>(t)])];
+    for (int k = 0; k < 3; ++k) {
+      b.lo = b.lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
+      b.hi = b.hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
+    }
+  }
+  return boxes;
+}
+
 // Leaves out the components other than the largest, of at most kPieceShare of the triangles,
 // whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
-// or below kWindingOutside. Returns their bounding boxes. `windingOf()` gives the winding number; it is
-// called only when there is such a small piece (a mesh of two large true pieces never builds it).
+// or below kWindingOutside. Returns their bounding boxes. `windingOf()` gives the winding
+// number; it is called only when there is such a small piece (a mesh of two large true pieces
+// never builds it).
 template <class WindingOf>
 std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   const Pieces pieces(mesh);
@@ -116,15 +131,7 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
     const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
     drop[static_cast<std::size_t>(c)] = mean > kPieceInside || mean < kWindingOutside;
   }
-  std::vector<Box<3>> boxes(static_cast<std::size_t>(pieces.count()),
-                            Box<3>{Vec<3>::Constant(kInfinity), Vec<3>::Constant(-kInfinity)});
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    Box<3>& b = boxes[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])];
-    for (int k = 0; k < 3; ++k) {
-      b.lo = b.lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
-      b.hi = b.hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
-    }
-  }
+  const std::vector<Box<3>> boxes = pieceBoxes(mesh, comp, pieces.count());
   dropComponents(mesh, comp, drop);
   std::vector<Box<3>> out;
   for (int c = 0; c < pieces.count(); ++c)
@@ -182,13 +189,7 @@ class StrayContour {
     if (!guard.everywhereValid() && vertexConnectedComponentCount(*patched) > 1)
       dropOpenSlivers(*patched, std::min({h_[0] * h_[1], h_[1] * h_[2], h_[0] * h_[2]}));
     kept_ = reviews_.back();
-    // Pieces left out before stay out, but those in a block were contoured again and reviewed again.
-    const auto inBlock = [&](const Box<3>& piece) {
-      return std::any_of(blocks.begin(), blocks.end(), [&](const CellBlock& b) { return overlap(piece, blockBox(b)); });
-    };
-    dropped_.erase(std::remove_if(dropped_.begin(), dropped_.end(), inBlock), dropped_.end());
-    dropped_.insert(dropped_.end(), kept_.dropped.begin(), kept_.dropped.end());
-    dropped = static_cast<int>(dropped_.size());
+    dropped = patchDropped(blocks);
     return std::move(*patched);
   }
 
@@ -209,6 +210,18 @@ class StrayContour {
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p, lines); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
     reviews_.push_back(std::move(r));
+  }
+
+  // The pieces left out of a patched contour: those left out before stay out, but those that meet a
+  // block were contoured again and reviewed again (kept_, the patch's review, has them). Returns
+  // how many.
+  int patchDropped(const std::vector<CellBlock>& blocks) {
+    const auto inBlock = [&](const Box<3>& piece) {
+      return std::any_of(blocks.begin(), blocks.end(), [&](const CellBlock& b) { return overlap(piece, blockBox(b)); });
+    };
+    dropped_.erase(std::remove_if(dropped_.begin(), dropped_.end(), inBlock), dropped_.end());
+    dropped_.insert(dropped_.end(), kept_.dropped.begin(), kept_.dropped.end());
+    return static_cast<int>(dropped_.size());
   }
 
   // The block's cells in world coordinates (on the last contour's lines).
