@@ -16,11 +16,12 @@
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)) whose winding number is decided (above kWindingInside or below
 //     kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
-//     region so far count, with f on the other side of a decided winding number at a corner of
-//     the cell-sized cube about them (else a guard would change nothing).
+//     region so far count, with f on the other side of a decided winding number along their
+//     own grid edge or at a corner of the cell-sized cube about them (else a guard would change
+//     nothing).
 // Then, if the contour kept has strays, f's sign is overruled by the winding number within
 // kGuardCells cell diagonals of each stray (winding_guard_field.h) and the cells about them are
-// contoured again (contour_patch.h; the whole grid when they are many or the seams disagree),
+// contoured again (contour_patch.h; the whole grid when they are many or a seam stays open),
 // and again while new strays appear, at most kGuardRounds times — unless the first contour's
 // strays are more than kMaxStrayShare of its vertices: then the samples do not describe a closed
 // surface densely enough for their winding number to be trusted (parts thinner than the
