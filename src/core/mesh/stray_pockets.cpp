@@ -155,7 +155,7 @@ class StrayContour {
   // marchingCubes with the review below; strays() are those of the contour it returns.
   TriMesh contour(const ImplicitField<3>& field, MarchingReport* report, int& dropped) {
     reviews_.clear();
-    field_ = &field;
+    setField(field);
     MarchingReport local;
     MarchingReport& r = report ? *report : local;
     TriMesh mesh = marchingCubes(field, box_, options_, &r, &lines_);
@@ -183,7 +183,7 @@ class StrayContour {
     const double all = double(lines_[0].size() - 1) * (lines_[1].size() - 1) * (lines_[2].size() - 1);
     std::optional<TriMesh> patched;
     reviews_.clear();
-    field_ = &guard;
+    setField(guard);
     if (cells <= kMaxPatchShare * all) patched = patchContour(mesh, guard, lines_, h_, blocks, options_);
     if (!patched) return contour(guard, report, dropped);
     if (!guard.everywhereValid() && vertexConnectedComponentCount(*patched) > 1)
@@ -199,6 +199,12 @@ class StrayContour {
       winding_ = std::make_shared<const CloudWinding<3>>(samples_.points, samples_.normals, options_.cancel);
     return winding_;
   }
+  // The field under review, and its grid form: the values marching cubes contours.
+  void setField(const ImplicitField<3>& field) {
+    field_ = &field;
+    grid_ = field.forGridCells(h_.norm());
+  }
+
   // Leaves out stray pieces and finds the strays of a contour on `lines`.
   void review(TriMesh& mesh, const GridLines<3>& lines) {
     if (!occupied_) occupied_.emplace(samples_.points, box_.lo, occupancyCell(mesh));
@@ -243,16 +249,17 @@ class StrayContour {
   // Whether f is on the other side of a decided winding number along p's grid edge (a quarter,
   // half, three quarters of the way to each end, and the ends) or at a corner of the cell-sized
   // cube about p: otherwise a guard there overrules nothing (a stray on a true surface whose
-  // winding number is off ½, as beside a sharp concave edge). Along the edge, f counts where the
-  // contour took it (data within a cell diagonal, validNear, as marching cubes asks): a zero of f
-  // that strayed along an edge whose ends agree with the winding number is seen there. At the
-  // corners, only where the field has data itself: a no-data stand-in deep in the solid is
-  // positive.
+  // winding number is off ½, as beside a sharp concave edge). Along the edge, f is what the
+  // contour took (the field's grid form, where it has data within a cell diagonal, as marching
+  // cubes asks): a zero of f that strayed along an edge whose ends agree with the winding number
+  // is seen there. At the corners, only where the field has data itself: a no-data stand-in deep
+  // in the solid is positive.
   bool overruledNear(const Vec<3>& p, const GridLines<3>& lines) {
-    const auto disagree = [&](const Vec<3>& c) {
-      const double f = field_->evaluate(c), w = winding()->at(c);
+    const auto disagree = [&](const ImplicitField<3>& field, const Vec<3>& c) {
+      const double f = field.evaluate(c), w = winding()->at(c);
       return (w > kWindingInside && f > 0) || (w < kWindingOutside && f < 0);
     };
+    const ImplicitField<3>& contoured = grid_ ? *grid_ : *field_;
     const GridEdge e = gridEdgeOf(lines, p);
     if (e.axis >= 0) {
       Vec<3> lo;
@@ -262,13 +269,13 @@ class StrayContour {
       for (const Vec<3>& end : {lo, hi})
         for (const double t : {0.25, 0.5, 0.75, 1.0}) {
           const Vec<3> c = p + t * (end - p);
-          if (field_->validNear(c, h_.norm()) && disagree(c)) return true;
+          if (contoured.validNear(c, h_.norm()) && disagree(contoured, c)) return true;
         }
     }
     for (int k = 0; k < 8; ++k) {
       Vec<3> c = p;
       for (int a = 0; a < 3; ++a) c[a] += ((k >> a) & 1 ? 0.5 : -0.5) * cell_;
-      if (field_->valid(c) && disagree(c)) return true;
+      if (field_->valid(c) && disagree(*field_, c)) return true;
     }
     return false;
   }
@@ -287,6 +294,7 @@ class StrayContour {
   GridLines<3> lines_;  // those of the last contour (refined ones when it was refined)
   GuardRegion region_;
   const ImplicitField<3>* field_ = nullptr;  // the field of the contour under review
+  std::unique_ptr<ImplicitField<3>> grid_;    // its grid form (null: the field itself)
   std::shared_ptr<const CloudWinding<3>> winding_;
   std::vector<Box<3>> dropped_;  // the stray pieces left out of the contour kept, by their boxes
   std::vector<Review> reviews_;  // per contour of the last marchingCubes: the uniform one, then a refined one
