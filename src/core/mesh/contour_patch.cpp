@@ -5,6 +5,7 @@
 #include <unordered_map>
 
 #include "core/mesh/marching_cubes.h"
+#include "core/mesh/open_slivers.h"
 
 namespace hermite {
 
@@ -75,6 +76,18 @@ GridLines<3> blockLines(const GridLines<3>& lines, const CellBlock& b) {
   return sub;
 }
 
+// Whether a vertex of the mesh sits where an orphan does.
+bool orphanLeft(const TriMesh& mesh, const std::vector<Vec<3>>& orphanPositions) {
+  std::vector<std::array<double, 3>> orphans;
+  for (const Vec<3>& p : orphanPositions) orphans.push_back({p[0], p[1], p[2]});
+  std::sort(orphans.begin(), orphans.end());
+  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
+    if (std::binary_search(orphans.begin(), orphans.end(),
+                           std::array<double, 3>{mesh.vertices(0, v), mesh.vertices(1, v), mesh.vertices(2, v)}))
+      return true;
+  return false;
+}
+
 // The mesh being patched: the old vertices, the kept triangles, then each block's pass.
 class Patch {
  public:
@@ -104,12 +117,13 @@ class Patch {
     std::vector<int> id(static_cast<std::size_t>(pass.vertexCount()));
     for (int v = 0; v < pass.vertexCount(); ++v) {
       const GridEdge e = gridEdgeOf(lines_, pass.vertices.col(v));
-      const auto it = e.axis >= 0 && onBlockFace(e, b) ? faceVertex_.find(edgeKey(e)) : faceVertex_.end();
+      const bool onFace = e.axis >= 0 && onBlockFace(e, b);
+      const auto it = onFace ? faceVertex_.find(edgeKey(e)) : faceVertex_.end();
       if (it != faceVertex_.end()) {
         id[static_cast<std::size_t>(v)] = it->second;
         matched_[static_cast<std::size_t>(it->second)] = 1;
       } else {
-        if (e.axis >= 0 && onBlockFace(e, b)) orphans_.push_back(pass.vertices.col(v));
+        if (onFace) orphans_.push_back(pass.vertices.col(v));
         id[static_cast<std::size_t>(v)] = static_cast<int>(added_.size()) + mesh_.vertexCount();
         added_.push_back(v);
       }
@@ -195,23 +209,15 @@ std::optional<TriMesh> patchContour(const TriMesh& mesh, const ImplicitField<3>&
                                     const Vec<3>& h, const std::vector<CellBlock>& blocks,
                                     const MarchingOptions& options) {
   MarchingOptions pass = options;
-  pass.anchors = nullptr;
-  pass.review = {};
-  pass.progress = {};
+  pass.progress = {};  // a pass per block: progress from 0 to 1 for each would mislead
   Patch patch(mesh, lines, blocks);
   for (const CellBlock& b : blocks) patch.add(marchingCubesPass(field, blockLines(lines, b), h, pass), b);
   std::optional<TriMesh> out = patch.finish();
   if (!out) return out;
   if (options.review) options.review(*out, lines);
   // An orphan still there is a seam that opened: the review did not leave its piece out again.
-  if (patch.orphans().empty()) return out;
-  std::vector<std::array<double, 3>> orphans;
-  for (const Vec<3>& p : patch.orphans()) orphans.push_back({p[0], p[1], p[2]});
-  std::sort(orphans.begin(), orphans.end());
-  for (Eigen::Index v = 0; v < out->vertices.cols(); ++v)
-    if (std::binary_search(orphans.begin(), orphans.end(),
-                           std::array<double, 3>{out->vertices(0, v), out->vertices(1, v), out->vertices(2, v)}))
-      return std::nullopt;
+  if (orphanLeft(*out, patch.orphans())) return std::nullopt;
+  dropGridSlivers(*out, field, h);
   return out;
 }
 

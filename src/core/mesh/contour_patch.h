@@ -29,7 +29,8 @@ std::vector<CellBlock> cellBlocksAround(const GridLines<3>& lines, const std::ve
 
 // `mesh` (marching cubes' contour on `lines`, uniform cell `h`) with the cells of `blocks`
 // (disjoint, not touching) contoured again with `field`, which must equal the old field outside
-// them, then reviewed as options.review says. A vertex the passes make on a block's face without
+// them, then reviewed as options.review says and its open slivers left out (open_slivers.h), as
+// marchingCubes does. A vertex the passes make on a block's face without
 // an old twin belongs to a piece the old contour's review left out; the review must leave it out
 // again. Null when a seam stays open — an old vertex without a new twin, or such a vertex left
 // after the review: the caller contours the whole grid instead.

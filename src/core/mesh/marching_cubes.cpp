@@ -457,10 +457,8 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined);
   if (usedLines) *usedLines = refined ? std::move(*refined) : lines;
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
-  if (!field.everywhereValid() && vertexConnectedComponentCount(mesh) > 1) {
-    const int slivers = dropOpenSlivers(mesh, std::min({h[0] * h[1], h[1] * h[2], h[0] * h[2]}));
-    if (report) report->droppedSlivers = slivers;
-  }
+  const int slivers = dropGridSlivers(mesh, field, h);
+  if (report) report->droppedSlivers = slivers;
   if (report) report->totalMs = msSince(t0);
   return mesh;
 }

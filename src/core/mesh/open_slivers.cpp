@@ -1,5 +1,6 @@
 #include "core/mesh/open_slivers.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace hermite {
@@ -19,6 +20,11 @@ int dropOpenSlivers(TriMesh& mesh, double maxArea) {
   for (int c = 0; c < count; ++c)
     drop[static_cast<size_t>(c)] = open[static_cast<size_t>(c)] && area[static_cast<size_t>(c)] < maxArea;
   return dropComponents(mesh, label, drop);
+}
+
+int dropGridSlivers(TriMesh& mesh, const ImplicitField<3>& field, const Vec<3>& h) {
+  if (field.everywhereValid() || vertexConnectedComponentCount(mesh) <= 1) return 0;
+  return dropOpenSlivers(mesh, std::min({h[0] * h[1], h[1] * h[2], h[0] * h[2]}));
 }
 
 }  // namespace hermite

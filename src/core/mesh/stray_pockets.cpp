@@ -10,7 +10,6 @@
 #include "core/mesh/contour_patch.h"
 #include "core/mesh/marching_grid.h"
 #include "core/mesh/occupied_cells.h"
-#include "core/mesh/open_slivers.h"
 #include "core/mesh/winding_guard_field.h"
 
 namespace hermite {
@@ -186,8 +185,6 @@ class StrayContour {
     setField(guard);
     if (cells <= kMaxPatchShare * all) patched = patchContour(mesh, guard, lines_, h_, blocks, options_);
     if (!patched) return contour(guard, report, dropped);
-    if (!guard.everywhereValid() && vertexConnectedComponentCount(*patched) > 1)
-      dropOpenSlivers(*patched, std::min({h_[0] * h_[1], h_[1] * h_[2], h_[0] * h_[2]}));
     kept_ = reviews_.back();
     dropped = patchDropped(blocks);
     return std::move(*patched);
