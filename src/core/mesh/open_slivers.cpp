@@ -11,11 +11,8 @@ int dropOpenSlivers(TriMesh& mesh, double maxArea) {
   const std::vector<int> label = triangleComponents(mesh, &count, &open);
   if (count <= 1) return 0;  // the whole contour is never dropped
   std::vector<double> area(static_cast<size_t>(count), 0.0);
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t)), b = mesh.vertices.col(mesh.triangles(1, t)),
-                          c = mesh.vertices.col(mesh.triangles(2, t));
-    area[static_cast<size_t>(label[static_cast<size_t>(t)])] += 0.5 * (b - a).cross(c - a).norm();
-  }
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    area[static_cast<size_t>(label[static_cast<size_t>(t)])] += triangleArea(mesh, t);
   std::vector<char> drop(static_cast<size_t>(count), 0);
   for (int c = 0; c < count; ++c)
     drop[static_cast<size_t>(c)] = open[static_cast<size_t>(c)] && area[static_cast<size_t>(c)] < maxArea;

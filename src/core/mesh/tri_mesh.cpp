@@ -289,12 +289,8 @@ int countFlippedTriangles(const TriMesh& mesh, const Eigen::Matrix3Xd& reference
 
 double surfaceArea(const TriMesh& mesh) {
   double a = 0;
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const Eigen::Vector3i tri = mesh.triangles.col(t);
-    const Eigen::Vector3d p = mesh.vertices.col(tri[0]);
-    a += (mesh.vertices.col(tri[1]) - p).cross(mesh.vertices.col(tri[2]) - p).norm();
-  }
-  return a / 2.0;
+  for (int t = 0; t < mesh.triangleCount(); ++t) a += triangleArea(mesh, t);
+  return a;
 }
 
 double signedVolume(const TriMesh& mesh) {

@@ -93,6 +93,12 @@ MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea = -1);
 // corners (3 × V unit normals, e.g. vertexNormals or ∇f): a "flipped" triangle.
 int countFlippedTriangles(const TriMesh& mesh, const Eigen::Matrix3Xd& referenceNormals);
 
+// Area of triangle t.
+inline double triangleArea(const TriMesh& mesh, int t) {
+  const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t));
+  return 0.5 * (mesh.vertices.col(mesh.triangles(1, t)) - a).cross(mesh.vertices.col(mesh.triangles(2, t)) - a).norm();
+}
+
 // Total area of the triangles.
 double surfaceArea(const TriMesh& mesh);
 
