@@ -302,6 +302,18 @@ void findEdges(MarchingGrid<Dim>& g) {
   for (const auto& v : perSlab) g.edgeKeys.insert(g.edgeKeys.end(), v.begin(), v.end());
 }
 
+// Past MarchingOptions::newtonSteps, a vertex whose next step would still move it by more than
+// kEdgeFinish of its edge goes on, for at most kEdgeFinishSteps more steps: an edge on which f
+// bends sharply (the tip of a fin thinner than the sample spacing) converges slowly, and 4 steps
+// left such vertices up to a quarter of a sample spacing off f = 0 on the Stanford dragon. A
+// vertex stops early where its bracket is within kEdgeFinish of the edge, or where |f| exceeds
+// kEdgeJump times what its slope could change over the bracket: f jumps there (a partition of
+// unity's blend switching supports) and has no root to converge to (thousands of vertices on
+// CGAL's boeing). The rest are few, so the extra batches cost little.
+inline constexpr double kEdgeFinish = 1e-6;
+inline constexpr int kEdgeFinishSteps = 40;
+inline constexpr double kEdgeJump = 4;  // |f| beyond this many times |df/dt| × the bracket: a jump
+
 // Places the vertices of g.edgeKeys (g.vertices, g.gradients): linear interpolation, then
 // safeguarded Newton along the edge (bracketed by the end signs, false position when a step
 // leaves the bracket, kept in [τ, 1 − τ]). Returns max |f| over the vertices after refinement.
@@ -343,12 +355,17 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
   Points<Dim> X;
   Eigen::VectorXd fa;
   Points<Dim> Ga;
-  for (int step = 0; step < options.newtonSteps && !active.empty(); ++step) {
+  const int lastStep = options.newtonSteps > 0 ? options.newtonSteps + kEdgeFinishSteps : 0;
+  for (int step = 0; step < lastStep && !active.empty(); ++step) {
     throwIfCancelled(options.cancel);
     next.clear();
     for (int v : active) {
       const double slope = G(axis[v], v) * length[v];  // df/dt
       if (std::abs(f[v]) <= 1e-9 * std::abs(slope)) continue;  // converged
+      if (step >= options.newtonSteps &&
+          (std::abs(f[v]) <= kEdgeFinish * std::abs(slope) || tHi[v] - tLo[v] <= kEdgeFinish ||
+           std::abs(f[v]) > kEdgeJump * std::abs(slope) * (tHi[v] - tLo[v])))
+        continue;  // close enough, or f jumps in the bracket (no root to converge to)
       // The end at t = 0 is the one whose sign is values[from]: keep the bracket on the sign change.
       const bool startInside = g.values[from[v]] < 0;
       // Illinois: when the same end moves twice running, the other end's value is halved, which

@@ -95,6 +95,37 @@ TEST_CASE("marching cubes: a sphere is a closed oriented manifold of genus 0") {
   }
 }
 
+namespace {
+
+// tanh(k (‖x‖ − 1)): the unit sphere, with f nearly a step across a cell for large k, so that
+// Newton along an edge starts where the slope is almost nil and false position converges slowly.
+class SteepSphere final : public ImplicitField<3> {
+ public:
+  explicit SteepSphere(double k) : k_(k) {}
+  double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
+    const double r = x.norm(), t = std::tanh(k_ * (r - 1));
+    if (g) *g = k_ * (1 - t * t) * x / r;
+    if (H) H->setZero();
+    return t;
+  }
+  double lipschitzBound(const Box<3>&) const override { return k_; }
+
+ private:
+  double k_;
+};
+
+}  // namespace
+
+TEST_CASE("marching cubes: edge vertices converge onto f = 0 where f bends sharply along the edge") {
+  // At 24 cells over [−1.3, 1.3]³ a cell spans 0.108, about 5 units of tanh's argument.
+  const SteepSphere steep(50);
+  MarchingReport report;
+  const TriMesh mesh = marchingCubes(steep, cube(1.3), {24}, &report);
+  CHECK(checkMesh(mesh).closedManifold());
+  CHECK(report.maxAbsF <= 1e-6);  // |f| ≤ 1e-6 is within 2e-8 of the sphere here
+  for (int v = 0; v < mesh.vertexCount(); ++v) REQUIRE(std::abs(mesh.vertices.col(v).norm() - 1) <= 1e-6);
+}
+
 TEST_CASE("marching cubes: a torus is closed with Euler characteristic 0") {
   const TorusField torus;
   for (int resolution : {12, 40}) {
