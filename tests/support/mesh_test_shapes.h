@@ -28,6 +28,20 @@ TriMesh removeTriangles(const TriMesh& mesh, Pred drop) {
   return out;
 }
 
+// `mesh` with `piece` appended (its vertex ids shifted), moved by `offset`; no normals.
+inline TriMesh withPiece(const TriMesh& mesh, TriMesh piece, const Vec<3>& offset) {
+  TriMesh out = mesh;
+  const int base = mesh.vertexCount();
+  piece.vertices.colwise() += offset;
+  out.vertices.conservativeResize(3, base + piece.vertexCount());
+  out.vertices.rightCols(piece.vertexCount()) = piece.vertices;
+  piece.triangles.array() += base;
+  out.triangles.conservativeResize(3, mesh.triangleCount() + piece.triangleCount());
+  out.triangles.rightCols(piece.triangleCount()) = piece.triangles;
+  out.normals.resize(3, 0);
+  return out;
+}
+
 // The smallest angle, degrees, of triangles firstTriangle … end of `mesh` (180 when there are none).
 inline double smallestAngleDegrees(const TriMesh& mesh, int firstTriangle) {
   double smallest = 180;

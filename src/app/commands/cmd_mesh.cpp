@@ -127,6 +127,10 @@ void appendContourText(const MarchingReport& r, char* line, std::size_t size) {
   used = std::strlen(line);
   if (r.droppedSlivers > 0)
     std::snprintf(line + used, size - used, "; %d open pieces smaller than a cell face left out", r.droppedSlivers);
+  used = std::strlen(line);
+  if (r.droppedTips > 0)
+    std::snprintf(line + used, size - used, "; %d tips of parts thinner than a cell, cut off by the grid, left out",
+                  r.droppedTips);
 }
 
 // What the winding-number check did (stray_pockets.h), appended to the summary line.

@@ -83,9 +83,9 @@ inline bool thinAt(const Eigen::VectorXd& fs, Eigen::Index first) {
   return false;
 }
 
-// The cells of the missed anchors (the file's comment) among those not seen.
-inline std::vector<std::array<int, 3>> missedAnchorCells(const AnchorCells& a, const Points<3>& anchors,
-                                                         const ImplicitField<3>& field, double cellDiagonal) {
+// The missed anchors (the file's comment) among those not seen: their indices.
+inline std::vector<int> missedAnchors(const AnchorCells& a, const Points<3>& anchors, const ImplicitField<3>& field,
+                                      double cellDiagonal) {
   std::vector<int> unseen;
   for (int i : a.byLayer)
     if (!a.seen[static_cast<size_t>(i)]) unseen.push_back(i);
@@ -112,10 +112,16 @@ inline std::vector<std::array<int, 3>> missedAnchorCells(const AnchorCells& a, c
     }
   }
   field.evaluateBatch(probes, fs);
-  std::vector<std::array<int, 3>> out;
+  std::vector<int> out;
   for (Eigen::Index j = 0; j < m; ++j)
-    if (thinAt(fs, j * 2 * kThinSteps))
-      out.push_back(a.cell[static_cast<size_t>(unseen[static_cast<size_t>(through[static_cast<size_t>(j)])])]);
+    if (thinAt(fs, j * 2 * kThinSteps)) out.push_back(unseen[static_cast<size_t>(through[static_cast<size_t>(j)])]);
+  return out;
+}
+
+// Their cells.
+inline std::vector<std::array<int, 3>> anchorCellsOf(const AnchorCells& a, const std::vector<int>& which) {
+  std::vector<std::array<int, 3>> out;
+  for (int i : which) out.push_back(a.cell[static_cast<size_t>(i)]);
   return out;
 }
 

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/mesh/cut_tips.h"
 #include "core/mesh/marching_anchors.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_slab.h"
@@ -381,9 +382,10 @@ std::optional<GridLines<3>> refinedLines(const GridLines<3>& lines, const std::v
 }
 
 // The pass over refined lines. The report keeps the uniform grid's cells, adds this pass's
-// evaluations and says how many anchors it still misses.
+// evaluations and says how many anchors it still misses; `stillMissed` receives them.
 TriMesh contourRefined(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
-                       const Vec<3>& h, const MarchingOptions& options, MarchingReport* report) {
+                       const Vec<3>& h, const MarchingOptions& options, MarchingReport* report,
+                       std::vector<int>* stillMissed) {
   detail::AnchorCells seen = detail::locateAnchors(lines, *options.anchors);
   MarchingReport pass;
   TriMesh mesh = marchOnce(contoured, lines, h, options, &pass, &seen);
@@ -392,8 +394,9 @@ TriMesh contourRefined(const ImplicitField<3>& field, const ImplicitField<3>& co
     report->evaluatedPoints += pass.evaluatedPoints;
     report->maxAbsF = pass.maxAbsF;
     report->refinedCells = pass.cells;
-    report->stillMissed = static_cast<int>(detail::missedAnchorCells(seen, *options.anchors, field, h.norm()).size());
   }
+  *stillMissed = detail::missedAnchors(seen, *options.anchors, field, h.norm());
+  if (report) report->stillMissed = static_cast<int>(stillMissed->size());
   return mesh;
 }
 
@@ -406,12 +409,13 @@ double minGridStep(const GridLines<3>& lines) {
 
 // The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
 // (MarchingOptions::anchors), `usedLines` receiving them; otherwise `mesh` as it is, the report
-// saying why.
+// saying why. `stillMissed` receives the anchors the mesh returned misses.
 TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
                          const Vec<3>& h, const detail::AnchorCells& seen, TriMesh mesh, const MarchingOptions& options,
-                         MarchingReport* report, std::optional<GridLines<3>>* usedLines) {
+                         MarchingReport* report, std::optional<GridLines<3>>* usedLines, std::vector<int>* stillMissed) {
   using Refinement = MarchingReport::Refinement;
-  const std::vector<std::array<int, 3>> missed = detail::missedAnchorCells(seen, *options.anchors, field, h.norm());
+  *stillMissed = detail::missedAnchors(seen, *options.anchors, field, h.norm());
+  const std::vector<std::array<int, 3>> missed = detail::anchorCellsOf(seen, *stillMissed);
   if (missed.empty()) return mesh;
   MarchingReport local;
   MarchingReport& r = report ? *report : local;
@@ -424,7 +428,8 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
   if (!refined) return mesh;
   MarchingReport pass = r;
-  TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass);
+  std::vector<int> finerMissed;
+  TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass, &finerMissed);
   if (options.review) options.review(finer, *refined);
   // Fewer pieces or none of it: more pieces on a finer grid are the field's own (a fit that
   // breaks up), not steps the grid took over a thin part.
@@ -436,6 +441,7 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   pass.minStep = minGridStep(*refined);
   r = pass;
   *usedLines = std::move(refined);
+  *stillMissed = std::move(finerMissed);
   return finer;
 }
 
@@ -454,8 +460,14 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   if (options.review) options.review(mesh, lines);
   if (report) report->minStep = minGridStep(lines);
   std::optional<GridLines<3>> refined;
-  if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined);
+  std::vector<int> missed;
+  if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined, &missed);
   if (usedLines) *usedLines = refined ? std::move(*refined) : lines;
+  // Tips of thin parts the grid cut off, beside samples it misses (cut_tips.h).
+  Points<3> missedAt(3, static_cast<Eigen::Index>(missed.size()));
+  for (size_t i = 0; i < missed.size(); ++i) missedAt.col(static_cast<Eigen::Index>(i)) = options.anchors->col(missed[i]);
+  const int tips = dropCutTips(mesh, missedAt, h.norm());
+  if (report) report->droppedTips = tips;
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
   const int slivers = dropGridSlivers(mesh, field, h);
   if (report) report->droppedSlivers = slivers;

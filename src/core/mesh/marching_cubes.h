@@ -10,8 +10,9 @@
 namespace hermite {
 
 // Marching cubes; the mesh carries ∇f normals. Errors as marchingSquares. With anchors the grid
-// may be refined where a thin part split the mesh (MarchingOptions::anchors); for a field with
-// no-data regions, open pieces smaller than a cell face are left out (open_slivers.h).
+// may be refined where a thin part split the mesh (MarchingOptions::anchors), and the tips the
+// final grid still cut off such a part are left out (cut_tips.h); for a field with no-data
+// regions, open pieces smaller than a cell face are left out (open_slivers.h).
 // `lines`, when given, receives the grid lines of the mesh returned (the refined ones when it was
 // refined).
 TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options = {},

@@ -89,6 +89,9 @@ struct MarchingReport {
   // Open pieces (cut where the field has no data) with less area than the smallest face of a
   // uniform grid cell, left out of the mesh (open_slivers.h).
   int droppedSlivers = 0;
+  // Small pieces beside samples the grid misses: tips of parts thinner than a cell that it cut
+  // off, left out of the mesh (cut_tips.h).
+  int droppedTips = 0;
 };
 
 }  // namespace hermite

@@ -9,24 +9,12 @@
 #include "core/mesh/open_slivers.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/shapes/mesh_shapes.h"
+#include "support/mesh_test_shapes.h"
 
 using namespace hermite;
+using hermite::testing::withPiece;
 
 namespace {
-
-// `mesh` with `piece` appended (its vertex ids shifted), moved by `offset`.
-TriMesh withPiece(const TriMesh& mesh, TriMesh piece, const Vec<3>& offset) {
-  TriMesh out = mesh;
-  const int base = mesh.vertexCount();
-  piece.vertices.colwise() += offset;
-  out.vertices.conservativeResize(3, base + piece.vertexCount());
-  out.vertices.rightCols(piece.vertexCount()) = piece.vertices;
-  piece.triangles.array() += base;
-  out.triangles.conservativeResize(3, mesh.triangleCount() + piece.triangleCount());
-  out.triangles.rightCols(piece.triangleCount()) = piece.triangles;
-  out.normals.resize(3, 0);
-  return out;
-}
 
 TriMesh triangle(double size) {
   TriMesh t;

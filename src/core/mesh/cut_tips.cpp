@@ -1,0 +1,84 @@
+// Cut-off tips of thin parts (cut_tips.h).
+
+#include "core/mesh/cut_tips.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace hermite {
+
+namespace {
+
+struct Pieces {
+  std::vector<int> of;     // per triangle
+  std::vector<int> size;   // triangles per piece
+  std::vector<Box<3>> box;
+  int largest = 0;
+};
+
+Pieces piecesOf(const TriMesh& mesh) {
+  Pieces p;
+  int count = 0;
+  p.of = triangleComponents(mesh, &count);
+  p.size.assign(static_cast<size_t>(count), 0);
+  p.box.assign(static_cast<size_t>(count), Box<3>{Vec<3>::Constant(HUGE_VAL), Vec<3>::Constant(-HUGE_VAL)});
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const size_t i = static_cast<size_t>(p.of[static_cast<size_t>(t)]);
+    ++p.size[i];
+    for (int k = 0; k < 3; ++k) {
+      p.box[i].lo = p.box[i].lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
+      p.box[i].hi = p.box[i].hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
+    }
+  }
+  p.largest = static_cast<int>(std::max_element(p.size.begin(), p.size.end()) - p.size.begin());
+  return p;
+}
+
+// The vertices of piece `which` (each once).
+std::vector<int> verticesOf(const TriMesh& mesh, const Pieces& p, int which) {
+  std::vector<int> out;
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    if (p.of[static_cast<size_t>(t)] == which)
+      for (int k = 0; k < 3; ++k) out.push_back(mesh.triangles(k, t));
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+// Whether a vertex of `near` lies within d of a vertex of `piece`.
+bool within(const TriMesh& mesh, const std::vector<int>& piece, const std::vector<int>& near, double d) {
+  for (int a : piece)
+    for (int b : near)
+      if ((mesh.vertices.col(a) - mesh.vertices.col(b)).squaredNorm() <= d * d) return true;
+  return false;
+}
+
+}  // namespace
+
+int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal) {
+  if (missed.cols() == 0 || mesh.triangleCount() == 0) return 0;
+  const Pieces p = piecesOf(mesh);
+  const int count = static_cast<int>(p.size.size());
+  if (count <= 1) return 0;
+  std::vector<int> largest;  // its vertices near some small piece, found once
+  std::vector<char> drop(static_cast<size_t>(count), 0);
+  for (int i = 0; i < count; ++i) {
+    if (i == p.largest || p.size[static_cast<size_t>(i)] > kTipShare * mesh.triangleCount()) continue;
+    Box<3> grown = p.box[static_cast<size_t>(i)];
+    grown.lo.array() -= cellDiagonal;
+    grown.hi.array() += cellDiagonal;
+    bool sampleNear = false;
+    for (Eigen::Index m = 0; m < missed.cols() && !sampleNear; ++m) sampleNear = grown.contains(missed.col(m));
+    if (!sampleNear) continue;
+    if (largest.empty()) largest = verticesOf(mesh, p, p.largest);
+    std::vector<int> near;
+    for (int v : largest)
+      if (grown.contains(mesh.vertices.col(v))) near.push_back(v);
+    if (!within(mesh, verticesOf(mesh, p, i), near, cellDiagonal)) continue;
+    drop[static_cast<size_t>(i)] = 1;
+  }
+  return dropComponents(mesh, p.of, drop);
+}
+
+}  // namespace hermite
