@@ -409,7 +409,8 @@ double minGridStep(const GridLines<3>& lines) {
 
 // The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
 // (MarchingOptions::anchors), `usedLines` receiving them; otherwise `mesh` as it is, the report
-// saying why. `stillMissed` receives the anchors the mesh returned misses.
+// saying why. `stillMissed` receives the anchors the uniform grid misses and, when the refined
+// mesh is returned, those it misses too (some twice).
 TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
                          const Vec<3>& h, const detail::AnchorCells& seen, TriMesh mesh, const MarchingOptions& options,
                          MarchingReport* report, std::optional<GridLines<3>>* usedLines, std::vector<int>* stillMissed) {
@@ -441,7 +442,9 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   pass.minStep = minGridStep(*refined);
   r = pass;
   *usedLines = std::move(refined);
-  *stillMissed = std::move(finerMissed);
+  // Either grid's missed anchors mark a thin part: a tip the finer grid still cuts off lies
+  // beside the coarse grid's (cut_tips.h).
+  stillMissed->insert(stillMissed->end(), finerMissed.begin(), finerMissed.end());
   return finer;
 }
 
