@@ -8,7 +8,8 @@
 // grid missed, marching_anchors.h) say the surface goes on there. It is left out when it is
 //   - not the largest piece, and at most kTipShare of the triangles;
 //   - within one cell diagonal of the largest piece (a vertex of each that close);
-//   - within one cell diagonal of a sample the final grid still misses.
+//   - within one cell diagonal of a sample a grid misses (the uniform one or, when the mesh is
+//     the refined grid's, that one).
 // A small piece that is really separate has no missed sample at its side, or lies farther off.
 
 #include "core/base/geometry.h"
@@ -19,7 +20,7 @@ namespace hermite {
 inline constexpr double kTipShare = 0.01;
 
 // Removes the cut-off tips (as above) and the vertices no triangle uses; `missed` are the
-// positions of the samples the grid still misses, `cellDiagonal` the uniform grid cell's.
+// positions of the missed samples, `cellDiagonal` the uniform grid cell's.
 // Returns how many pieces were removed.
 int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal);
 
