@@ -407,10 +407,17 @@ double minGridStep(const GridLines<3>& lines) {
   return step;
 }
 
+// The columns `which` of P.
+Points<3> columnsOf(const Points<3>& P, const std::vector<int>& which) {
+  Points<3> out(3, static_cast<Eigen::Index>(which.size()));
+  for (size_t i = 0; i < which.size(); ++i) out.col(static_cast<Eigen::Index>(i)) = P.col(which[i]);
+  return out;
+}
+
 // The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
-// (MarchingOptions::anchors), `usedLines` receiving them; otherwise `mesh` as it is, the report
-// saying why. `stillMissed` receives the anchors the uniform grid misses and, when the refined
-// mesh is returned, those it misses too (some twice).
+// that are not all cut-off tips (MarchingOptions::anchors), `usedLines` receiving them; otherwise
+// `mesh` as it is, the report saying why. `stillMissed` receives the anchors the uniform grid
+// misses and, when the refined mesh is returned, those it misses too (some twice).
 TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
                          const Vec<3>& h, const detail::AnchorCells& seen, TriMesh mesh, const MarchingOptions& options,
                          MarchingReport* report, std::optional<GridLines<3>>* usedLines, std::vector<int>* stillMissed) {
@@ -425,6 +432,12 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   // ear) leaves one piece and is not worth a second pass.
   r.refinement = Refinement::OnePiece;
   if (vertexConnectedComponentCount(mesh) <= 1) return mesh;
+  // Pieces beyond the first that are all tips the grid cut off a thin part (cut_tips.h) are left
+  // out after this anyway: a second pass would cost a whole contour for them, and on the
+  // Stanford dragon's fins did not join them (docs/maths.md, Contouring: cut-off tips).
+  TriMesh withoutTips = mesh;
+  dropCutTips(withoutTips, columnsOf(*options.anchors, *stillMissed), h.norm());
+  if (vertexConnectedComponentCount(withoutTips) <= 1) return mesh;
   r.refinement = Refinement::TooLarge;
   std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
   if (!refined) return mesh;
@@ -467,9 +480,7 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined, &missed);
   if (usedLines) *usedLines = refined ? std::move(*refined) : lines;
   // Tips of thin parts the grid cut off, beside samples it misses (cut_tips.h).
-  Points<3> missedAt(3, static_cast<Eigen::Index>(missed.size()));
-  for (size_t i = 0; i < missed.size(); ++i) missedAt.col(static_cast<Eigen::Index>(i)) = options.anchors->col(missed[i]);
-  const int tips = dropCutTips(mesh, missedAt, h.norm());
+  const int tips = seen ? dropCutTips(mesh, columnsOf(*options.anchors, missed), h.norm()) : 0;
   if (report) report->droppedTips = tips;
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
   const int slivers = dropGridSlivers(mesh, field, h);

@@ -306,13 +306,13 @@ void findEdges(MarchingGrid<Dim>& g) {
 // kEdgeFinish of its edge goes on, for at most kEdgeFinishSteps more steps: an edge on which f
 // bends sharply (the tip of a fin thinner than the sample spacing) converges slowly, and 4 steps
 // left such vertices up to a quarter of a sample spacing off f = 0 on the Stanford dragon. A
-// vertex stops early where its bracket is within kEdgeFinish of the edge, or where |f| exceeds
-// kEdgeJump times what its slope could change over the bracket: f jumps there (a partition of
-// unity's blend switching supports) and has no root to converge to (thousands of vertices on
-// CGAL's boeing). The rest are few, so the extra batches cost little.
+// vertex also stops once its bracket is narrower than kEdgeBracket of the edge, or it is pinned
+// at τ: where f jumps (a partition of unity's blend switching supports: thousands of vertices on
+// CGAL's boeing) there is no root to converge to, only the jump to bracket. The rest are few, so
+// the extra batches cost little.
 inline constexpr double kEdgeFinish = 1e-6;
 inline constexpr int kEdgeFinishSteps = 40;
-inline constexpr double kEdgeJump = 4;  // |f| beyond this many times |df/dt| × the bracket: a jump
+inline constexpr double kEdgeBracket = 1e-4;  // a bracket this narrow (of the edge) is the vertex
 
 // Places the vertices of g.edgeKeys (g.vertices, g.gradients): linear interpolation, then
 // safeguarded Newton along the edge (bracketed by the end signs, false position when a step
@@ -362,10 +362,9 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
     for (int v : active) {
       const double slope = G(axis[v], v) * length[v];  // df/dt
       if (std::abs(f[v]) <= 1e-9 * std::abs(slope)) continue;  // converged
-      if (step >= options.newtonSteps &&
-          (std::abs(f[v]) <= kEdgeFinish * std::abs(slope) || tHi[v] - tLo[v] <= kEdgeFinish ||
-           std::abs(f[v]) > kEdgeJump * std::abs(slope) * (tHi[v] - tLo[v])))
-        continue;  // close enough, or f jumps in the bracket (no root to converge to)
+      if (step >= options.newtonSteps && (std::abs(f[v]) <= kEdgeFinish * std::abs(slope) ||
+                                          tHi[v] - tLo[v] <= kEdgeBracket || t[v] == tau || t[v] == 1 - tau))
+        continue;  // close enough, or f jumps in a tiny bracket, or the root is within τ of an end
       // The end at t = 0 is the one whose sign is values[from]: keep the bracket on the sign change.
       const bool startInside = g.values[from[v]] < 0;
       // Illinois: when the same end moves twice running, the other end's value is halved, which

@@ -1,7 +1,7 @@
 // Cut-off tips (cut_tips.h): a small piece beside the largest one with a sample the grid misses
 // between them is left out; without that sample, farther off, or larger, it stays. Through
 // marching cubes: a ball whose tip hangs on a rod thinner than any grid's spacing comes out as
-// one piece when the rod's samples are anchors, and as two without them.
+// one piece when the rod's samples are anchors, without a refined pass, and as two without them.
 
 #include <doctest/doctest.h>
 
@@ -81,10 +81,13 @@ const Vec<3> kBead(0.625, 0.0625, 0.0625);
 
 class BallRodBead : public ImplicitField<3> {
  public:
+  // With `moon`, also a ball of radius 0.15 at (0, −0.8, 0): a piece of its own that is no tip.
+  explicit BallRodBead(bool moon = false) : moon_(moon) {}
   double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
-    const Vec<3> onRod(std::clamp(x.x(), 0.45, 0.625), kRod, kRod);
+    const Vec<3> onRod(std::clamp(x.x(), 0.45, 0.625), kRod, kRod), moon(0, -0.8, 0);
     double best = x.norm() - 0.49;
     Vec<3> dir = x.normalized();
+    if (moon_ && (x - moon).norm() - 0.15 < best) best = (x - moon).norm() - 0.15, dir = (x - moon).normalized();
     if ((x - kBead).norm() - 0.06 < best) best = (x - kBead).norm() - 0.06, dir = (x - kBead).normalized();
     if ((x - onRod).norm() - 0.008 < best) best = (x - onRod).norm() - 0.008, dir = (x - onRod).normalized();
     if (g) *g = dir;
@@ -92,6 +95,9 @@ class BallRodBead : public ImplicitField<3> {
     return best;
   }
   double lipschitzBound(const Box<3>&) const override { return 1.0; }
+
+ private:
+  bool moon_;
 };
 
 // Points of the rod's surface outside the ball and the bead: 8 about each of 15 points of its axis.
@@ -123,9 +129,27 @@ TEST_CASE("marching cubes: a tip the grid cuts off a rod thinner than a cell is 
   MarchingReport r;
   const TriMesh mesh = marchingCubes(field, box, options, &r);
   CHECK(r.missedAnchors > 0);
-  CHECK(r.refinement == MarchingReport::Refinement::NoGain);  // no refined grid point lies in the rod either
+  // The bead is a cut-off tip, so no refined pass is tried: the mesh is one piece without it.
+  CHECK(r.refinement == MarchingReport::Refinement::OnePiece);
+  CHECK(r.refinedCells[0] == 0);
   CHECK(r.droppedTips == 1);
   CHECK(connectedComponentCount(mesh) == 1);
   CHECK(checkMesh(mesh).closedManifold());
+  CHECK(mesh.vertices.row(0).maxCoeff() < 0.5);
+}
+
+TEST_CASE("marching cubes: a refined pass runs for a piece that is no tip, and the tip still goes") {
+  const BallRodBead field(true);
+  const Box<3> box{Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0)};
+  MarchingOptions options;
+  options.resolution = 32;
+  REQUIRE(connectedComponentCount(marchingCubes(field, box, options)) == 3);
+  const Points<3> anchors = rodSamples(field);
+  options.anchors = &anchors;
+  MarchingReport r;
+  const TriMesh mesh = marchingCubes(field, box, options, &r);
+  CHECK(r.refinement == MarchingReport::Refinement::NoGain);  // no refined grid point lies in the rod either
+  CHECK(r.droppedTips == 1);
+  CHECK(connectedComponentCount(mesh) == 2);  // the ball and the moon
   CHECK(mesh.vertices.row(0).maxCoeff() < 0.5);
 }
