@@ -56,29 +56,37 @@ bool within(const TriMesh& mesh, const std::vector<int>& piece, const std::vecto
 
 }  // namespace
 
-int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal) {
-  if (missed.cols() == 0 || mesh.triangleCount() == 0) return 0;
+TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
+  TipCandidates c;
+  if (mesh.triangleCount() == 0) return c;
   const Pieces p = piecesOf(mesh);
-  const int count = static_cast<int>(p.size.size());
-  if (count <= 1) return 0;
-  std::vector<int> largest;  // its vertices near some small piece, found once
-  std::vector<char> drop(static_cast<size_t>(count), 0);
-  for (int i = 0; i < count; ++i) {
+  c.piece = p.of;
+  c.count = static_cast<int>(p.size.size());
+  std::vector<int> largest;  // its vertices, found when some piece is small
+  for (int i = 0; i < c.count; ++i) {
     if (i == p.largest || p.size[static_cast<size_t>(i)] > kTipShare * mesh.triangleCount()) continue;
     Box<3> grown = p.box[static_cast<size_t>(i)];
     grown.lo.array() -= cellDiagonal;
     grown.hi.array() += cellDiagonal;
-    bool sampleNear = false;
-    for (Eigen::Index m = 0; m < missed.cols() && !sampleNear; ++m) sampleNear = grown.contains(missed.col(m));
-    if (!sampleNear) continue;
     if (largest.empty()) largest = verticesOf(mesh, p, p.largest);
     std::vector<int> near;
     for (int v : largest)
       if (grown.contains(mesh.vertices.col(v))) near.push_back(v);
     if (!within(mesh, verticesOf(mesh, p, i), near, cellDiagonal)) continue;
-    drop[static_cast<size_t>(i)] = 1;
+    c.pieces.push_back(i);
+    c.reach.push_back(grown);
   }
-  return dropComponents(mesh, p.of, drop);
+  return c;
+}
+
+int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal) {
+  if (missed.cols() == 0) return 0;
+  const TipCandidates c = tipCandidates(mesh, cellDiagonal);
+  std::vector<char> drop(static_cast<size_t>(c.count), 0);
+  for (size_t k = 0; k < c.pieces.size(); ++k)
+    for (Eigen::Index m = 0; m < missed.cols() && !drop[static_cast<size_t>(c.pieces[k])]; ++m)
+      drop[static_cast<size_t>(c.pieces[k])] = c.reach[k].contains(missed.col(m));
+  return dropComponents(mesh, c.piece, drop);
 }
 
 }  // namespace hermite

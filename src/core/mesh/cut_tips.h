@@ -12,12 +12,24 @@
 //     the refined grid's, that one).
 // A small piece that is really separate has no missed sample at its side, or lies farther off.
 
+#include <vector>
+
 #include "core/base/geometry.h"
 #include "core/mesh/tri_mesh.h"
 
 namespace hermite {
 
 inline constexpr double kTipShare = 0.01;
+
+// The pieces of a mesh that could be such tips: not the largest, at most kTipShare of the
+// triangles, with a vertex within `cellDiagonal` of one of the largest piece.
+struct TipCandidates {
+  std::vector<int> piece;      // per triangle: its piece (triangleComponents)
+  int count = 0;               // pieces
+  std::vector<int> pieces;     // the candidates
+  std::vector<Box<3>> reach;   // per candidate: its bounding box grown by `cellDiagonal`
+};
+TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal);
 
 // Removes the cut-off tips (as above) and the vertices no triangle uses; `missed` are the
 // positions of the missed samples, `cellDiagonal` the uniform grid cell's.

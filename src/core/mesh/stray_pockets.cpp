@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/mesh/contour_patch.h"
+#include "core/mesh/cut_tips.h"
 #include "core/mesh/marching_grid.h"
 #include "core/mesh/occupied_cells.h"
 #include "core/mesh/winding_guard_field.h"
@@ -101,6 +102,24 @@ std::vector<Box<3>> pieceBoxes(const TriMesh& mesh, const std::vector<int>& piec
   return boxes;
 }
 
+// Per piece (`piece`: one per triangle) where `wanted`, the mean winding number of up to
+// kPieceProbes of its vertices; 0 elsewhere.
+std::vector<double> meanWindings(const TriMesh& mesh, const std::vector<int>& piece, const std::vector<char>& wanted,
+                                 const CloudWinding<3>& winding) {
+  std::vector<std::vector<int>> probes(wanted.size());
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const std::size_t c = static_cast<std::size_t>(piece[static_cast<std::size_t>(t)]);
+    if (wanted[c] && static_cast<int>(probes[c].size()) < kPieceProbes) probes[c].push_back(mesh.triangles(0, t));
+  }
+  std::vector<double> mean(wanted.size(), 0.0);
+  for (std::size_t c = 0; c < wanted.size(); ++c) {
+    if (probes[c].empty()) continue;
+    for (int v : probes[c]) mean[c] += winding.at(Vec<3>(mesh.vertices.col(v)));
+    mean[c] /= static_cast<double>(probes[c].size());
+  }
+  return mean;
+}
+
 // Leaves out the components other than the largest, of at most kPieceShare of the triangles,
 // whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
 // or below kWindingOutside. Returns their bounding boxes. `windingOf()` gives the winding
@@ -115,27 +134,37 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   bool any = false;
   for (int c = 0; c < pieces.count() && !any; ++c) any = small(c);
   if (!any) return {};
-  const CloudWinding<3>& winding = windingOf();
   const std::vector<int>& comp = pieces.of;
-  std::vector<std::vector<int>> probes(static_cast<std::size_t>(pieces.count()));
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    std::vector<int>& p = probes[static_cast<std::size_t>(comp[static_cast<std::size_t>(t)])];
-    if (static_cast<int>(p.size()) < kPieceProbes) p.push_back(mesh.triangles(0, t));
-  }
   std::vector<char> drop(static_cast<std::size_t>(pieces.count()), 0);
-  for (int c = 0; c < pieces.count(); ++c) {
-    if (!small(c)) continue;
-    double sum = 0;
-    for (int v : probes[static_cast<std::size_t>(c)]) sum += winding.at(Vec<3>(mesh.vertices.col(v)));
-    const double mean = sum / static_cast<double>(probes[static_cast<std::size_t>(c)].size());
-    drop[static_cast<std::size_t>(c)] = mean > kPieceInside || mean < kWindingOutside;
-  }
+  for (int c = 0; c < pieces.count(); ++c) drop[static_cast<std::size_t>(c)] = small(c);
+  const std::vector<double> mean = meanWindings(mesh, comp, drop, windingOf());
+  for (int c = 0; c < pieces.count(); ++c)
+    drop[static_cast<std::size_t>(c)] = drop[static_cast<std::size_t>(c)] &&
+                                        (mean[static_cast<std::size_t>(c)] > kPieceInside ||
+                                         mean[static_cast<std::size_t>(c)] < kWindingOutside);
   const std::vector<Box<3>> boxes = pieceBoxes(mesh, comp, pieces.count());
   dropComponents(mesh, comp, drop);
   std::vector<Box<3>> out;
   for (int c = 0; c < pieces.count(); ++c)
     if (drop[static_cast<std::size_t>(c)]) out.push_back(boxes[static_cast<std::size_t>(c)]);
   return out;
+}
+
+// Leaves out the pieces that could be tips the grid cut off a thin part (cut_tips.h) whose mean
+// winding number is at least kWindingOutside (else dropStrayPieces did) and below kTipWinding.
+// Returns how many. `windingOf()` gives the winding number; it is called only when there are
+// candidates.
+template <class WindingOf>
+int dropWindingTips(TriMesh& mesh, WindingOf&& windingOf, double cellDiagonal) {
+  const TipCandidates c = tipCandidates(mesh, cellDiagonal);
+  if (c.pieces.empty()) return 0;
+  std::vector<char> drop(static_cast<std::size_t>(c.count), 0);
+  for (int p : c.pieces) drop[static_cast<std::size_t>(p)] = 1;
+  const std::vector<double> mean = meanWindings(mesh, c.piece, drop, windingOf());
+  for (int p : c.pieces)
+    drop[static_cast<std::size_t>(p)] = mean[static_cast<std::size_t>(p)] >= kWindingOutside &&
+                                        mean[static_cast<std::size_t>(p)] < kTipWinding;
+  return dropComponents(mesh, c.piece, drop);
 }
 
 // The contours of one field and its guarded versions, sharing the samples' occupancy, their
@@ -166,6 +195,11 @@ class StrayContour {
     return mesh;
   }
   const std::vector<Vec<3>>& strays() const { return kept_.strays; }
+  // dropWindingTips on the final contour.
+  int dropTips(TriMesh& mesh) {
+    if (vertexConnectedComponentCount(mesh) <= 1) return 0;
+    return dropWindingTips(mesh, [&]() -> const CloudWinding<3>& { return *winding(); }, h_.norm());
+  }
   // The field guarded around every stray found so far (those of the last contour added).
   std::unique_ptr<WindingGuardField> guard(const ImplicitField<3>& field) {
     for (const Vec<3>& p : kept_.strays) region_.add(p);
@@ -316,6 +350,8 @@ TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, c
     if (guarded) *guarded = std::move(guard);
     ++out.rounds;
   }
+  const int tips = contours.dropTips(mesh);
+  if (report) report->droppedTips += tips;
   return mesh;
 }
 

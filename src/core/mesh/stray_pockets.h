@@ -19,6 +19,11 @@
 //     region so far count, with f on the other side of a decided winding number along their
 //     own grid edge or at a corner of the cell-sized cube about them (else a guard would change
 //     nothing).
+//  3. after the rounds below, pieces that could be tips a grid cut off a part thinner than a
+//     cell (cut_tips.h: small, within a cell diagonal of the largest) whose mean winding number
+//     is below kTipWinding (and not below kWindingOutside) are left out: a true surface has
+//     about ½, the tip of a thin part less (the dino's claws 0.27–0.41, the Stanford dragon's
+//     fin tips 0.34–0.35). They count in MarchingReport::droppedTips.
 // Then, if the contour kept has strays, f's sign is overruled by the winding number within
 // kGuardCells cell diagonals of each stray (winding_guard_field.h) and the cells about them are
 // contoured again (contour_patch.h; the whole grid when they are many or a seam stays open),
@@ -42,6 +47,7 @@ inline constexpr double kGuardCells = 3.0;
 inline constexpr int kGuardRounds = 2;
 inline constexpr double kMaxStrayShare = 0.01;
 inline constexpr double kPieceInside = 0.6;
+inline constexpr double kTipWinding = 0.45;
 
 struct StrayReport {
   int strayVertices = 0;  // strays of the first contour

@@ -1,16 +1,19 @@
 // Contouring without stray pockets (stray_pockets.h, winding_guard_field.h): pieces of a contour
 // that lie inside or outside the samples' surface by their winding number are left out, a pocket
-// joined to the surface is contoured again with the winding number's side, and true pieces,
-// fields without no-data regions and sparse samples are left alone.
+// joined to the surface is contoured again with the winding number's side, a small piece beside
+// the surface with a thin part's winding number goes as a cut-off tip, and true pieces, fields
+// without no-data regions and sparse samples are left alone.
 
 #include <doctest/doctest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/mesh/stray_pockets.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/mesh/winding_guard_field.h"
+#include "core/points/cloud_winding.h"
 #include "core/shapes/presets.h"
 #include "support/triangle_set.h"
 
@@ -162,4 +165,88 @@ TEST_CASE("stray pockets: fields without no-data regions and sparse samples are 
   mesh = contourWithoutStrays(f, kBox, grid(32), sparse, nullptr, &stray, nullptr);
   CHECK(mesh.triangles == plain.triangles);
   CHECK(stray.droppedPieces == 0);
+}
+
+namespace {
+
+// The sphere's samples plus a fin of two sheets 0.04 apart (z = ±0.02, outward normals) over
+// x ∈ [0.9, 1.3], y ∈ [−0.2, 0.2] at about the sphere's spacing: a part thinner than the
+// samples' softening, whose winding number stays well below ½.
+HermiteSamples<3> sphereAndFinSamples() {
+  const HermiteSamples<3> sphere = sphereSamples();
+  std::vector<Vec<3>> p, n;
+  for (int i = 0; i < 9; ++i)
+    for (int j = 0; j < 9; ++j)
+      for (const double side : {-1.0, 1.0}) {
+        p.emplace_back(0.9 + 0.05 * i, -0.2 + 0.05 * j, 0.02 * side);
+        n.emplace_back(0, 0, side);
+      }
+  HermiteSamples<3> out;
+  out.points.resize(3, sphere.size() + static_cast<Eigen::Index>(p.size()));
+  out.normals.resize(3, out.points.cols());
+  out.points.leftCols(sphere.size()) = sphere.points;
+  out.normals.leftCols(sphere.size()) = sphere.normals;
+  for (size_t k = 0; k < p.size(); ++k) {
+    out.points.col(sphere.size() + static_cast<Eigen::Index>(k)) = p[k];
+    out.normals.col(sphere.size() + static_cast<Eigen::Index>(k)) = n[k];
+  }
+  return out;
+}
+
+// The mean winding number of the mesh's vertices beyond x = 1.05 (the bead's).
+double beadWinding(const TriMesh& mesh, const HermiteSamples<3>& samples) {
+  const CloudWinding<3> winding(samples.points, samples.normals);
+  double sum = 0;
+  int count = 0;
+  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
+    if (mesh.vertices(0, v) > 1.05) sum += winding.at(Vec<3>(mesh.vertices.col(v))), ++count;
+  return count > 0 ? sum / count : -1;
+}
+
+}  // namespace
+
+TEST_CASE("stray pockets: a small piece beside the surface with a thin part's winding number is a cut-off tip") {
+  // The field is the ball and a bead of radius 0.045 at (1.12, 0.02, 0.01), 0.075 off the sphere
+  // (a cell diagonal at 48³ is 0.115) and holding one grid point: the tip of the fin, cut off
+  // from the body as a grid cuts a part thinner than a cell.
+  BallWithExtras f;
+  f.blobs = {{Vec<3>(1.12, 0.02, 0.01), 0.045}};
+  const TriMesh plain = marchingCubes(f, kBox, grid(48));
+  REQUIRE(connectedComponentCount(plain) == 2);
+  const HermiteSamples<3> samples = sphereAndFinSamples();
+  const double w = beadWinding(plain, samples);
+  REQUIRE(w >= kWindingOutside);  // neither outside the samples' surface …
+  REQUIRE(w < kTipWinding);       // … nor on it (½): a thin part's
+  MarchingReport report;
+  StrayReport stray;
+  const TriMesh mesh = contourWithoutStrays(f, kBox, grid(48), samples, &report, &stray, nullptr);
+  CHECK(report.droppedTips == 1);
+  CHECK(stray.droppedPieces == 0);
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(checkMesh(mesh).closedManifold());
+  CHECK(maxOffSphere(mesh) < 0.01);
+}
+
+TEST_CASE("stray pockets: a small true piece beside the surface stays") {
+  // A bead of radius 0.09, 0.07 off the sphere and sampled densely enough to close it (1000
+  // samples, a fifth of the sphere's spacing): its winding number is about ½.
+  const Vec<3> centre(1.16, 0.02, 0.01);
+  BallWithExtras f;
+  f.blobs = {{centre, 0.09}};
+  HermiteSamples<3> samples = sphereSamples();
+  const HermiteSamples<3> bead = makePreset3d("sphere", 1000);
+  const Eigen::Index n = samples.size();
+  samples.points.conservativeResize(3, n + bead.size());
+  samples.normals.conservativeResize(3, n + bead.size());
+  samples.points.rightCols(bead.size()) = (bead.points * 0.09).colwise() + centre;
+  samples.normals.rightCols(bead.size()) = bead.normals;
+  const TriMesh plain = marchingCubes(f, kBox, grid(48));
+  REQUIRE(connectedComponentCount(plain) == 2);
+  REQUIRE(beadWinding(plain, samples) >= kTipWinding);
+  MarchingReport report;
+  StrayReport stray;
+  const TriMesh mesh = contourWithoutStrays(f, kBox, grid(48), samples, &report, &stray, nullptr);
+  CHECK(report.droppedTips == 0);
+  CHECK(stray.droppedPieces == 0);
+  CHECK(connectedComponentCount(mesh) == 2);
 }
