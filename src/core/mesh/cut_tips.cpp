@@ -35,14 +35,18 @@ Pieces piecesOf(const TriMesh& mesh) {
   return p;
 }
 
-// The vertices of piece `which` (each once).
-std::vector<int> verticesOf(const TriMesh& mesh, const Pieces& p, int which) {
-  std::vector<int> out;
-  for (int t = 0; t < mesh.triangleCount(); ++t)
-    if (p.of[static_cast<size_t>(t)] == which)
-      for (int k = 0; k < 3; ++k) out.push_back(mesh.triangles(k, t));
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+// The vertices of each piece `wanted` says yes to (each once), in one pass over the triangles.
+std::vector<std::vector<int>> verticesOf(const TriMesh& mesh, const Pieces& p, const std::vector<char>& wanted) {
+  std::vector<std::vector<int>> out(wanted.size());
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const size_t i = static_cast<size_t>(p.of[static_cast<size_t>(t)]);
+    if (wanted[i])
+      for (int k = 0; k < 3; ++k) out[i].push_back(mesh.triangles(k, t));
+  }
+  for (std::vector<int>& v : out) {
+    std::sort(v.begin(), v.end());
+    v.erase(std::unique(v.begin(), v.end()), v.end());
+  }
   return out;
 }
 
@@ -62,17 +66,22 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   const Pieces p = piecesOf(mesh);
   c.piece = p.of;
   c.count = static_cast<int>(p.size.size());
-  std::vector<int> largest;  // its vertices, found when some piece is small
+  std::vector<char> small(static_cast<size_t>(c.count), 0);
+  for (int i = 0; i < c.count; ++i)
+    small[static_cast<size_t>(i)] = i != p.largest && p.size[static_cast<size_t>(i)] <= kTipShare * mesh.triangleCount();
+  if (std::find(small.begin(), small.end(), 1) == small.end()) return c;
+  std::vector<char> wanted = small;
+  wanted[static_cast<size_t>(p.largest)] = 1;
+  const std::vector<std::vector<int>> vertices = verticesOf(mesh, p, wanted);
   for (int i = 0; i < c.count; ++i) {
-    if (i == p.largest || p.size[static_cast<size_t>(i)] > kTipShare * mesh.triangleCount()) continue;
+    if (!small[static_cast<size_t>(i)]) continue;
     Box<3> grown = p.box[static_cast<size_t>(i)];
     grown.lo.array() -= cellDiagonal;
     grown.hi.array() += cellDiagonal;
-    if (largest.empty()) largest = verticesOf(mesh, p, p.largest);
-    std::vector<int> near;
-    for (int v : largest)
+    std::vector<int> near;  // the largest piece's vertices in reach
+    for (int v : vertices[static_cast<size_t>(p.largest)])
       if (grown.contains(mesh.vertices.col(v))) near.push_back(v);
-    if (!within(mesh, verticesOf(mesh, p, i), near, cellDiagonal)) continue;
+    if (!within(mesh, vertices[static_cast<size_t>(i)], near, cellDiagonal)) continue;
     c.pieces.push_back(i);
     c.reach.push_back(grown);
   }

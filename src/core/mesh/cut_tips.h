@@ -4,13 +4,16 @@
 // Where a part is thinner than a cell (a fin, a claw), the grid can step over its neck and the
 // tip comes out as a small closed piece of its own, about a sample spacing from the rest — a
 // finer grid moves the cut but need not remove it (the Stanford dragon's fins at 256³ and 512³).
-// Such a piece is not a part of the object: the samples between it and the body (anchors the
-// grid missed, marching_anchors.h) say the surface goes on there. It is left out when it is
+// Such a piece is not a separate part of the object: the samples between it and the body
+// (anchors the grid missed, marching_anchors.h) say the surface goes on there. It is left out
+// when it is
 //   - not the largest piece, and at most kTipShare of the triangles;
 //   - within one cell diagonal of the largest piece (a vertex of each that close);
 //   - within one cell diagonal of a sample a grid misses (the uniform one or, when the mesh is
 //     the refined grid's, that one).
 // A small piece that is really separate has no missed sample at its side, or lies farther off.
+// The first two make the candidates that the stray-pocket review also tests by their winding
+// number (stray_pockets.h), where the neck's samples sit in cells with a sign change.
 
 #include <vector>
 
