@@ -74,6 +74,23 @@ double maxOffSphere(const TriMesh& mesh) {
   return (mesh.vertices.colwise().norm().array() - 1.0).abs().maxCoeff();
 }
 
+// The mesh is the unit sphere alone: one closed piece, within 0.01 of it.
+void checkSphereAlone(const TriMesh& mesh) {
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(checkMesh(mesh).closedManifold());
+  CHECK(maxOffSphere(mesh) < 0.01);
+}
+
+// `samples` with the columns of `points` and `normals` appended.
+HermiteSamples<3> withSamples(HermiteSamples<3> samples, const Points<3>& points, const Points<3>& normals) {
+  const Eigen::Index n = samples.size();
+  samples.points.conservativeResize(3, n + points.cols());
+  samples.normals.conservativeResize(3, n + points.cols());
+  samples.points.rightCols(points.cols()) = points;
+  samples.normals.rightCols(points.cols()) = normals;
+  return samples;
+}
+
 }  // namespace
 
 TEST_CASE("stray pockets: a void inside and a blob outside are left out; the sphere stays") {
@@ -85,9 +102,7 @@ TEST_CASE("stray pockets: a void inside and a blob outside are left out; the sph
   const TriMesh mesh = contourWithoutStrays(f, kBox, grid(48), sphereSamples(), nullptr, &stray, nullptr);
   CHECK(stray.droppedPieces == 2);
   CHECK(stray.rounds == 0);
-  CHECK(connectedComponentCount(mesh) == 1);
-  CHECK(checkMesh(mesh).closedManifold());
-  CHECK(maxOffSphere(mesh) < 0.01);
+  checkSphereAlone(mesh);
 }
 
 TEST_CASE("stray pockets: a void joined to the surface by a tunnel is contoured away with the winding number") {
@@ -173,24 +188,15 @@ namespace {
 // x ∈ [0.9, 1.3], y ∈ [−0.2, 0.2] at about the sphere's spacing: a part thinner than the
 // samples' softening, whose winding number stays well below ½.
 HermiteSamples<3> sphereAndFinSamples() {
-  const HermiteSamples<3> sphere = sphereSamples();
-  std::vector<Vec<3>> p, n;
+  Points<3> p(3, 162), n(3, 162);
+  Eigen::Index k = 0;
   for (int i = 0; i < 9; ++i)
     for (int j = 0; j < 9; ++j)
       for (const double side : {-1.0, 1.0}) {
-        p.emplace_back(0.9 + 0.05 * i, -0.2 + 0.05 * j, 0.02 * side);
-        n.emplace_back(0, 0, side);
+        p.col(k) = Vec<3>(0.9 + 0.05 * i, -0.2 + 0.05 * j, 0.02 * side);
+        n.col(k++) = Vec<3>(0, 0, side);
       }
-  HermiteSamples<3> out;
-  out.points.resize(3, sphere.size() + static_cast<Eigen::Index>(p.size()));
-  out.normals.resize(3, out.points.cols());
-  out.points.leftCols(sphere.size()) = sphere.points;
-  out.normals.leftCols(sphere.size()) = sphere.normals;
-  for (size_t k = 0; k < p.size(); ++k) {
-    out.points.col(sphere.size() + static_cast<Eigen::Index>(k)) = p[k];
-    out.normals.col(sphere.size() + static_cast<Eigen::Index>(k)) = n[k];
-  }
-  return out;
+  return withSamples(sphereSamples(), p, n);
 }
 
 // The mean winding number of the mesh's vertices beyond x = 1.05 (the bead's).
@@ -222,9 +228,7 @@ TEST_CASE("stray pockets: a small piece beside the surface with a thin part's wi
   const TriMesh mesh = contourWithoutStrays(f, kBox, grid(48), samples, &report, &stray, nullptr);
   CHECK(report.droppedTips == 1);
   CHECK(stray.droppedPieces == 0);
-  CHECK(connectedComponentCount(mesh) == 1);
-  CHECK(checkMesh(mesh).closedManifold());
-  CHECK(maxOffSphere(mesh) < 0.01);
+  checkSphereAlone(mesh);
 }
 
 TEST_CASE("stray pockets: a small true piece beside the surface stays") {
@@ -233,13 +237,9 @@ TEST_CASE("stray pockets: a small true piece beside the surface stays") {
   const Vec<3> centre(1.16, 0.02, 0.01);
   BallWithExtras f;
   f.blobs = {{centre, 0.09}};
-  HermiteSamples<3> samples = sphereSamples();
   const HermiteSamples<3> bead = makePreset3d("sphere", 1000);
-  const Eigen::Index n = samples.size();
-  samples.points.conservativeResize(3, n + bead.size());
-  samples.normals.conservativeResize(3, n + bead.size());
-  samples.points.rightCols(bead.size()) = (bead.points * 0.09).colwise() + centre;
-  samples.normals.rightCols(bead.size()) = bead.normals;
+  const HermiteSamples<3> samples =
+      withSamples(sphereSamples(), (bead.points * 0.09).colwise() + centre, bead.normals);
   const TriMesh plain = marchingCubes(f, kBox, grid(48));
   REQUIRE(connectedComponentCount(plain) == 2);
   REQUIRE(beadWinding(plain, samples) >= kTipWinding);
