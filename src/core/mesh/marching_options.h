@@ -90,7 +90,8 @@ struct MarchingReport {
   // uniform grid cell, left out of the mesh (open_slivers.h).
   int droppedSlivers = 0;
   // Small pieces beside samples the grid misses: tips of parts thinner than a cell that it cut
-  // off, left out of the mesh (cut_tips.h).
+  // off, left out of the mesh (cut_tips.h). contourWithoutStrays adds those its winding number
+  // shows (stray_pockets.h).
   int droppedTips = 0;
 };
 
