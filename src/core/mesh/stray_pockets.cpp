@@ -24,6 +24,13 @@ namespace {
 // instead, so that "far" keeps meaning a few spacings.
 constexpr double kOccupancySpacing = 1.3;
 constexpr int kPieceProbes = 64;         // vertices of a piece whose winding number is averaged
+// A vertex with no sample within kNearFar spacings whose samples within kPlaneReach spacings
+// put it kPlaneFar spacings off their tangent planes on average is far too (offTheirPlanes).
+// On 200 000-sample meshes 0.1–0.8 % of the vertices pass the first test and 0–6 the second.
+constexpr double kNearFar = 1.2;
+constexpr double kPlaneReach = 2.5;
+constexpr double kPlaneFar = 0.5;
+constexpr std::size_t kRoughWindingLimit = 64;
 // Pieces with more than this share of the mesh's triangles stay whatever their winding number: a
 // stray pocket is small, and a large piece off ½ means samples whose normals disagree (an
 // inconsistently oriented or self-intersecting source), not a pocket.
@@ -66,15 +73,74 @@ std::vector<char> largestPieceVertices(const TriMesh& mesh) {
   return on;
 }
 
+// The winding number at x with every sample standing for the same area (A / N, the contour's
+// area A): no k-nearest-neighbour pass, so a few points cost one sum over the samples each. A
+// filter only: a vertex it calls decided is asked the samples' winding number.
+double roughWinding(const HermiteSamples<3>& samples, double spacing, const Vec<3>& x) {
+  const double eps2 = 0.25 * spacing * spacing;
+  double sum = 0;
+  for (Eigen::Index i = 0; i < samples.points.cols(); ++i) {
+    const Vec<3> q = samples.points.col(i) - x;
+    const double r2 = q.squaredNorm() + eps2;
+    sum += q.dot(samples.normals.col(i)) / (r2 * std::sqrt(r2));
+  }
+  return spacing * spacing * sum / (4 * M_PI);
+}
+
+// Whether x, with no sample within kNearFar spacings, lies on average kPlaneFar spacings or more
+// off the tangent planes of the samples within kPlaneReach spacings: a surface that strayed
+// between the samples (a cap past the tip of a thin fin, a dent into the solid), not one passing
+// between them, which stays within a fraction of a spacing of their planes.
+bool offTheirPlanes(const HermiteSamples<3>& samples, const OccupiedCells& bySpacing, double spacing, const Vec<3>& x,
+                    std::vector<int>& near) {
+  bySpacing.samplesWithin(x, kNearFar * spacing, near, 1);
+  if (!near.empty()) return false;
+  bySpacing.samplesWithin(x, kPlaneReach * spacing, near);
+  if (near.empty()) return false;  // the occupancy test's far vertices
+  double sum = 0;
+  for (int i : near) sum += samples.normals.col(i).dot(x - samples.points.col(i));
+  return std::abs(sum / static_cast<double>(near.size())) >= kPlaneFar * spacing;
+}
+
+// The vertices that are off their samples' planes (offTheirPlanes, in parallel) and whose rough
+// winding number is decided (the occupancy's far vertices are not among them); all of them,
+// unfiltered, when they are more than kRoughWindingLimit (CGAL's boeing, whose wings are thinner
+// than the sampling, has thousands: one sum over the samples each took 5 s).
+std::vector<Eigen::Index> offPlaneVertices(const TriMesh& mesh, const HermiteSamples<3>& samples,
+                                           const OccupiedCells& bySpacing, double spacing) {
+  const Eigen::Index n = mesh.vertices.cols();
+  std::vector<char> off(static_cast<std::size_t>(n), 0);
+#pragma omp parallel
+  {
+    std::vector<int> near;
+#pragma omp for schedule(static)
+    for (Eigen::Index v = 0; v < n; ++v)
+      off[static_cast<std::size_t>(v)] = offTheirPlanes(samples, bySpacing, spacing, mesh.vertices.col(v), near);
+  }
+  std::vector<Eigen::Index> out;
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (off[static_cast<std::size_t>(v)]) out.push_back(v);
+  if (out.size() > kRoughWindingLimit) return out;  // the samples' winding number is cheaper for so many
+  out.erase(std::remove_if(out.begin(), out.end(),
+                           [&](Eigen::Index v) { return !decided(roughWinding(samples, spacing, mesh.vertices.col(v))); }),
+            out.end());
+  return out;
+}
+
 // The vertices of the mesh's largest piece far from the samples whose winding number is decided:
-// a pocket joined to the surface (a piece of its own is the piece rule's). `windingOf()` gives the
-// winding number; it is called only when some vertex is far (a clean contour never builds it).
+// a pocket joined to the surface (a piece of its own is the piece rule's). Far means the
+// occupancy's test, or off the samples' planes (offPlaneVertices; `bySpacing` holds the samples
+// in cells of one spacing). `windingOf()` gives the winding number; it is called only when some
+// vertex is far (a clean contour never builds it).
 template <class WindingOf>
-std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const OccupiedCells& occupied, WindingOf&& windingOf) {
-  std::vector<Eigen::Index> far;
+std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& samples, const OccupiedCells& occupied,
+                                  const OccupiedCells& bySpacing, double spacing, WindingOf&& windingOf) {
+  std::vector<Eigen::Index> far = offPlaneVertices(mesh, samples, bySpacing, spacing);
   for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
     if (occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
   if (far.empty()) return {};
+  std::sort(far.begin(), far.end());
+  far.erase(std::unique(far.begin(), far.end()), far.end());
   const std::vector<char> main = largestPieceVertices(mesh);
   far.erase(std::remove_if(far.begin(), far.end(), [&](Eigen::Index v) { return !main[static_cast<std::size_t>(v)]; }),
             far.end());
@@ -238,11 +304,17 @@ class StrayContour {
 
   // Leaves out stray pieces and finds the strays of a contour on `lines`.
   void review(TriMesh& mesh, const GridLines<3>& lines) {
-    if (!occupied_) occupied_.emplace(samples_.points, box_.lo, occupancyCell(mesh));
+    if (!occupied_) {
+      spacing_ = std::sqrt(surfaceArea(mesh) / static_cast<double>(samples_.size()));
+      occupied_.emplace(samples_.points, box_.lo, occupancyCell());
+      // Cells of one spacing for offTheirPlanes: its balls then touch at most 4³ and 6³ cells
+      // whatever the grid (the occupancy cells shrink with it).
+      bySpacing_.emplace(samples_.points, box_.lo, spacing_ > 0 ? spacing_ : cell_);
+    }
     Review r;
     const auto windingOf = [&]() -> const CloudWinding<3>& { return *winding(); };
     if (vertexConnectedComponentCount(mesh) > 1) r.dropped = dropStrayPieces(mesh, windingOf);
-    r.strays = strayVertices(mesh, *occupied_, windingOf);
+    r.strays = strayVertices(mesh, samples_, *occupied_, *bySpacing_, spacing_, windingOf);
     // Only strays a guard can still act on: new, and with f on the wrong side near them.
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p, lines); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
@@ -272,9 +344,8 @@ class StrayContour {
   }
 
   // Half the grid's cell, at most kOccupancySpacing · √(A / N) for the contour's area A.
-  double occupancyCell(const TriMesh& mesh) const {
-    const double spacing = std::sqrt(surfaceArea(mesh) / static_cast<double>(samples_.size()));
-    return spacing > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing) : 0.5 * cell_;
+  double occupancyCell() const {
+    return spacing_ > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing_) : 0.5 * cell_;
   }
 
   // Whether f is on the other side of a decided winding number along p's grid edge (a quarter,
@@ -320,6 +391,8 @@ class StrayContour {
   Box<3> box_;
   MarchingOptions options_;
   std::optional<OccupiedCells> occupied_;  // built at the first review, from its contour's area
+  double spacing_ = 0;                     // √(A / N) for that contour's area A
+  std::optional<OccupiedCells> bySpacing_;  // the samples in cells of one spacing, built with it
   double cell_;  // the contour grid's cell size (its longest axis's)
   Vec<3> h_;     // the uniform grid's cell
   GridLines<3> lines_;  // those of the last contour (refined ones when it was refined)

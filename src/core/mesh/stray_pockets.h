@@ -14,8 +14,9 @@
 //     claws), so the bound on that side is the stray's;
 //  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
-//     spacings √(A / N)) whose winding number is decided (above kWindingInside or below
-//     kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
+//     spacings √(A / N)), or with none within 1.2 spacings and half a spacing or more off the
+//     tangent planes of the samples within 2.5 on average, whose winding number is decided
+//     (above kWindingInside or below kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
 //     region so far count, with f on the other side of a decided winding number along their
 //     own grid edge or at a corner of the cell-sized cube about them (else a guard would change
 //     nothing).

@@ -10,6 +10,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/mesh/occupied_cells.h"
 #include "core/mesh/stray_pockets.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/mesh/winding_guard_field.h"
@@ -249,4 +250,26 @@ TEST_CASE("stray pockets: a small true piece beside the surface stays") {
   CHECK(report.droppedTips == 0);
   CHECK(stray.droppedPieces == 0);
   CHECK(connectedComponentCount(mesh) == 2);
+}
+
+TEST_CASE("stray pockets: a dent nearer the samples than the occupancy test sees is contoured away") {
+  // A void of radius 0.28 centred 0.2 above the north pole: a crater 0.08 deep (1.7 sample
+  // spacings of about 0.046) and 0.2 wide. On the 24³ grid the occupancy cells are 1.3 spacings,
+  // so the rim's samples lie within the 3 × 3 × 3 cells about its floor: only the floor's
+  // distance to the samples' tangent planes shows it.
+  BallWithExtras f;
+  f.voids = {{Vec<3>(0, 0, 1.2), 0.28}};
+  const HermiteSamples<3> samples = sphereSamples();
+  const TriMesh plain = marchingCubes(f, kBox, grid(24));
+  REQUIRE(maxOffSphere(plain) > 0.06);
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const OccupiedCells occupied(samples.points, kBox.lo, std::min(0.5 * 3.2 / 24, 1.3 * spacing));
+  REQUIRE_FALSE(occupied.farFromSamples(Vec<3>(0, 0, 0.93)));
+  StrayReport stray;
+  const TriMesh mesh = contourWithoutStrays(f, kBox, grid(24), samples, nullptr, &stray, nullptr);
+  CHECK(stray.strayVertices > 0);
+  CHECK(stray.rounds >= 1);
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(checkMesh(mesh).closedManifold());
+  CHECK(maxOffSphere(mesh) < 0.5 * maxOffSphere(plain));
 }
