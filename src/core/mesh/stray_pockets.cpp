@@ -96,7 +96,7 @@ bool offTheirPlanes(const HermiteSamples<3>& samples, const OccupiedCells& bySpa
   bySpacing.samplesWithin(x, kNearFar * spacing, near, 1);
   if (!near.empty()) return false;
   bySpacing.samplesWithin(x, kPlaneReach * spacing, near);
-  if (near.empty()) return false;  // the occupancy test's far vertices
+  if (near.empty()) return false;  // no plane to measure against: left to the occupancy test
   double sum = 0;
   for (int i : near) sum += samples.normals.col(i).dot(x - samples.points.col(i));
   return std::abs(sum / static_cast<double>(near.size())) >= kPlaneFar * spacing;
