@@ -3,7 +3,6 @@
 #include "core/mesh/cut_tips.h"
 
 #include <algorithm>
-#include <cmath>
 #include <vector>
 
 namespace hermite {
@@ -11,27 +10,22 @@ namespace hermite {
 namespace {
 
 struct Pieces {
-  std::vector<int> of;     // per triangle
-  std::vector<int> size;   // triangles per piece
-  std::vector<Box<3>> box;
+  std::vector<int> of;      // per triangle
+  std::vector<int> size;    // triangles per piece
+  std::vector<Box<3>> box;  // per piece, when there are several
   int largest = 0;
 };
 
+// Marching cubes' pieces meet at no vertex, so the vertex union-find (no edge sort) finds them;
+// the sizes and boxes only when there is more than one.
 Pieces piecesOf(const TriMesh& mesh) {
   Pieces p;
   int count = 0;
-  p.of = triangleComponents(mesh, &count);
+  p.of = vertexConnectedComponents(mesh, &count);
   p.size.assign(static_cast<size_t>(count), 0);
-  p.box.assign(static_cast<size_t>(count), Box<3>{Vec<3>::Constant(HUGE_VAL), Vec<3>::Constant(-HUGE_VAL)});
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const size_t i = static_cast<size_t>(p.of[static_cast<size_t>(t)]);
-    ++p.size[i];
-    for (int k = 0; k < 3; ++k) {
-      p.box[i].lo = p.box[i].lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
-      p.box[i].hi = p.box[i].hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
-    }
-  }
+  for (int c : p.of) ++p.size[static_cast<size_t>(c)];
   p.largest = static_cast<int>(std::max_element(p.size.begin(), p.size.end()) - p.size.begin());
+  if (count > 1) p.box = componentBoxes(mesh, p.of, count);
   return p;
 }
 
@@ -66,6 +60,7 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   const Pieces p = piecesOf(mesh);
   c.piece = p.of;
   c.count = static_cast<int>(p.size.size());
+  if (c.count <= 1) return c;
   std::vector<char> small(static_cast<size_t>(c.count), 0);
   for (int i = 0; i < c.count; ++i)
     small[static_cast<size_t>(i)] = i != p.largest && p.size[static_cast<size_t>(i)] <= kTipShare * mesh.triangleCount();

@@ -27,7 +27,7 @@ inline constexpr double kTipShare = 0.01;
 // The pieces of a mesh that could be such tips: not the largest, at most kTipShare of the
 // triangles, with a vertex within `cellDiagonal` of one of the largest piece.
 struct TipCandidates {
-  std::vector<int> piece;      // per triangle: its piece (triangleComponents)
+  std::vector<int> piece;      // per triangle: its piece (vertexConnectedComponents)
   int count = 0;               // pieces
   std::vector<int> pieces;     // the candidates
   std::vector<Box<3>> reach;   // per candidate: its bounding box grown by `cellDiagonal`

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -38,8 +37,6 @@ constexpr double kPieceShare = 0.05;
 // A guard round contours again only the cells about the new strays while they are at most this
 // share of the grid's; beyond it, the whole grid (contour_patch.h).
 constexpr double kMaxPatchShare = 0.25;
-
-constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 bool overlap(const Box<3>& a, const Box<3>& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
@@ -154,20 +151,6 @@ std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& 
   return strays;
 }
 
-// The bounding box of each of the mesh's `count` pieces (`piece`: one per triangle).
-std::vector<Box<3>> pieceBoxes(const TriMesh& mesh, const std::vector<int>& piece, int count) {
-  std::vector<Box<3>> boxes(static_cast<std::size_t>(count),
-                            Box<3>{Vec<3>::Constant(kInfinity), Vec<3>::Constant(-kInfinity)});
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    Box<3>& b = boxes[static_cast<std::size_t>(piece[static_cast<std::size_t>(t)])];
-    for (int k = 0; k < 3; ++k) {
-      b.lo = b.lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
-      b.hi = b.hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
-    }
-  }
-  return boxes;
-}
-
 // Per piece (`piece`: one per triangle) where `wanted`, the mean winding number of up to
 // kPieceProbes of its vertices; 0 elsewhere.
 std::vector<double> meanWindings(const TriMesh& mesh, const std::vector<int>& piece, const std::vector<char>& wanted,
@@ -208,7 +191,7 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
     drop[static_cast<std::size_t>(c)] = drop[static_cast<std::size_t>(c)] &&
                                         (mean[static_cast<std::size_t>(c)] > kPieceInside ||
                                          mean[static_cast<std::size_t>(c)] < kWindingOutside);
-  const std::vector<Box<3>> boxes = pieceBoxes(mesh, comp, pieces.count());
+  const std::vector<Box<3>> boxes = componentBoxes(mesh, comp, pieces.count());
   dropComponents(mesh, comp, drop);
   std::vector<Box<3>> out;
   for (int c = 0; c < pieces.count(); ++c)

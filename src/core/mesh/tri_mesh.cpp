@@ -193,6 +193,19 @@ int vertexConnectedComponentCount(const TriMesh& mesh) {
   return n;
 }
 
+std::vector<Box<3>> componentBoxes(const TriMesh& mesh, const std::vector<int>& label, int count) {
+  std::vector<Box<3>> boxes(static_cast<std::size_t>(count),
+                            Box<3>{Vec<3>::Constant(HUGE_VAL), Vec<3>::Constant(-HUGE_VAL)});
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    Box<3>& b = boxes[static_cast<std::size_t>(label[static_cast<std::size_t>(t)])];
+    for (int k = 0; k < 3; ++k) {
+      b.lo = b.lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
+      b.hi = b.hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
+    }
+  }
+  return boxes;
+}
+
 int dropComponents(TriMesh& mesh, const std::vector<int>& label, const std::vector<char>& drop) {
   int dropped = 0;
   for (char d : drop) dropped += d != 0;

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/base/geometry.h"
+
 namespace hermite {
 
 struct TriMesh {
@@ -58,6 +60,10 @@ void dropUnusedVertices(TriMesh& mesh);
 // as triangleComponents or vertexConnectedComponents give), then the vertices no triangle uses;
 // the rest keep their order. Returns how many components were removed.
 int dropComponents(TriMesh& mesh, const std::vector<int>& label, const std::vector<char>& drop);
+
+// The bounding box of each of the `count` components (`label`: one per triangle, as for
+// dropComponents).
+std::vector<Box<3>> componentBoxes(const TriMesh& mesh, const std::vector<int>& label, int count);
 
 // ---- normals -------------------------------------------------------------------------------
 
