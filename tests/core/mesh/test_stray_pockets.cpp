@@ -154,11 +154,7 @@ TEST_CASE("stray pockets: a second true piece stays") {
   BallWithExtras two;
   two.blobs = {{Vec<3>(2.5, 0, 0), 1.0}};
   const HermiteSamples<3> one = sphereSamples();
-  HermiteSamples<3> both;
-  both.points.resize(3, 2 * one.size());
-  both.normals.resize(3, 2 * one.size());
-  both.points << one.points, (one.points.colwise() + Vec<3>(2.5, 0, 0));
-  both.normals << one.normals, one.normals;
+  const HermiteSamples<3> both = withSamples(one, one.points.colwise() + Vec<3>(2.5, 0, 0), one.normals);
   const Box<3> box{Vec<3>(-1.5, -1.5, -1.5), Vec<3>(4, 1.5, 1.5)};
   StrayReport stray;
   const TriMesh mesh = contourWithoutStrays(two, box, grid(64), both, nullptr, &stray, nullptr);
