@@ -24,8 +24,8 @@ namespace {
 constexpr double kOccupancySpacing = 1.3;
 constexpr int kPieceProbes = 64;         // vertices of a piece whose winding number is averaged
 // A vertex with no sample within kNearFar spacings whose samples within kPlaneReach spacings
-// put it kPlaneFar spacings off their tangent planes on average is far too (offTheirPlanes).
-// On 200 000-sample meshes 0.1–0.8 % of the vertices pass the first test and 0–6 the second.
+// put it kPlaneFar spacings off their tangent planes on average is far too (offTheirPlanes;
+// how many pass each test: docs/maths.md, Stray pockets).
 constexpr double kNearFar = 1.2;
 constexpr double kPlaneReach = 2.5;
 constexpr double kPlaneFar = 0.5;
@@ -101,8 +101,9 @@ bool offTheirPlanes(const HermiteSamples<3>& samples, const OccupiedCells& bySpa
 
 // The vertices that are off their samples' planes (offTheirPlanes, in parallel) and whose rough
 // winding number is decided (the occupancy's far vertices are not among them); all of them,
-// unfiltered, when they are more than kRoughWindingLimit (CGAL's boeing, whose wings are thinner
-// than the sampling, has thousands: one sum over the samples each took 5 s).
+// unfiltered, when they are more than kRoughWindingLimit: then the samples' winding number, built
+// once, is cheaper than a sum over the samples each (CGAL's boeing, whose wings are thinner than
+// the sampling, has thousands).
 std::vector<Eigen::Index> offPlaneVertices(const TriMesh& mesh, const HermiteSamples<3>& samples,
                                            const OccupiedCells& bySpacing, double spacing) {
   const Eigen::Index n = mesh.vertices.cols();
