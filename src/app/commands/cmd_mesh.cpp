@@ -131,6 +131,10 @@ void appendContourText(const MarchingReport& r, char* line, std::size_t size) {
   if (r.droppedTips > 0)
     std::snprintf(line + used, size - used, "; %d tips of parts thinner than a cell, cut off by the grid, left out",
                   r.droppedTips);
+  used = std::strlen(line);
+  if (r.droppedGaps > 0)
+    std::snprintf(line + used, size - used,
+                  "; %d pockets of gaps thinner than a cell, enclosed by the grid, left out", r.droppedGaps);
 }
 
 // What the winding-number check did (stray_pockets.h), appended to the summary line.

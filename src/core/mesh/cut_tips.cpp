@@ -3,6 +3,8 @@
 #include "core/mesh/cut_tips.h"
 
 #include <algorithm>
+#include <limits>
+#include <utility>
 #include <vector>
 
 namespace hermite {
@@ -44,6 +46,70 @@ std::vector<std::vector<int>> verticesOf(const TriMesh& mesh, const Pieces& p, c
   return out;
 }
 
+// Whether the triangles close up: every undirected edge is used by exactly two of them.
+bool closedUp(const TriMesh& mesh, const std::vector<int>& triangles) {
+  std::vector<std::pair<int, int>> edges;
+  for (int t : triangles)
+    for (int k = 0; k < 3; ++k) {
+      const int a = mesh.triangles(k, t), b = mesh.triangles((k + 1) % 3, t);
+      edges.emplace_back(std::min(a, b), std::max(a, b));
+    }
+  std::sort(edges.begin(), edges.end());
+  for (size_t i = 0; i < edges.size(); i += 2)
+    if (i + 1 >= edges.size() || edges[i] != edges[i + 1] || (i + 2 < edges.size() && edges[i + 2] == edges[i]))
+      return false;
+  return true;
+}
+
+// Whether the piece (its `triangles`) is closed with negative signed volume: a
+// pocket of the outside enclosed by the solid. The volume is taken about one of its vertices (a
+// closed piece's is the same about any point), so that it loses no digits to the offset.
+bool enclosesOutside(const TriMesh& mesh, const std::vector<int>& triangles) {
+  if (triangles.empty() || !closedUp(mesh, triangles)) return false;
+  const Vec<3> o = mesh.vertices.col(mesh.triangles(0, triangles[0]));
+  double volume6 = 0;
+  for (int t : triangles) {
+    const Vec<3> a = mesh.vertices.col(mesh.triangles(0, t)) - o, b = mesh.vertices.col(mesh.triangles(1, t)) - o,
+                 c = mesh.vertices.col(mesh.triangles(2, t)) - o;
+    volume6 += a.dot(b.cross(c));
+  }
+  return volume6 < 0;
+}
+
+Box<3> grownBy(Box<3> box, double d) {
+  box.lo.array() -= d;
+  box.hi.array() += d;
+  return box;
+}
+
+// The triangles of each piece `wanted` says yes to, in one pass.
+std::vector<std::vector<int>> trianglesOf(const TriMesh& mesh, const Pieces& p, const std::vector<char>& wanted) {
+  std::vector<std::vector<int>> out(wanted.size());
+  for (int t = 0; t < mesh.triangleCount(); ++t) {
+    const size_t i = static_cast<size_t>(p.of[static_cast<size_t>(t)]);
+    if (wanted[i]) out[i].push_back(t);
+  }
+  return out;
+}
+
+// Whether a sample within kGapReach cell diagonals d of `reach` (a pocket's box grown by d) lies
+// more than kGapOff d from every vertex of the mesh: on a gap's wall that the grid filled. Every
+// point of a marching-cubes surface is within d of a vertex (its cell's), so a sample on the
+// surface is within d of one.
+bool samplesOffMesh(const TriMesh& mesh, const Points<3>& samples, const Box<3>& reach, double d) {
+  const Box<3> around = grownBy(reach, (kGapReach - 1) * d), vertexBox = grownBy(around, kGapOff * d);
+  std::vector<Vec<3>> near;
+  for (int v = 0; v < mesh.vertexCount(); ++v)
+    if (vertexBox.contains(mesh.vertices.col(v))) near.push_back(mesh.vertices.col(v));
+  for (Eigen::Index i = 0; i < samples.cols(); ++i) {
+    if (!around.contains(samples.col(i))) continue;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const Vec<3>& x : near) nearest = std::min(nearest, (x - samples.col(i)).squaredNorm());
+    if (nearest > kGapOff * kGapOff * d * d) return true;
+  }
+  return false;
+}
+
 // Whether a vertex of `near` lies within d of a vertex of `piece`.
 bool within(const TriMesh& mesh, const std::vector<int>& piece, const std::vector<int>& near, double d) {
   for (int a : piece)
@@ -68,28 +134,37 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   std::vector<char> wanted = small;
   wanted[static_cast<size_t>(p.largest)] = 1;
   const std::vector<std::vector<int>> vertices = verticesOf(mesh, p, wanted);
+  const std::vector<std::vector<int>> triangles = trianglesOf(mesh, p, small);
   for (int i = 0; i < c.count; ++i) {
     if (!small[static_cast<size_t>(i)]) continue;
-    Box<3> grown = p.box[static_cast<size_t>(i)];
-    grown.lo.array() -= cellDiagonal;
-    grown.hi.array() += cellDiagonal;
+    const Box<3> reach = grownBy(p.box[static_cast<size_t>(i)], cellDiagonal);
     std::vector<int> near;  // the largest piece's vertices in reach
     for (int v : vertices[static_cast<size_t>(p.largest)])
-      if (grown.contains(mesh.vertices.col(v))) near.push_back(v);
-    if (!within(mesh, vertices[static_cast<size_t>(i)], near, cellDiagonal)) continue;
+      if (reach.contains(mesh.vertices.col(v))) near.push_back(v);
+    const bool tip = within(mesh, vertices[static_cast<size_t>(i)], near, cellDiagonal);
+    const bool pocket = enclosesOutside(mesh, triangles[static_cast<size_t>(i)]);
+    if (!tip && !pocket) continue;
     c.pieces.push_back(i);
-    c.reach.push_back(grown);
+    c.reach.push_back(reach);
+    c.gap.push_back(pocket);
   }
   return c;
 }
 
-int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal) {
-  if (missed.cols() == 0) return 0;
+int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal, int* gaps, const Points<3>* samples) {
+  if (gaps) *gaps = 0;
+  const bool pockets = samples && samples->cols() > 0;
+  if (missed.cols() == 0 && !pockets) return 0;
   const TipCandidates c = tipCandidates(mesh, cellDiagonal);
   std::vector<char> drop(static_cast<size_t>(c.count), 0);
-  for (size_t k = 0; k < c.pieces.size(); ++k)
-    for (Eigen::Index m = 0; m < missed.cols() && !drop[static_cast<size_t>(c.pieces[k])]; ++m)
-      drop[static_cast<size_t>(c.pieces[k])] = c.reach[k].contains(missed.col(m));
+  for (size_t k = 0; k < c.pieces.size(); ++k) {
+    char& d = drop[static_cast<size_t>(c.pieces[k])];
+    for (Eigen::Index m = 0; m < missed.cols() && !d; ++m) d = c.reach[k].contains(missed.col(m));
+    if (c.gap[k]) {
+      d = d || (pockets && samplesOffMesh(mesh, *samples, c.reach[k], cellDiagonal));
+      if (d && gaps) ++*gaps;
+    }
+  }
   return dropComponents(mesh, c.piece, drop);
 }
 

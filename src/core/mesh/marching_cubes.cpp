@@ -432,11 +432,12 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   // ear) leaves one piece and is not worth a second pass.
   r.refinement = Refinement::OnePiece;
   if (vertexConnectedComponentCount(mesh) <= 1) return mesh;
-  // Pieces beyond the first that are all tips the grid cut off a thin part (cut_tips.h) are left
-  // out after this anyway: a second pass would cost a whole contour for them, and on the
-  // Stanford dragon's fins did not join them (docs/maths.md, Contouring: cut-off tips).
+  // Pieces beyond the first that are all tips the grid cut off a thin part, or pockets it kept of
+  // a thin gap (cut_tips.h), are left out after this anyway: a second pass would cost a whole
+  // contour for them, and on the Stanford dragon's fins and cracks did not join or fill them
+  // (docs/maths.md, Contouring: cut-off tips).
   TriMesh withoutTips = mesh;
-  dropCutTips(withoutTips, columnsOf(*options.anchors, *stillMissed), h.norm());
+  dropCutTips(withoutTips, columnsOf(*options.anchors, *stillMissed), h.norm(), nullptr, options.anchors);
   if (vertexConnectedComponentCount(withoutTips) <= 1) return mesh;
   r.refinement = Refinement::TooLarge;
   std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
@@ -479,9 +480,12 @@ TriMesh marchingCubes(const ImplicitField<3>& field, const Box<3>& box, const Ma
   std::vector<int> missed;
   if (seen) mesh = refineForAnchors(field, f, lines, h, *seen, std::move(mesh), options, report, &refined, &missed);
   if (usedLines) *usedLines = refined ? std::move(*refined) : lines;
-  // Tips of thin parts the grid cut off, beside samples it misses (cut_tips.h).
-  const int tips = seen ? dropCutTips(mesh, columnsOf(*options.anchors, missed), h.norm()) : 0;
-  if (report) report->droppedTips = tips;
+  // Tips of thin parts and pockets of thin gaps the grid cut off, beside samples it misses
+  // (cut_tips.h).
+  int gaps = 0;
+  const int cut = seen ? dropCutTips(mesh, columnsOf(*options.anchors, missed), h.norm(), &gaps, options.anchors) : 0;
+  if (report) report->droppedTips = cut - gaps;
+  if (report) report->droppedGaps = gaps;
   // Pieces cut open where the field has no data that are smaller than a cell face (open_slivers.h).
   const int slivers = dropGridSlivers(mesh, field, h);
   if (report) report->droppedSlivers = slivers;

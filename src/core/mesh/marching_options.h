@@ -93,6 +93,9 @@ struct MarchingReport {
   // off, left out of the mesh (cut_tips.h). contourWithoutStrays adds those its winding number
   // shows (stray_pockets.h).
   int droppedTips = 0;
+  // Small closed pockets of the outside enclosed by the solid beside samples the grid misses:
+  // what the grid kept of a gap thinner than a cell, left out of the mesh (cut_tips.h).
+  int droppedGaps = 0;
 };
 
 }  // namespace hermite

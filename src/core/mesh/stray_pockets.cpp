@@ -200,20 +200,22 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   return out;
 }
 
-// Leaves out the pieces that could be tips the grid cut off a thin part (cut_tips.h) whose mean
+// Leaves out the pieces that could be tips the grid cut off a thin part (cut_tips.h; not its
+// pockets of a gap, whose winding number is above ½) whose mean
 // winding number is at least kWindingOutside (else dropStrayPieces did) and below kTipWinding.
 // Returns how many. `windingOf()` gives the winding number; it is called only when there are
 // candidates.
 template <class WindingOf>
 int dropWindingTips(TriMesh& mesh, WindingOf&& windingOf, double cellDiagonal) {
   const TipCandidates c = tipCandidates(mesh, cellDiagonal);
-  if (c.pieces.empty()) return 0;
   std::vector<char> drop(static_cast<std::size_t>(c.count), 0);
-  for (int p : c.pieces) drop[static_cast<std::size_t>(p)] = 1;
+  for (std::size_t k = 0; k < c.pieces.size(); ++k) drop[static_cast<std::size_t>(c.pieces[k])] = !c.gap[k];
+  if (std::find(drop.begin(), drop.end(), 1) == drop.end()) return 0;
   const std::vector<double> mean = meanWindings(mesh, c.piece, drop, windingOf());
-  for (int p : c.pieces)
-    drop[static_cast<std::size_t>(p)] = mean[static_cast<std::size_t>(p)] >= kWindingOutside &&
-                                        mean[static_cast<std::size_t>(p)] < kTipWinding;
+  for (std::size_t k = 0; k < c.pieces.size(); ++k) {
+    const std::size_t p = static_cast<std::size_t>(c.pieces[k]);
+    drop[p] = !c.gap[k] && mean[p] >= kWindingOutside && mean[p] < kTipWinding;
+  }
   return dropComponents(mesh, c.piece, drop);
 }
 

@@ -153,3 +153,130 @@ TEST_CASE("marching cubes: a refined pass runs for a piece that is no tip, and t
   CHECK(connectedComponentCount(mesh) == 2);  // the ball and the moon
   CHECK(mesh.vertices.row(0).maxCoeff() < 0.5);
 }
+
+namespace {
+
+// A unit sphere with a pocket of the outside inside it: a ball of radius 0.05 (48 triangles)
+// turned inside out (negative signed volume), at the origin, far from the sphere.
+TriMesh sphereAndPocket(bool inverted = true) {
+  TriMesh bead = uvSphereMesh(8, 4);
+  bead.vertices *= 0.05;
+  if (inverted) bead.triangles.row(1).swap(bead.triangles.row(2));
+  return withPiece(uvSphereMesh(96, 48), bead, Vec<3>::Zero());
+}
+
+}  // namespace
+
+TEST_CASE("cut tips: a pocket of the outside with samples off the mesh beside it goes, however far from the largest") {
+  // Samples on a crack's walls 0.25 from the pocket: more than kGapOff cell diagonals (0.1) from
+  // every vertex, within kGapReach of the pocket's box.
+  const Points<3> crack = pointsAt({Vec<3>(0.25, 0, 0.01), Vec<3>(0.25, 0, -0.01)});
+  SUBCASE("goes") {
+    TriMesh mesh = sphereAndPocket();
+    int gaps = -1;
+    CHECK(dropCutTips(mesh, Points<3>(3, 0), 0.1, &gaps, &crack) == 1);
+    CHECK(gaps == 1);
+    CHECK(connectedComponentCount(mesh) == 1);
+    CHECK(mesh.vertices.colwise().norm().minCoeff() >= 1.0 - 1e-3);  // the pocket's vertices went too
+  }
+  SUBCASE("without the samples, or with them only on the pocket, it stays") {
+    TriMesh mesh = sphereAndPocket();
+    int gaps = -1;
+    CHECK(dropCutTips(mesh, Points<3>(3, 0), 0.1, &gaps) == 0);
+    const Points<3> onPocket = pointsAt({Vec<3>(0.05, 0, 0), Vec<3>(0, -0.05, 0)});
+    CHECK(dropCutTips(mesh, Points<3>(3, 0), 0.1, &gaps, &onPocket) == 0);
+    CHECK(gaps == 0);
+    CHECK(connectedComponentCount(mesh) == 2);
+  }
+  SUBCASE("a small solid piece there is no pocket, and stays") {
+    TriMesh mesh = sphereAndPocket(false);
+    CHECK(dropCutTips(mesh, Points<3>(3, 0), 0.1, nullptr, &crack) == 0);
+    CHECK(connectedComponentCount(mesh) == 2);
+  }
+  SUBCASE("farther samples are not its evidence") {
+    TriMesh mesh = sphereAndPocket();
+    const Points<3> far = pointsAt({Vec<3>(0.5, 0, 0)});  // beyond kGapReach cell diagonals of its box
+    CHECK(dropCutTips(mesh, Points<3>(3, 0), 0.1, nullptr, &far) == 0);
+    CHECK(connectedComponentCount(mesh) == 2);
+  }
+}
+
+namespace {
+
+// The signed distance (to first order) to a ball of radius 0.8 with a slot 0.01 wide cut into it
+// from +x (|z − kSlot| < 0.005 for x > 0) and a bubble of radius 0.07 at the origin, at the slot's
+// inner end. On the 32-cell grid over [−1, 1]³ (cells 0.0625) the slot lies between the point
+// planes z = 0 and z = 0.0625, so the grid fills it, while the bubble holds grid points: it comes
+// out as a pocket of the outside inside the ball.
+constexpr double kSlot = 0.03125;
+
+class SlottedBall : public ImplicitField<3> {
+ public:
+  explicit SlottedBall(bool slot) : slot_(slot) {}
+  double evaluate(const Vec<3>& x, Vec<3>* g = nullptr, Mat<3>* H = nullptr) const override {
+    // The hollow: the union of the slot and the bubble; the solid: the ball minus the hollow.
+    double hollow = x.norm() - 0.07;
+    Vec<3> hollowDir = x.normalized();
+    const double slab = std::abs(x.z() - kSlot) - 0.005;
+    if (slot_ && std::max(slab, -x.x()) < hollow) {
+      hollow = std::max(slab, -x.x());
+      hollowDir = slab > -x.x() ? Vec<3>(0, 0, x.z() > kSlot ? 1 : -1) : Vec<3>(-1, 0, 0);
+    }
+    double f = x.norm() - 0.8;
+    Vec<3> dir = x.normalized();
+    if (-hollow > f) f = -hollow, dir = -hollowDir;
+    if (g) *g = dir;
+    if (H) H->setZero();
+    return f;
+  }
+  double lipschitzBound(const Box<3>&) const override { return 1.0; }
+
+ private:
+  bool slot_;
+};
+
+// Points on the slot's two walls between the bubble and the ball's surface, off the bubble.
+Points<3> slotWallSamples() {
+  std::vector<Vec<3>> at;
+  for (int i = 0; i < 12; ++i)
+    for (int j = -3; j <= 3; ++j)
+      for (double side : {-0.005, 0.005}) {
+        const Vec<3> q(0.1 + 0.05 * i, 0.05 * j, kSlot + side);
+        if (q.norm() < 0.78 && q.norm() > 0.09) at.push_back(q);
+      }
+  return pointsAt(at);
+}
+
+}  // namespace
+
+TEST_CASE("marching cubes: the pocket a grid keeps of a slot thinner than a cell is left out beside the slot's samples") {
+  const Box<3> box{Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0)};
+  MarchingOptions options;
+  options.resolution = 32;
+  const SlottedBall slotted(true);
+  const TriMesh plain = marchingCubes(slotted, box, options);
+  REQUIRE(connectedComponentCount(plain) == 2);  // the ball, and the bubble inside it
+  const Points<3> walls = slotWallSamples();
+  REQUIRE(walls.cols() > 100);
+  options.anchors = &walls;
+  MarchingReport r;
+  const TriMesh mesh = marchingCubes(slotted, box, options, &r);
+  CHECK(r.droppedGaps == 1);
+  CHECK(r.droppedTips == 0);
+  CHECK(r.refinedCells[0] == 0);  // no refined pass for a piece that goes anyway
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(checkMesh(mesh).closedManifold());
+  CHECK(mesh.vertices.colwise().norm().minCoeff() > 0.5);
+
+  // A cavity with no slot: its own samples are on the mesh, so it stays.
+  const SlottedBall cavity(false);
+  Points<3> onCavity(3, 6);
+  for (int a = 0; a < 3; ++a) {
+    onCavity.col(2 * a) = 0.07 * Vec<3>::Unit(a);
+    onCavity.col(2 * a + 1) = -0.07 * Vec<3>::Unit(a);
+  }
+  options.anchors = &onCavity;
+  MarchingReport rc;
+  CHECK(connectedComponentCount(marchingCubes(cavity, box, options, &rc)) == 2);
+  CHECK(rc.droppedGaps == 0);
+}
