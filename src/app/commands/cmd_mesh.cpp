@@ -235,7 +235,8 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
   options.resolution = resolution;
   options.cancel = cancel;
   MarchingReport report;
-  char line[768];
+  // Room for every clause at once with 10-digit counts (about 900 characters).
+  char line[2048];
   if (const SceneFit<3>* f3 = fit.as<SceneFit<3>>()) {
     exportZeroSet3d(*f3, viewBounds<3>(scene.view, f3->data.points), options, chordTolerance, output, line,
                     sizeof line);
