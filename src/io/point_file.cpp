@@ -256,6 +256,55 @@ void completeFromFaces(const TriMesh& mesh, Points<3>& normals, const std::strin
                        " taken from the area-weighted face normals (oriented by the faces' winding)");
 }
 
+// The mesh with its triangles on the vertices' coincidence roots (coincidentVertexRoots): one
+// vertex per position, so that area-weighted normals see every face about it.
+TriMesh weldedCopy(const TriMesh& mesh, const std::vector<int>& root) {
+  TriMesh welded;
+  welded.vertices = mesh.vertices;
+  welded.triangles = mesh.triangles;
+  for (Eigen::Index t = 0; t < welded.triangles.cols(); ++t)
+    for (int c = 0; c < 3; ++c) welded.triangles(c, t) = root[static_cast<std::size_t>(welded.triangles(c, t))];
+  return welded;
+}
+
+// Vertices at exactly the position of another (a mesh split at hard edges, seams or patches:
+// exporters repeat them, as Stanford's dragon_vrip.ply does) become copies of one sample: computed
+// normals are the welded mesh's area-weighted ones; given normals that differ there are replaced
+// by their unit mean (a warning says how many), or, where they cancel, by the welded face normals
+// (zero without faces: estimated later). validateSamples then merges the copies.
+void weldCoincidentNormals(const TriMesh& mesh, bool given, Points<3>& normals, const std::string& path,
+                           std::vector<std::string>& warnings) {
+  const std::vector<int> root = coincidentVertexRoots(mesh);
+  const auto rootOf = [&](Eigen::Index v) { return static_cast<Eigen::Index>(root[static_cast<std::size_t>(v)]); };
+  bool repeats = false;
+  for (Eigen::Index v = 0; v < normals.cols() && !repeats; ++v) repeats = rootOf(v) != v;
+  if (!repeats) return;
+  const Eigen::Matrix3Xd faces = mesh.triangleCount() > 0 ? vertexNormals(weldedCopy(mesh, root), NormalWeighting::Area)
+                                                          : Eigen::Matrix3Xd::Zero(3, normals.cols());
+  if (!given) {
+    for (Eigen::Index v = 0; v < normals.cols(); ++v) normals.col(v) = faces.col(rootOf(v));
+    return;
+  }
+  Eigen::Matrix3Xd sum = Eigen::Matrix3Xd::Zero(3, normals.cols());
+  std::vector<char> differs(static_cast<std::size_t>(normals.cols()), 0);
+  for (Eigen::Index v = 0; v < normals.cols(); ++v) {
+    const double len = normals.col(v).norm();
+    if (len > 0) sum.col(rootOf(v)) += normals.col(v) / len;
+    if (normals.col(v) != normals.col(rootOf(v))) differs[static_cast<std::size_t>(rootOf(v))] = 1;
+  }
+  long averaged = 0;
+  for (Eigen::Index v = 0; v < normals.cols(); ++v) {
+    const Eigen::Index r = rootOf(v);
+    if (!differs[static_cast<std::size_t>(r)]) continue;
+    averaged += r != v;
+    normals.col(v) = sum.col(r).norm() > 1e-6 ? Vec<3>(sum.col(r).normalized()) : Vec<3>(faces.col(r));
+  }
+  if (averaged > 0)
+    warnings.push_back(path + ": " + std::to_string(averaged) +
+                       " vertices repeat the position of another with a different normal (a mesh split at hard "
+                       "edges or seams): one sample there, with the mean of their normals");
+}
+
 // The vertices and vertex normals of a mesh or point-set file (.ply, .obj, .gltf, .glb, .off),
 // faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF.
 HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings,
@@ -276,6 +325,7 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
   } else {
     samples.normals = Points<3>::Zero(3, mesh.vertexCount());
   }
+  weldCoincidentNormals(mesh, given, samples.normals, path, warnings);
   samples.points = std::move(mesh.vertices);
   const int estimated =
       fillMissingNormals<3>(samples.points, samples.normals, path,

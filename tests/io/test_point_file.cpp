@@ -429,3 +429,81 @@ TEST_CASE("io_points: unoriented given normals are re-oriented with a warning, u
   CHECK(warnings.empty());
   CHECK((in.normals + box.normals).cwiseAbs().maxCoeff() <= 4e-16);
 }
+
+namespace {
+
+// A cube [−1, 1]³ as an OBJ split at its edges, as exporters write flat-shaded meshes: each face
+// has its own 4 vertices (24 in all, 3 at each corner), two triangles counter-clockwise from
+// outside, and with `flatNormals` each face's own normal on its vertices. With `shared`, the 8
+// corners once each instead (no normals).
+std::string cubeObj(bool flatNormals, bool shared = false) {
+  std::string obj;
+  int next = 1;
+  std::vector<int> cornerId(8, 0);
+  for (int axis = 0; axis < 3; ++axis)
+    for (int side : {-1, 1}) {
+      const int u = (axis + 1) % 3, w = (axis + 2) % 3;
+      int ids[4];
+      const int uw[4][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, 1}};
+      for (int k = 0; k < 4; ++k) {
+        const int j = side > 0 ? k : 3 - k;  // counter-clockwise about the outward normal
+        int c[3];
+        c[axis] = side;
+        c[u] = uw[j][0];
+        c[w] = uw[j][1];
+        const int corner = (c[0] > 0) | ((c[1] > 0) << 1) | ((c[2] > 0) << 2);
+        if (shared && cornerId[static_cast<size_t>(corner)] > 0) {
+          ids[k] = cornerId[static_cast<size_t>(corner)];
+          continue;
+        }
+        obj += "v " + std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]) + "\n";
+        if (flatNormals)
+          obj += "vn " + std::to_string(axis == 0 ? side : 0) + " " + std::to_string(axis == 1 ? side : 0) + " " +
+                 std::to_string(axis == 2 ? side : 0) + "\n";
+        ids[k] = next++;
+        if (shared) cornerId[static_cast<size_t>(corner)] = ids[k];
+      }
+      const auto ref = [&](int i) { return flatNormals ? std::to_string(i) + "//" + std::to_string(i) : std::to_string(i); };
+      obj += "f " + ref(ids[0]) + " " + ref(ids[1]) + " " + ref(ids[2]) + "\n";
+      obj += "f " + ref(ids[0]) + " " + ref(ids[2]) + " " + ref(ids[3]) + "\n";
+    }
+  return obj;
+}
+
+// The sample at position p (exactly), or −1.
+int sampleAt(const HermiteSamples<3>& s, const Vec<3>& p) {
+  for (int i = 0; i < s.size(); ++i)
+    if (s.points.col(i) == p) return i;
+  return -1;
+}
+
+}  // namespace
+
+TEST_CASE("io_points: a mesh split at its edges is one sample per position, normals from all the faces about it") {
+  TempDir dir;
+  std::vector<std::string> warnings;
+  // No normals: the welded mesh's area-weighted normals, the same as the unsplit cube's.
+  const auto split = hermite::loadPointFile3d(dir.write("split.obj", cubeObj(false)), warnings);
+  std::vector<std::string> sharedWarnings;
+  const auto shared = hermite::loadPointFile3d(dir.write("shared.obj", cubeObj(false, true)), sharedWarnings);
+  REQUIRE(shared.size() == 8);
+  REQUIRE(split.size() == 8);
+  for (int i = 0; i < 8; ++i) {
+    const int j = sampleAt(split, shared.points.col(i));
+    REQUIRE(j >= 0);
+    CHECK((split.normals.col(j) - shared.normals.col(i)).norm() <= 1e-15);
+    CHECK(split.normals.col(j).dot(shared.points.col(i).normalized()) > 0.9);  // outward, about the diagonal
+  }
+  CHECK(std::any_of(warnings.begin(), warnings.end(),
+                    [](const std::string& w) { return w.find("merged 16 exact duplicate samples") != std::string::npos; }));
+
+  // Flat normals: each corner's three face normals give their mean, the cube's diagonal.
+  warnings.clear();
+  const auto flat = hermite::loadPointFile3d(dir.write("flat.obj", cubeObj(true)), warnings);
+  REQUIRE(flat.size() == 8);
+  for (int i = 0; i < 8; ++i)
+    CHECK(flat.normals.col(i).dot(flat.points.col(i).normalized()) == doctest::Approx(1.0).epsilon(1e-15));
+  CHECK(std::any_of(warnings.begin(), warnings.end(), [](const std::string& w) {
+    return w.find("flat.obj: 16 vertices repeat the position of another with a different normal") != std::string::npos;
+  }));
+}

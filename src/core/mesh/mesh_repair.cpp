@@ -90,16 +90,8 @@ int orient(const Eigen::Matrix3Xi& triangles, const std::unordered_map<std::uint
 
 // Triangles renumbered to the first vertex at each position; collapsed ones dropped.
 Eigen::Matrix3Xi welded(const TriMesh& mesh, int& weldedVertices, int& collapsed) {
-  std::vector<std::pair<std::array<double, 3>, int>> byPosition(std::size_t(mesh.vertexCount()));
-  for (int v = 0; v < mesh.vertexCount(); ++v)
-    byPosition[std::size_t(v)] = {{mesh.vertices(0, v), mesh.vertices(1, v), mesh.vertices(2, v)}, v};
-  std::sort(byPosition.begin(), byPosition.end());
-  std::vector<int> first(std::size_t(mesh.vertexCount()));
-  for (std::size_t k = 0; k < byPosition.size(); ++k) {
-    const bool same = k > 0 && byPosition[k].first == byPosition[k - 1].first;
-    first[std::size_t(byPosition[k].second)] = same ? first[std::size_t(byPosition[k - 1].second)] : byPosition[k].second;
-    weldedVertices += same;
-  }
+  const std::vector<int> first = coincidentVertexRoots(mesh);
+  for (int v = 0; v < mesh.vertexCount(); ++v) weldedVertices += first[std::size_t(v)] != v;
   std::vector<Eigen::Index> kept;
   Eigen::Matrix3Xi triangles(3, mesh.triangles.cols());
   for (Eigen::Index t = 0; t < mesh.triangles.cols(); ++t) {

@@ -1,6 +1,7 @@
 #include "core/mesh/tri_mesh.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 #include <utility>
@@ -147,6 +148,20 @@ std::vector<int> triangleComponents(const TriMesh& mesh, int* count, std::vector
         (*open)[static_cast<size_t>(label[static_cast<size_t>(edgeTri[i].second)])] = 1;
   }
   return label;
+}
+
+std::vector<int> coincidentVertexRoots(const TriMesh& mesh) {
+  std::vector<std::pair<std::array<double, 3>, int>> byPosition(static_cast<std::size_t>(mesh.vertexCount()));
+  for (int v = 0; v < mesh.vertexCount(); ++v)
+    byPosition[static_cast<std::size_t>(v)] = {{mesh.vertices(0, v), mesh.vertices(1, v), mesh.vertices(2, v)}, v};
+  std::sort(byPosition.begin(), byPosition.end());  // equal positions by ascending id
+  std::vector<int> root(static_cast<std::size_t>(mesh.vertexCount()));
+  for (std::size_t k = 0; k < byPosition.size(); ++k) {
+    const bool same = k > 0 && byPosition[k].first == byPosition[k - 1].first;
+    root[static_cast<std::size_t>(byPosition[k].second)] =
+        same ? root[static_cast<std::size_t>(byPosition[k - 1].second)] : byPosition[k].second;
+  }
+  return root;
 }
 
 void dropUnusedVertices(TriMesh& mesh) {

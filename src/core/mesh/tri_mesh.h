@@ -56,6 +56,10 @@ std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count = nul
 // keep their order.
 void dropUnusedVertices(TriMesh& mesh);
 
+// Per vertex, the smallest vertex id at exactly its position (itself when no earlier vertex is
+// there): what welding merges each vertex into.
+std::vector<int> coincidentVertexRoots(const TriMesh& mesh);
+
 // Removes the triangles of every component c with drop[c] set (label: a component per triangle,
 // as triangleComponents or vertexConnectedComponents give), then the vertices no triangle uses;
 // the rest keep their order. Returns how many components were removed.
