@@ -302,6 +302,7 @@ SceneFit<Dim> fitScene(const Scene& scene, const CancelToken* cancel) {
                      std::string(fitMethodName(scene.fit.method)) + "')");
   SceneFit<Dim> out;
   out.samples = sceneSamples<Dim>(scene, out.warnings);
+  out.dataWarnings = static_cast<int>(out.warnings.size());
   const PartitionChoice choice = choosePartition(scene, out.samples.size());
   if (!choice.message.empty()) out.warnings.push_back(choice.message);
   if (choice.pu)

@@ -48,6 +48,7 @@ struct SceneFitReport {
   PuReport puReport;                       // of the PU fit on the untransformed data
   FitReport report;                        // of the fit on the untransformed data
   std::vector<std::string> warnings;       // data + fit warnings, in order
+  int dataWarnings = 0;                    // the first of them, about the data file (normals, duplicates)
   bool transformed = false;
   TransformReport transform;
   // checkDegenerateField's verdict (scene/degenerate_check.h); empty until it ran and where it does

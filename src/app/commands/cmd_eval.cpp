@@ -51,6 +51,7 @@ void evalScene(const Scene& scene, const std::string& probeFile) {
   std::optional<TerminalProgress> progress(std::in_place, "fitting " + scene.sourceName);
   const SceneFit<Dim> fit = fitScene<Dim>(scene);
   progress.reset();
+  printDataWarnings(fit);
   Eigen::VectorXd f;
   Points<Dim> G;
   fit.field().evaluateBatch(X, f, &G);

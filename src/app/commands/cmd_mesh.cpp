@@ -279,6 +279,7 @@ int runMesh(const MeshArgs& args) {
     summary = exportZeroSet(*fit, args.output, resolution, args.chordTolerance);
   }
   writeStdout(summary + "\n");
+  if (const SceneFitReport* f = fit->implicitFit()) printDataWarnings(*f);
   // A degenerate field's flat regions are left out of the mesh (no data); say why it is open.
   for (const std::string& w : fit->warnings())
     if (w.rfind(kDegenerateFieldWarningStart, 0) == 0) std::cerr << "warning: " << w << "\n";

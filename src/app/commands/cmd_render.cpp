@@ -15,6 +15,7 @@
 #include <string>
 
 #include "app/commands/commands.h"
+#include "app/commands/output.h"
 #include "app/commands/output_path.h"
 #include "app/gui/camera_framing.h"
 #include "app/gui/explorer.h"
@@ -124,6 +125,7 @@ void blitImage(const ImageRgba8& image) {
 // 2D views get their colour legend.
 ImageRgba8 renderView(const Scene& scene, const RenderArgs& args) {
   const std::shared_ptr<const FitOutcome> fit = fitOutcomeOrThrow(scene);
+  if (const SceneFitReport* f = fit->implicitFit()) printDataWarnings(*f);
   if (scene.view.trace == TraceMode::Exact && fit->as<SceneFit<3>>() && fit->as<SceneFit<3>>()->pu())
     // The exact shader sums one RadialSum; a partition-of-unity field is drawn from its bake.
     std::fprintf(stderr, "warning: view.trace 'exact' needs a global fit; the partition-of-unity field is traced baked\n");

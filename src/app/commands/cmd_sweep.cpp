@@ -153,6 +153,7 @@ SweepRun sweepRadii(const Scene& scene, const std::vector<double>& radii, const 
   renderer.colourRange = sharedColourRange(scene);  // one heat-map range for every radius
   SweepRun run;
   double spacing = -1;
+  bool warned = false;
   for (std::size_t k = 0; k < radii.size(); ++k) {
     Scene s = scene;
     s.fit.radius = radii[k];
@@ -160,6 +161,8 @@ SweepRun sweepRadii(const Scene& scene, const std::vector<double>& radii, const 
     RadiusSweepRow row;
     std::string image;
     if (fit->ok()) {
+      if (!warned && fit->implicitFit()) printDataWarnings(*fit->implicitFit());  // the same data at every radius
+      warned = true;
       fit->visitImplicit([&](const auto& f) {
         constexpr int D = std::decay_t<decltype(f)>::kDim;
         if (spacing < 0) spacing = meanSampleSpacing<D>(f.samples.points);

@@ -112,8 +112,13 @@ TEST_CASE("data files: eval, mesh, render and sweep take a point file") {
   REQUIRE_MESSAGE(sw.rc == 0, sw.err);
   CHECK(fs::exists(dir / "diagnostics.csv"));
 
-  // Progress goes to a terminal only: nothing on a redirected stderr but the estimation warning.
+  // Progress goes to a terminal only: nothing on a redirected stderr but the estimation warning,
+  // which each command gives (docs/cli.md, "Data files in place of a scene").
   CHECK_FALSE(contains(me.err, "fitting"));
+  const std::string estimated = "warning: " + cloud + ": has no normals (3 columns): normals estimated for all 200";
+  for (const auto* r : {&ev, &me, &re, &sw}) CHECK_MESSAGE(contains(r->err, estimated), r->err);
+  CHECK(sw.err.find(estimated) == sw.err.rfind(estimated));  // once, not once per radius
+  CHECK_FALSE(contains(me.err, "partition"));  // the fit's own warnings are `fit`'s to list
 }
 
 TEST_CASE("data files: the program without a display fits the file; an unknown extension lists the accepted ones") {
