@@ -1029,9 +1029,10 @@ long long ImplicitTracer::Gpu::prepareRects(const TraceFrame& frame) {
 // Points and normals scaled to the mean sample spacing s, so that a dense cloud is not a hairball
 // of normals over a carpet of dots: normals at most kNormalSpacings·s long (else 5 % of the
 // bounds diagonal, the length sparse clouds keep), dots at most kDotSpacings·s wide at the
-// camera's target distance, between 2 and 4 px.
+// camera's target distance, between 2 and 4 px, and none while s is under kMinDotGapPx there: 2 px
+// dots would cover the surface (a 100 000-point scan in full view has about one sample a pixel).
 void ImplicitTracer::Gpu::scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const {
-  constexpr double kNormalSpacings = 2.0, kDotSpacings = 0.5;
+  constexpr double kNormalSpacings = 2.0, kDotSpacings = 0.5, kMinDotGapPx = 2.0;
   const double diagonal = frame.bounds.extent().norm();
   if (!(sampleSpacing > 0) || !(diagonal > 0)) return;
   content.normalLength = std::min(content.normalLength, kNormalSpacings * sampleSpacing / diagonal);
@@ -1040,7 +1041,9 @@ void ImplicitTracer::Gpu::scaleMarksToSpacing(const TraceFrame& frame, OverlayCo
   const double depth = std::max((frame.bounds.center() - c.eye()).dot(c.forward()), 1e-12);
   const double unitsPerPx = c.projection() == Projection::Orthographic ? 2 * c.halfHeight() / c.height()
                                                                         : 2 * depth * c.tanHalfFov() / c.height();
-  content.pointSize = float(std::clamp(kDotSpacings * sampleSpacing / unitsPerPx, 2.0, double(content.pointSize)));
+  const double spacingPx = sampleSpacing / unitsPerPx;
+  if (spacingPx < kMinDotGapPx) content.showPoints = false;
+  content.pointSize = float(std::clamp(kDotSpacings * spacingPx, 2.0, double(content.pointSize)));
 }
 
 // Draws the overlays (points, normals, bounds box) depth-tested against the traced depth, and

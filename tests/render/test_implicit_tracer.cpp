@@ -6,6 +6,7 @@
 #include <limits>
 #include <string>
 #include <thread>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -498,6 +499,36 @@ TEST_CASE("implicit tracer: overlays are drawn and hidden behind the surface") {
     if (!result.hit[p] && px[0] == 89 && px[1] == 89 && px[2] == 89) ++boxPixels;
   }
   CHECK(boxPixels > 50);
+}
+
+TEST_CASE("implicit tracer: samples closer than 2 px on screen get no dots, until the view comes closer") {
+  // 20 000 samples of the unit sphere are about 0.025 apart: under 1 px at 96 × 96 from 4 units
+  // off, where 2 px dots would cover the sphere; 5 px apart from 1.5 units off at 480 × 480.
+  auto context = testing::makeTestContext();
+  HermiteSamples<3> samples;  // a golden spiral: evenly spread, outward normals
+  samples.points.resize(3, 20000);
+  for (int i = 0; i < 20000; ++i) {
+    const double z = 1 - (2 * i + 1) / 20000.0, r = std::sqrt(1 - z * z), phi = i * M_PI * (3 - std::sqrt(5.0));
+    samples.points.col(i) = Vec<3>(r * std::cos(phi), r * std::sin(phi), z);
+  }
+  samples.normals = samples.points;
+  const SphereField sphere;
+  const Box<3> bounds = defaultViewBounds<3>(samples.points);
+  ImplicitTracer tracer;
+  TracerUploadOptions upload;
+  upload.bakeResolution = 48;
+  tracer.upload(sphere, bounds, &samples, upload);
+  using Eye = std::array<double, 3>;
+  for (const auto& [size, eye, drawn] : {std::tuple{96, Eye{0, 0, 4}, false}, std::tuple{480, Eye{0, 0, 1.5}, true}}) {
+    CAPTURE(size);
+    const Camera camera = makeCamera(size, size, Projection::Perspective, eye);
+    TraceSettings settings;
+    settings.showPoints = false;
+    const TraceResult plain = tracer.render(camera, settings);
+    settings.showPoints = true;
+    const TraceResult dotted = tracer.render(camera, settings);
+    CHECK((dotted.image == plain.image) == !drawn);
+  }
 }
 
 TEST_CASE("implicit tracer: deterministic bytes, and EGL agrees with OSMesa") {
