@@ -23,9 +23,10 @@
 // left out when it is not the largest piece, at most kTipShare of the triangles, closed, of
 // negative signed volume, and a sample within kGapReach cell diagonals of its box lies more than
 // kGapOff cell diagonals from every vertex of the mesh (the filled gap's walls) — however far it
-// lies from the largest piece — or, like a tip, a missed sample lies within a cell diagonal. The crack's samples need not count as missed: the fit itself
-// barely opens a gap that narrow, so the probes along ∇f find none. A true cavity is meshed
-// with its samples on it (and a scan sees no cavity at all).
+// lies from the largest piece — or, like a tip, a missed sample lies within a cell diagonal. The
+// crack's samples need not count as missed: the fit itself barely opens a gap that narrow, so
+// the probes along ∇f find none. A true cavity is meshed with its samples on it (and a scan
+// sees no cavity at all).
 
 #include <vector>
 
@@ -52,8 +53,8 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal);
 
 // Removes the cut-off tips and pockets (as above) and the vertices no triangle uses; `missed`
 // are the positions of the missed samples, `cellDiagonal` the uniform grid cell's, `samples`
-// all of them (none: only a missed sample is a pocket's evidence). Returns how many pieces were removed; `gaps` (optional)
-// receives how many of them were pockets.
+// all of them (none: only a missed sample is a pocket's evidence). Returns how many pieces were
+// removed; `gaps` (optional) receives how many of them were pockets.
 int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal, int* gaps = nullptr,
                 const Points<3>* samples = nullptr);
 

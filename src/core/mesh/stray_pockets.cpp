@@ -200,9 +200,9 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   return out;
 }
 
-// Leaves out the pieces that could be tips the grid cut off a thin part (cut_tips.h; not its
-// pockets of a gap, whose winding number is above ½) whose mean
-// winding number is at least kWindingOutside (else dropStrayPieces did) and below kTipWinding.
+// Leaves out the pieces that could be tips the grid cut off a thin part (cut_tips.h; not the
+// pockets of a gap, whose winding number is above ½) whose mean winding number is at least
+// kWindingOutside (else dropStrayPieces did) and below kTipWinding.
 // Returns how many. `windingOf()` gives the winding number; it is called only when there are
 // candidates.
 template <class WindingOf>
