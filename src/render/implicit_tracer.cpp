@@ -16,6 +16,7 @@
 #include "core/base/errors.h"
 #include "core/rbf/similarity_transform.h"
 #include "core/trace/color_map.h"
+#include "core/trace/mark_sizes.h"
 #include "core/trace/shading.h"
 #include "render/baked_normals.h"
 #include "render/gl/gl_objects.h"
@@ -1032,7 +1033,7 @@ long long ImplicitTracer::Gpu::prepareRects(const TraceFrame& frame) {
 // camera's target distance, between 2 and 4 px, and none while s is under kMinDotGapPx there: 2 px
 // dots would cover the surface (a 100 000-point scan in full view has about one sample a pixel).
 void ImplicitTracer::Gpu::scaleMarksToSpacing(const TraceFrame& frame, OverlayContent& content) const {
-  constexpr double kNormalSpacings = 2.0, kDotSpacings = 0.5, kMinDotGapPx = 2.0;
+  constexpr double kNormalSpacings = 2.0, kDotSpacings = 0.5;
   const double diagonal = frame.bounds.extent().norm();
   if (!(sampleSpacing > 0) || !(diagonal > 0)) return;
   content.normalLength = std::min(content.normalLength, kNormalSpacings * sampleSpacing / diagonal);

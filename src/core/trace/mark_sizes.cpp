@@ -13,7 +13,8 @@ MarkSizes markSizes2d(const Field2dStyle& style, const View2d& view, const Point
   const double spacingPx = meanSampleSpacing<2>(points) * pxPerUnit;
   if (!(spacingPx > 0)) return m;
   m.normalLengthPx = std::min(m.normalLengthPx, 2.0 * spacingPx);
-  m.pointRadiusPx = std::clamp(0.25 * spacingPx, std::min(1.5, m.pointRadiusPx), m.pointRadiusPx);
+  m.pointRadiusPx = spacingPx < kMinDotGapPx ? 0.0
+                                             : std::clamp(0.25 * spacingPx, std::min(1.5, m.pointRadiusPx), m.pointRadiusPx);
   return m;
 }
 

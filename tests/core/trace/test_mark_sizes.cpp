@@ -1,5 +1,6 @@
 // Sample marks of the 2D view scaled to the mean sample spacing: sparse clouds keep the style's
-// sizes, dense ones get normals of at most two spacings and dots of at most half a spacing.
+// sizes, dense ones get normals of at most two spacings and dots of at most half a spacing, and
+// samples less than 2 px apart no dots.
 
 #include <doctest/doctest.h>
 
@@ -27,6 +28,9 @@ TEST_CASE("mark sizes: sparse samples keep the style's sizes, dense ones shrink 
   const MarkSizes dense = markSizes2d(style, view, row(50, 0.04));  // 4 px apart
   CHECK(dense.normalLengthPx == doctest::Approx(8.0).epsilon(1e-9));  // 2 spacings
   CHECK(dense.pointRadiusPx == doctest::Approx(1.5).epsilon(1e-12));  // the floor
+  const MarkSizes carpet = markSizes2d(style, view, row(200, 0.015));  // 1.5 px apart: no dots
+  CHECK(carpet.pointRadiusPx == 0);
+  CHECK(carpet.normalLengthPx == doctest::Approx(3.0).epsilon(1e-9));
   const MarkSizes one = markSizes2d(style, view, row(1, 0.0));
   CHECK(one.normalLengthPx == style.normalLengthPx);
 }
