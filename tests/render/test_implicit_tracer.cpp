@@ -464,15 +464,23 @@ TEST_CASE("implicit tracer: slice plane shows the zero circle of a sphere cut th
   }
 }
 
+namespace {
+
+// The unit sphere's field with `samples` into `tracer`, baked at 48³ over the samples' view bounds.
+void uploadSphere(ImplicitTracer& tracer, const SphereField& sphere, const HermiteSamples<3>& samples) {
+  TracerUploadOptions upload;
+  upload.bakeResolution = 48;
+  tracer.upload(sphere, defaultViewBounds<3>(samples.points), &samples, upload);
+}
+
+}  // namespace
+
 TEST_CASE("implicit tracer: overlays are drawn and hidden behind the surface") {
   auto context = testing::makeTestContext();
   HermiteSamples<3> samples = makePreset3d("sphere6", 0);
   const SphereField sphere;
-  const Box<3> bounds = defaultViewBounds<3>(samples.points);
   ImplicitTracer tracer;
-  TracerUploadOptions upload;
-  upload.bakeResolution = 48;
-  tracer.upload(sphere, bounds, &samples, upload);
+  uploadSphere(tracer, sphere, samples);
   const Camera camera = makeCamera(96, 96, Projection::Perspective, {1.5, 1.2, 3.5});
   REQUIRE((camera.project(Vec<3>(0, 0, 1)) - camera.project(Vec<3>(0, 0, -1))).norm() > 8);
   TraceSettings settings;
@@ -513,11 +521,8 @@ TEST_CASE("implicit tracer: samples closer than 2 px on screen get no dots, unti
   }
   samples.normals = samples.points;
   const SphereField sphere;
-  const Box<3> bounds = defaultViewBounds<3>(samples.points);
   ImplicitTracer tracer;
-  TracerUploadOptions upload;
-  upload.bakeResolution = 48;
-  tracer.upload(sphere, bounds, &samples, upload);
+  uploadSphere(tracer, sphere, samples);
   using Eye = std::array<double, 3>;
   for (const auto& [size, eye, drawn] : {std::tuple{96, Eye{0, 0, 4}, false}, std::tuple{480, Eye{0, 0, 1.5}, true}}) {
     CAPTURE(size);
