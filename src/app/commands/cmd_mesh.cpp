@@ -262,8 +262,15 @@ std::string exportZeroSet(const FitOutcome& fit, const std::string& output, int 
 int runMesh(const MeshArgs& args) {
   const Scene scene = loadCommandScene(args.scene);
   // Check the output before the (possibly long) fit.
-  if (scene.dimension() == 3) requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"});
-  else requireExtension("mesh", args.output, {"obj", "svg"});
+  if (scene.dimension() == 3) {
+    requireExtension("mesh", args.output, {"glb", "gltf", "ply", "obj"});
+  } else {
+    try {
+      requireExtension("mesh", args.output, {"obj", "svg"});
+    } catch (const UsageError& e) {  // a 2D file (two numbers a line) is easily taken for 3D data
+      throw UsageError(std::string(e.what()) + ": " + scene.sourceName + " is 2D data, whose zero set is polylines");
+    }
+  }
   requireWritableLocation("mesh", args.output);
   // Before the fit the sample count is not known: the automatic resolution is checked at its largest.
   const int planned = args.resolution > 0 ? args.resolution : autoMeshResolution(scene.dimension(), LLONG_MAX);

@@ -91,6 +91,8 @@ TEST_CASE("mesh: unknown extension is a usage error, an unwritable output exit 4
   CHECK(r.err.find(".glb") != std::string::npos);
   r = runCli("mesh " + writeTemp("mesh_err2d.json", kCurveScene) + " -o " + tempPath("out2d.ply"));
   CHECK(r.rc == 2);  // 2D scenes write .obj or .svg
+  CHECK(r.err.find("(expected .obj, .svg): " + writeTemp("mesh_err2d.json", kCurveScene) + " is 2D data") !=
+        std::string::npos);
   r = runCli("mesh " + scene + " -o /nonexistent-dir/out.obj");
   CHECK(r.rc == 4);
   CHECK(r.err.find("/nonexistent-dir") != std::string::npos);
