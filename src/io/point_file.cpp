@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <optional>
 
 #include "core/base/errors.h"
 #include "core/points/normal_estimation.h"
@@ -236,18 +237,30 @@ void writeSamples(const std::string& path, const HermiteSamples<Dim>& samples) {
   writer.commit();
 }
 
+// Per vertex, the area-weighted mean of the face normals about its position, over the faces of
+// every vertex there (`root`: coincidentVertexRoots), oriented by the faces' winding; zero on no
+// face. With no repeated position this is vertexNormals of the mesh itself.
+Eigen::Matrix3Xd faceNormalsAtPositions(const TriMesh& mesh, const std::vector<int>& root) {
+  TriMesh welded;
+  welded.vertices = mesh.vertices;
+  welded.triangles = mesh.triangles;
+  for (Eigen::Index t = 0; t < welded.triangles.cols(); ++t)
+    for (int c = 0; c < 3; ++c) welded.triangles(c, t) = root[static_cast<std::size_t>(welded.triangles(c, t))];
+  Eigen::Matrix3Xd normals = vertexNormals(welded, NormalWeighting::Area);
+  for (Eigen::Index v = 0; v < normals.cols(); ++v) normals.col(v) = normals.col(root[static_cast<std::size_t>(v)]);
+  return normals;  // a root is the smallest id at its position: its column is read before any write
+}
+
 // Replaces the zero columns of a mesh file's vertex normals (3 × V, zero where the file's normal
-// is zero) by the area-weighted face normals there, with a warning saying how many; vertices on
-// no face stay zero (estimated from their neighbours afterwards).
-void completeFromFaces(const TriMesh& mesh, Points<3>& normals, const std::string& path,
-                       std::vector<std::string>& warnings) {
-  if (mesh.triangleCount() == 0) return;
-  const Eigen::Matrix3Xd fromFaces = vertexNormals(mesh, NormalWeighting::Area);
+// is zero) by the face normals there (`faces()`, faceNormalsAtPositions), with a warning saying how
+// many; vertices on no face stay zero (estimated from their neighbours afterwards).
+template <class Faces>
+void completeFromFaces(Points<3>& normals, Faces&& faces, const std::string& path, std::vector<std::string>& warnings) {
   int taken = 0, zero = 0;
   for (Eigen::Index i = 0; i < normals.cols(); ++i) {
     if (!normals.col(i).isZero(0)) continue;
     ++zero;
-    normals.col(i) = fromFaces.col(i);
+    normals.col(i) = faces().col(i);
     if (!normals.col(i).isZero(0)) ++taken;
   }
   if (taken > 0)
@@ -256,35 +269,14 @@ void completeFromFaces(const TriMesh& mesh, Points<3>& normals, const std::strin
                        " taken from the area-weighted face normals (oriented by the faces' winding)");
 }
 
-// The mesh with its triangles on the vertices' coincidence roots (coincidentVertexRoots): one
-// vertex per position, so that area-weighted normals see every face about it.
-TriMesh weldedCopy(const TriMesh& mesh, const std::vector<int>& root) {
-  TriMesh welded;
-  welded.vertices = mesh.vertices;
-  welded.triangles = mesh.triangles;
-  for (Eigen::Index t = 0; t < welded.triangles.cols(); ++t)
-    for (int c = 0; c < 3; ++c) welded.triangles(c, t) = root[static_cast<std::size_t>(welded.triangles(c, t))];
-  return welded;
-}
-
-// Vertices at exactly the position of another (a mesh split at hard edges, seams or patches:
-// exporters repeat them, as Stanford's dragon_vrip.ply does) become copies of one sample: computed
-// normals are the welded mesh's area-weighted ones; given normals that differ there are replaced
-// by their unit mean (a warning says how many), or, where they cancel, by the welded face normals
-// (zero without faces: estimated later). validateSamples then merges the copies.
-void weldCoincidentNormals(const TriMesh& mesh, bool given, Points<3>& normals, const std::string& path,
-                           std::vector<std::string>& warnings) {
-  const std::vector<int> root = coincidentVertexRoots(mesh);
+// Given normals of vertices at exactly one position (a mesh split at hard edges, seams or
+// patches: exporters repeat them) that differ are replaced by their unit mean (a warning says how
+// many), or, where they cancel, by the face normal there (`faces()`; zero without faces: estimated
+// later). validateSamples then merges the copies into one sample.
+template <class Faces>
+void averageRepeatedNormals(const std::vector<int>& root, Points<3>& normals, Faces&& faces, const std::string& path,
+                            std::vector<std::string>& warnings) {
   const auto rootOf = [&](Eigen::Index v) { return static_cast<Eigen::Index>(root[static_cast<std::size_t>(v)]); };
-  bool repeats = false;
-  for (Eigen::Index v = 0; v < normals.cols() && !repeats; ++v) repeats = rootOf(v) != v;
-  if (!repeats) return;
-  const Eigen::Matrix3Xd faces = mesh.triangleCount() > 0 ? vertexNormals(weldedCopy(mesh, root), NormalWeighting::Area)
-                                                          : Eigen::Matrix3Xd::Zero(3, normals.cols());
-  if (!given) {
-    for (Eigen::Index v = 0; v < normals.cols(); ++v) normals.col(v) = faces.col(rootOf(v));
-    return;
-  }
   Eigen::Matrix3Xd sum = Eigen::Matrix3Xd::Zero(3, normals.cols());
   std::vector<char> differs(static_cast<std::size_t>(normals.cols()), 0);
   for (Eigen::Index v = 0; v < normals.cols(); ++v) {
@@ -297,7 +289,7 @@ void weldCoincidentNormals(const TriMesh& mesh, bool given, Points<3>& normals, 
     const Eigen::Index r = rootOf(v);
     if (!differs[static_cast<std::size_t>(r)]) continue;
     averaged += r != v;
-    normals.col(v) = sum.col(r).norm() > 1e-6 ? Vec<3>(sum.col(r).normalized()) : Vec<3>(faces.col(r));
+    normals.col(v) = sum.col(r).norm() > 1e-6 ? Vec<3>(sum.col(r).normalized()) : Vec<3>(faces().col(r));
   }
   if (averaged > 0)
     warnings.push_back(path + ": " + std::to_string(averaged) +
@@ -306,26 +298,34 @@ void weldCoincidentNormals(const TriMesh& mesh, bool given, Points<3>& normals, 
 }
 
 // The vertices and vertex normals of a mesh or point-set file (.ply, .obj, .gltf, .glb, .off),
-// faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF.
+// faces ignored: PLY nx ny nz, OBJ v + vn, glTF POINTS / TRIANGLES with NORMAL, NOFF. Vertices the
+// file repeats at exactly one position (Stanford's dragon_vrip.ply repeats 2 100) get one normal,
+// from all the faces about the position, and become one sample.
 HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::string>& warnings,
                                       const PointFileOptions& options) {
   TriMesh mesh = loadMeshFile(path);
   if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
+  const std::vector<int> root = coincidentVertexRoots(mesh);
+  std::optional<Eigen::Matrix3Xd> fromFaces;  // built on first use
+  const auto faces = [&]() -> const Eigen::Matrix3Xd& {
+    if (!fromFaces) fromFaces = mesh.triangleCount() > 0 ? faceNormalsAtPositions(mesh, root)
+                                                         : Eigen::Matrix3Xd::Zero(3, mesh.vertexCount());
+    return *fromFaces;
+  };
   HermiteSamples<3> samples;
   const bool given = mesh.hasNormals();
   if (given) {
     samples.normals = std::move(mesh.normals);
-    completeFromFaces(mesh, samples.normals, path, warnings);
+    if (mesh.triangleCount() > 0) completeFromFaces(samples.normals, faces, path, warnings);
+    averageRepeatedNormals(root, samples.normals, faces, path, warnings);
   } else if (mesh.triangleCount() > 0) {
-    // Area-weighted face normals, oriented by the faces' winding; vertices on no face stay zero
-    // and are estimated from their neighbours below.
-    samples.normals = vertexNormals(mesh, NormalWeighting::Area);
+    // Vertices on no face stay zero and are estimated from their neighbours below.
+    samples.normals = faces();
     warnings.push_back(path + ": has no vertex normals: " + std::to_string(mesh.vertexCount()) +
                        " normals are the area-weighted means of the face normals (oriented by the faces' winding)");
   } else {
     samples.normals = Points<3>::Zero(3, mesh.vertexCount());
   }
-  weldCoincidentNormals(mesh, given, samples.normals, path, warnings);
   samples.points = std::move(mesh.vertices);
   const int estimated =
       fillMissingNormals<3>(samples.points, samples.normals, path,
