@@ -3,57 +3,40 @@
 #include "core/mesh/cut_tips.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <limits>
-#include <utility>
 #include <vector>
 
 namespace hermite {
 
 namespace {
 
-struct Pieces {
-  std::vector<int> of;      // per triangle
-  std::vector<int> size;    // triangles per piece
-  std::vector<Box<3>> box;  // per piece, when there are several
-  int largest = 0;
-};
-
-// Marching cubes' pieces meet at no vertex, so the vertex union-find (no edge sort) finds them;
-// the sizes and boxes only when there is more than one.
-Pieces piecesOf(const TriMesh& mesh) {
-  Pieces p;
-  int count = 0;
-  p.of = vertexConnectedComponents(mesh, &count);
-  p.size.assign(static_cast<size_t>(count), 0);
-  for (int c : p.of) ++p.size[static_cast<size_t>(c)];
-  p.largest = static_cast<int>(std::max_element(p.size.begin(), p.size.end()) - p.size.begin());
-  if (count > 1) p.box = componentBoxes(mesh, p.of, count);
-  return p;
-}
-
-// The vertices of each piece `wanted` says yes to (each once), in one pass over the triangles.
-std::vector<std::vector<int>> verticesOf(const TriMesh& mesh, const Pieces& p, const std::vector<char>& wanted) {
+// The triangles of each piece `wanted` says yes to (`of`: a piece per triangle), in one pass.
+std::vector<std::vector<int>> trianglesOf(const TriMesh& mesh, const std::vector<int>& of,
+                                          const std::vector<char>& wanted) {
   std::vector<std::vector<int>> out(wanted.size());
   for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const size_t i = static_cast<size_t>(p.of[static_cast<size_t>(t)]);
-    if (wanted[i])
-      for (int k = 0; k < 3; ++k) out[i].push_back(mesh.triangles(k, t));
-  }
-  for (std::vector<int>& v : out) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
+    const size_t i = static_cast<size_t>(of[static_cast<size_t>(t)]);
+    if (wanted[i]) out[i].push_back(t);
   }
   return out;
 }
 
+// The vertices of the triangles, each once.
+std::vector<int> verticesOf(const TriMesh& mesh, const std::vector<int>& triangles) {
+  std::vector<int> v;
+  for (int t : triangles)
+    for (int k = 0; k < 3; ++k) v.push_back(mesh.triangles(k, t));
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end()), v.end());
+  return v;
+}
+
 // Whether the triangles close up: every undirected edge is used by exactly two of them.
 bool closedUp(const TriMesh& mesh, const std::vector<int>& triangles) {
-  std::vector<std::pair<int, int>> edges;
+  std::vector<std::uint64_t> edges;
   for (int t : triangles)
-    for (int k = 0; k < 3; ++k) {
-      const int a = mesh.triangles(k, t), b = mesh.triangles((k + 1) % 3, t);
-      edges.emplace_back(std::min(a, b), std::max(a, b));
-    }
+    for (int k = 0; k < 3; ++k) edges.push_back(edgeKey(mesh.triangles(k, t), mesh.triangles((k + 1) % 3, t)));
   std::sort(edges.begin(), edges.end());
   for (size_t i = 0; i < edges.size(); i += 2)
     if (i + 1 >= edges.size() || edges[i] != edges[i + 1] || (i + 2 < edges.size() && edges[i + 2] == edges[i]))
@@ -61,35 +44,16 @@ bool closedUp(const TriMesh& mesh, const std::vector<int>& triangles) {
   return true;
 }
 
-// Whether the piece (its `triangles`) is closed with negative signed volume: a
-// pocket of the outside enclosed by the solid. The volume is taken about one of its vertices (a
-// closed piece's is the same about any point), so that it loses no digits to the offset.
+// Whether the piece (its `triangles`) is closed with negative signed volume: a pocket of the
+// outside enclosed by the solid.
 bool enclosesOutside(const TriMesh& mesh, const std::vector<int>& triangles) {
-  if (triangles.empty() || !closedUp(mesh, triangles)) return false;
-  const Vec<3> o = mesh.vertices.col(mesh.triangles(0, triangles[0]));
-  double volume6 = 0;
-  for (int t : triangles) {
-    const Vec<3> a = mesh.vertices.col(mesh.triangles(0, t)) - o, b = mesh.vertices.col(mesh.triangles(1, t)) - o,
-                 c = mesh.vertices.col(mesh.triangles(2, t)) - o;
-    volume6 += a.dot(b.cross(c));
-  }
-  return volume6 < 0;
+  return !triangles.empty() && closedUp(mesh, triangles) && signedVolume(mesh, triangles) < 0;
 }
 
 Box<3> grownBy(Box<3> box, double d) {
   box.lo.array() -= d;
   box.hi.array() += d;
   return box;
-}
-
-// The triangles of each piece `wanted` says yes to, in one pass.
-std::vector<std::vector<int>> trianglesOf(const TriMesh& mesh, const Pieces& p, const std::vector<char>& wanted) {
-  std::vector<std::vector<int>> out(wanted.size());
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const size_t i = static_cast<size_t>(p.of[static_cast<size_t>(t)]);
-    if (wanted[i]) out[i].push_back(t);
-  }
-  return out;
 }
 
 // Whether a sample within kGapReach cell diagonals d of `reach` (a pocket's box grown by d) lies
@@ -123,9 +87,9 @@ bool within(const TriMesh& mesh, const std::vector<int>& piece, const std::vecto
 TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   TipCandidates c;
   if (mesh.triangleCount() == 0) return c;
-  const Pieces p = piecesOf(mesh);
+  const MeshPieces p(mesh);
   c.piece = p.of;
-  c.count = static_cast<int>(p.size.size());
+  c.count = p.count();
   if (c.count <= 1) return c;
   std::vector<char> small(static_cast<size_t>(c.count), 0);
   for (int i = 0; i < c.count; ++i)
@@ -133,15 +97,16 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   if (std::find(small.begin(), small.end(), 1) == small.end()) return c;
   std::vector<char> wanted = small;
   wanted[static_cast<size_t>(p.largest)] = 1;
-  const std::vector<std::vector<int>> vertices = verticesOf(mesh, p, wanted);
-  const std::vector<std::vector<int>> triangles = trianglesOf(mesh, p, small);
+  const std::vector<std::vector<int>> triangles = trianglesOf(mesh, p.of, wanted);
+  const std::vector<int> body = verticesOf(mesh, triangles[static_cast<size_t>(p.largest)]);
+  const std::vector<Box<3>> boxes = componentBoxes(mesh, p.of, c.count);
   for (int i = 0; i < c.count; ++i) {
     if (!small[static_cast<size_t>(i)]) continue;
-    const Box<3> reach = grownBy(p.box[static_cast<size_t>(i)], cellDiagonal);
+    const Box<3> reach = grownBy(boxes[static_cast<size_t>(i)], cellDiagonal);
     std::vector<int> near;  // the largest piece's vertices in reach
-    for (int v : vertices[static_cast<size_t>(p.largest)])
+    for (int v : body)
       if (reach.contains(mesh.vertices.col(v))) near.push_back(v);
-    const bool tip = within(mesh, vertices[static_cast<size_t>(i)], near, cellDiagonal);
+    const bool tip = within(mesh, verticesOf(mesh, triangles[static_cast<size_t>(i)]), near, cellDiagonal);
     const bool pocket = enclosesOutside(mesh, triangles[static_cast<size_t>(i)]);
     if (!tip && !pocket) continue;
     c.pieces.push_back(i);

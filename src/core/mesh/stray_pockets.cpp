@@ -44,25 +44,9 @@ bool overlap(const Box<3>& a, const Box<3>& b) {
 
 bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
 
-// The mesh's pieces and the largest. Marching cubes' pieces meet at no vertex, so the vertex
-// union-find (no edge sort) finds them.
-struct Pieces {
-  std::vector<int> of;    // per triangle: its piece
-  std::vector<int> size;  // per piece: its triangles
-  int largest = -1;       // the piece with the most triangles (the first of them on a tie)
-  explicit Pieces(const TriMesh& mesh) {
-    int count = 0;
-    of = vertexConnectedComponents(mesh, &count);
-    size.assign(static_cast<std::size_t>(count), 0);
-    for (int c : of) ++size[static_cast<std::size_t>(c)];
-    if (count > 0) largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
-  }
-  int count() const { return static_cast<int>(size.size()); }
-};
-
 // 1 for the vertices of the mesh's largest piece, else 0.
 std::vector<char> largestPieceVertices(const TriMesh& mesh) {
-  const Pieces pieces(mesh);
+  const MeshPieces pieces(mesh);
   std::vector<char> on(static_cast<std::size_t>(mesh.vertexCount()), 0);
   for (int t = 0; t < mesh.triangleCount(); ++t)
     if (pieces.of[static_cast<std::size_t>(t)] == pieces.largest)
@@ -177,7 +161,7 @@ std::vector<double> meanWindings(const TriMesh& mesh, const std::vector<int>& pi
 // never builds it).
 template <class WindingOf>
 std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
-  const Pieces pieces(mesh);
+  const MeshPieces pieces(mesh);
   const auto small = [&](int c) {
     return c != pieces.largest && pieces.size[static_cast<std::size_t>(c)] <= kPieceShare * mesh.triangleCount();
   };

@@ -208,6 +208,14 @@ int vertexConnectedComponentCount(const TriMesh& mesh) {
   return n;
 }
 
+MeshPieces::MeshPieces(const TriMesh& mesh) {
+  int count = 0;
+  of = vertexConnectedComponents(mesh, &count);
+  size.assign(static_cast<std::size_t>(count), 0);
+  for (int c : of) ++size[static_cast<std::size_t>(c)];
+  if (count > 0) largest = static_cast<int>(std::max_element(size.begin(), size.end()) - size.begin());
+}
+
 std::vector<Box<3>> componentBoxes(const TriMesh& mesh, const std::vector<int>& label, int count) {
   std::vector<Box<3>> boxes(static_cast<std::size_t>(count),
                             Box<3>{Vec<3>::Constant(HUGE_VAL), Vec<3>::Constant(-HUGE_VAL)});
@@ -322,10 +330,19 @@ double surfaceArea(const TriMesh& mesh) {
 }
 
 double signedVolume(const TriMesh& mesh) {
+  std::vector<int> all(static_cast<std::size_t>(mesh.triangleCount()));
+  std::iota(all.begin(), all.end(), 0);
+  return signedVolume(mesh, all);
+}
+
+double signedVolume(const TriMesh& mesh, const std::vector<int>& triangles) {
+  if (triangles.empty()) return 0;
+  const Eigen::Vector3d o = mesh.vertices.col(mesh.triangles(0, triangles[0]));
   double v = 0;
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    const Eigen::Vector3i tri = mesh.triangles.col(t);
-    v += mesh.vertices.col(tri[0]).dot(mesh.vertices.col(tri[1]).cross(mesh.vertices.col(tri[2])));
+  for (int t : triangles) {
+    const Eigen::Vector3d a = mesh.vertices.col(mesh.triangles(0, t)) - o, b = mesh.vertices.col(mesh.triangles(1, t)) - o,
+                          c = mesh.vertices.col(mesh.triangles(2, t)) - o;
+    v += a.dot(b.cross(c));
   }
   return v / 6.0;
 }

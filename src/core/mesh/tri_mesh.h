@@ -52,6 +52,16 @@ int vertexConnectedComponentCount(const TriMesh& mesh);
 // vertex union-find; *count (when not null) receives their number.
 std::vector<int> vertexConnectedComponents(const TriMesh& mesh, int* count = nullptr);
 
+// A mesh's pieces by vertexConnectedComponents, their sizes and the largest (marching cubes'
+// pieces meet at no vertex, so this finds them without an edge sort).
+struct MeshPieces {
+  std::vector<int> of;    // per triangle: its piece
+  std::vector<int> size;  // per piece: its triangles
+  int largest = -1;       // the piece with the most triangles (the first of them on a tie); −1: none
+  explicit MeshPieces(const TriMesh& mesh);
+  int count() const { return static_cast<int>(size.size()); }
+};
+
 // Removes the vertices no triangle uses (and their normals), renumbering the triangles; the rest
 // keep their order.
 void dropUnusedVertices(TriMesh& mesh);
@@ -114,6 +124,10 @@ double surfaceArea(const TriMesh& mesh);
 
 // Signed volume enclosed by a closed mesh (positive when it is oriented outward).
 double signedVolume(const TriMesh& mesh);
+// The same of the closed piece made by `triangles` (ids into the mesh). Taken about the first
+// one's first vertex (a closed piece's volume is the same about any point), so that a piece far
+// smaller than its distance from the origin loses no digits to the offset.
+double signedVolume(const TriMesh& mesh, const std::vector<int>& triangles);
 
 // Undirected edge key of vertices a, b (order-free).
 inline std::uint64_t edgeKey(int a, int b) {
