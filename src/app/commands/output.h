@@ -12,8 +12,8 @@ namespace hermite::app {
 
 void writeStdout(std::string_view text);
 // The warnings about the data file (estimated or re-oriented normals, merged duplicates) on
-// standard error, one `warning:` line each: what `mesh`, `render` and `eval` say of their input
-// (`fit` lists every warning itself).
+// standard error, one `warning:` line each: what `mesh`, `eval`, `render` and `sweep` say of
+// their input (`fit` lists every warning itself).
 void printDataWarnings(const SceneFitReport& fit);
 // Flushes stdout; EnvironmentError when anything written could not be delivered.
 void finishStdout();
