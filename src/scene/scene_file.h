@@ -60,9 +60,12 @@ struct DataSpec {
   bool operator==(const DataSpec&) const = default;
 };
 
+// A key that reads "auto", true or false.
+enum class AutoSwitch { Auto, On, Off };
+
 // fit.partition.enabled: "auto" (dense while the global fit is small, else partition of unity;
 // docs/scene-format.md, choosePartition in scene_fit_memory.h), true or false.
-enum class PartitionSwitch { Auto, On, Off };
+using PartitionSwitch = AutoSwitch;
 
 struct PartitionSpec {
   PartitionSwitch enabled = PartitionSwitch::Auto;
@@ -83,6 +86,10 @@ struct FitSpec {
   double shift = 0.01;                        // > 0, RBF-offset δ
   SolverChoice solver = SolverChoice::Auto;   // added key: auto | cholesky | nullspace-cholesky | ldlt | lu
   PartitionSpec partition;
+  // Added key `reach_mask`: whether a global fit has no data beyond partition.dataReach local
+  // spacings of every sample, as the partition of unity has (scene/data_reach_mask.h); "auto":
+  // for data files of at least 50 samples.
+  AutoSwitch reachMask = AutoSwitch::Auto;
   bool operator==(const FitSpec&) const = default;
 };
 

@@ -76,7 +76,9 @@ struct SceneFit : SceneFitReport {
   FittedModel<Dim> model;       // the fitted (and, by a similarity, transformed) model
   // transform.matrix outside the similarities: the exact composition f(T⁻¹x) of `model`.
   std::unique_ptr<ImplicitField<Dim>> composed;
-  // A degenerate field with its flat regions marked "no data" (scene/degenerate_check.h), or null.
+  // The field with "no data" marked where it has none, or null: a degenerate field's flat
+  // regions (scene/degenerate_check.h), and beyond a data file's samples for a global fit
+  // (scene/data_reach_mask.h).
   std::unique_ptr<ImplicitField<Dim>> masked;
 
   // The fitted field, whatever its kind: what evaluation, rendering and meshing consume.
@@ -84,7 +86,7 @@ struct SceneFit : SceneFitReport {
     if (masked) return *masked;
     return unmaskedField();
   }
-  // The field without the degenerate-region mask (what the mask itself and the r sweep judge).
+  // The field without those masks (what the degenerate check and the r sweep judge).
   const ImplicitField<Dim>& unmaskedField() const {
     if (composed) return *composed;
     return modelField();

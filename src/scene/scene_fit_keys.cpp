@@ -13,20 +13,26 @@ namespace {
 using json = nlohmann::json;
 using Reader = SceneReader;
 
+// An AutoSwitch member: "auto", true or false.
+template <class Spec, auto Member>
+constexpr SceneKey<Spec> autoSwitchKey(std::string_view name) {
+  return {name,
+          [](const SceneReader& r, const nlohmann::json& x, const std::string& p, Spec& s, int) {
+            if (x.is_boolean())
+              s.*Member = x.template get<bool>() ? AutoSwitch::On : AutoSwitch::Off;
+            else if (x.is_string() && x.template get<std::string>() == "auto")
+              s.*Member = AutoSwitch::Auto;
+            else
+              r.fail(p, "must be \"auto\", true or false (got " + describeJson(x) + ")");
+          },
+          [](const Spec& s, int) -> Written {
+            if (s.*Member == AutoSwitch::Auto) return json("auto");
+            return json(s.*Member == AutoSwitch::On);
+          }};
+}
+
 constexpr SceneKey<PartitionSpec> kPartitionKeys[] = {
-    {"enabled",
-     [](const Reader& r, const json& x, const std::string& p, PartitionSpec& s, int) {
-       if (x.is_boolean())
-         s.enabled = x.get<bool>() ? PartitionSwitch::On : PartitionSwitch::Off;
-       else if (x.is_string() && x.get<std::string>() == "auto")
-         s.enabled = PartitionSwitch::Auto;
-       else
-         r.fail(p, "must be \"auto\", true or false (got " + describeJson(x) + ")");
-     },
-     [](const PartitionSpec& s, int) -> Written {
-       if (s.enabled == PartitionSwitch::Auto) return json("auto");
-       return json(s.enabled == PartitionSwitch::On);
-     }},
+    autoSwitchKey<PartitionSpec, &PartitionSpec::enabled>("enabled"),
     integerKey<PartitionSpec, &PartitionSpec::maxPointsPerBox, 1, INT_MAX>("max_points_per_box"),
     valueKey<PartitionSpec, &PartitionSpec::boxSize, &Reader::nonNegative>("box_size"),
     {"overlap",
@@ -59,6 +65,7 @@ constexpr SceneKey<FitSpec> kFitKeys[] = {
        f.partition = readObject<PartitionSpec>(r, x, p, kPartitionKeys, dim);
      },
      [](const FitSpec& f, int dim) -> Written { return writeObject<PartitionSpec>(f.partition, kPartitionKeys, dim); }},
+    autoSwitchKey<FitSpec, &FitSpec::reachMask>("reach_mask"),
 };
 
 }  // namespace

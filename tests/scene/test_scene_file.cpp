@@ -173,7 +173,7 @@ TEST_CASE("scene: top-level structure errors") {
 TEST_CASE("scene: unknown keys name the full path and suggest the closest key") {
   CHECK(errorOf(scene3d(R"("fit": {"kernl": "cubic"})")) ==
         "x.json: fit.kernl: unknown key (expected one of: method, kernel, radius, polynomial, "
-        "smoothing, shift, solver, partition); did you mean 'kernel'?");
+        "smoothing, shift, solver, partition, reach_mask); did you mean 'kernel'?");
   CHECK(startsWith(errorOf(scene3d(R"("fit": {"partition": {"overlapp": 2}})")),
                    "x.json: fit.partition.overlapp: unknown key (expected one of: enabled, "));
   CHECK(startsWith(errorOf(scene3d(R"("view": {"camera": {"fov": 30}})")),

@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "scene/data_reach_mask.h"
 #include "scene/scene_fit.h"
 
 namespace hermite::app {
@@ -117,6 +118,8 @@ Scene withInlineSamples(const Scene& scene, std::vector<std::string>& warnings) 
   if (scene.data.isInline()) return scene;
   const HermiteSamples<Dim> samples = sceneSamples<Dim>(scene, warnings);
   Scene s = scene;
+  // A data file's reach stays when its samples become inline (the edited scan is still a scan).
+  if (s.fit.reachMask == AutoSwitch::Auto && reachMaskAuto(scene.data, samples.size())) s.fit.reachMask = AutoSwitch::On;
   s.data = DataSpec{};
   setInlineSamples<Dim>(s, samples);
   return s;

@@ -86,7 +86,8 @@ std::string documentTitle(const Document& document);
 
 // A scene whose data are inline points / normals, with the samples the scene names (preset, file
 // or inline) written in: editing individual samples needs them inline. Validation warnings are
-// appended. Dim is the scene's dimension.
+// appended; fit.reach_mask "auto" becomes true where it applied to the file. Dim is the scene's
+// dimension.
 template <int Dim>
 Scene withInlineSamples(const Scene& scene, std::vector<std::string>& warnings);
 

@@ -10,6 +10,7 @@
 #include "core/base/ms_since.h"
 #include "core/base/threading.h"
 #include "core/points/hermite_samples.h"
+#include "scene/data_reach_mask.h"
 #include "scene/degenerate_check.h"
 
 namespace hermite::app {
@@ -36,10 +37,12 @@ std::shared_ptr<const FitOutcome> fitOutcomeOrThrow(const Scene& scene, const st
   if (scene.mode == SceneMode::Implicit2d) {
     SceneFit<2> fit = fitScene<2>(scene, cancel);
     checkDegenerateField<2>(scene, fit);
+    maskBeyondDataReach<2>(scene, fit);
     out->result = std::move(fit);
   } else if (scene.mode == SceneMode::Implicit3d) {
     SceneFit<3> fit = fitScene<3>(scene, cancel);
     checkDegenerateField<3>(scene, fit);
+    maskBeyondDataReach<3>(scene, fit);
     out->result = std::move(fit);
   }
   else if (scene.mode == SceneMode::Patch)

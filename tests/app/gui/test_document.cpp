@@ -2,9 +2,13 @@
 
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <filesystem>
+#include <string>
+#include <vector>
 
 #include "app/gui/document.h"
+#include "support/temp_dir.h"
 
 using namespace hermite;
 using namespace hermite::app;
@@ -64,4 +68,25 @@ TEST_CASE("document: saving makes the saved scene the clean one; the title names
   demo.redo();
   CHECK_FALSE(demo.dirty());
   std::filesystem::remove(path);
+}
+
+TEST_CASE("document: a data file's samples made inline for editing keep its data reach; a preset's stay whole") {
+  const testing::TempDir dir;
+  std::string text;
+  for (int i = 0; i < 60; ++i) {  // an open arc: a scan, not a hand-made file (at least 50 samples)
+    const double t = 0.5 + 2.0 * i / 59.0;
+    text += std::to_string(std::cos(t)) + " " + std::to_string(std::sin(t)) + " " + std::to_string(std::cos(t)) + " " +
+            std::to_string(std::sin(t)) + "\n";
+  }
+  Scene file;
+  file.mode = SceneMode::Implicit2d;
+  file.data.file = file.data.resolvedFile = dir.write("arc.xyn", text);
+  std::vector<std::string> warnings;
+  const Scene edited = withInlineSamples<2>(file, warnings);
+  CHECK(edited.data.isInline());
+  CHECK(edited.fit.reachMask == AutoSwitch::On);
+  const Scene preset = withInlineSamples<2>(pointsScene(), warnings);
+  CHECK(preset.fit.reachMask == AutoSwitch::Auto);
+  file.fit.reachMask = AutoSwitch::Off;  // asked for: stays
+  CHECK(withInlineSamples<2>(file, warnings).fit.reachMask == AutoSwitch::Off);
 }
