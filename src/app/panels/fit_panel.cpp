@@ -15,6 +15,9 @@ namespace {
 
 const Polynomial kPolys[] = {Polynomial::None, Polynomial::Linear, Polynomial::Quadratic};
 
+// The choices of an AutoSwitch key, in its order.
+const char* const kSwitchNames[] = {"auto", "on", "off"};
+
 // r's factor per pixel of a Shift+drag on the r slider.
 constexpr double kFineStepPerPixel = 1.002;
 
@@ -78,7 +81,6 @@ void drawPartition(GuiContext& ctx, FitSpec fit) {
   ImGui::Separator();
   ImGui::TextDisabled("partition of unity");
   // fit.partition.enabled: "auto" chooses by size (dense up to 10 000 unknowns), on, off.
-  static const char* const kSwitchNames[] = {"auto", "on", "off"};
   int choice = static_cast<int>(fit.partition.enabled);
   if (ImGui::Combo("enabled", &choice, kSwitchNames, 3)) {
     fit.partition.enabled = static_cast<PartitionSwitch>(choice);
@@ -104,6 +106,29 @@ void drawPartition(GuiContext& ctx, FitSpec fit) {
     editFit(ctx, fit, "overlap");
   }
   ImGui::EndDisabled();
+}
+
+// Where the field has data: fit.partition.data_reach (both fits) and fit.reach_mask (global fits).
+void drawDataReach(GuiContext& ctx, FitSpec fit) {
+  ImGui::Separator();
+  ImGui::TextDisabled("data reach");
+  double reach = fit.partition.dataReach;
+  if (ImGui::InputDouble("reach", &reach, 0, 0, "%.3g", ImGuiInputTextFlags_EnterReturnsTrue) && reach > 0 &&
+      std::isfinite(reach)) {
+    fit.partition.dataReach = reach;
+    editFit(ctx, fit, "data reach");
+    fit = ctx.scene().fit;
+  }
+  helpMarker("The field has data within this many local sample spacings of a sample: no surface is shown or "
+             "exported beyond (fit.partition.data_reach).");
+  int choice = static_cast<int>(fit.reachMask);
+  if (ImGui::Combo("global fit", &choice, kSwitchNames, 3)) {
+    fit.reachMask = static_cast<AutoSwitch>(choice);
+    editFit(ctx, fit, std::string("reach mask ") + kSwitchNames[choice]);
+  }
+  ctx.recordWidget("fit.reach_mask");
+  helpMarker("Whether a global fit ends at the data reach too (fit.reach_mask). auto: for data files of at least "
+             "50 samples; off shows the whole zero set of the interpolant.");
 }
 
 }  // namespace
@@ -133,6 +158,7 @@ void drawFitPanel(GuiContext& ctx) {
     }
   }
   drawPartition(ctx, fit);
+  drawDataReach(ctx, ctx.scene().fit);
   if (!ctx.fits.lastError().empty()) {
     ImGui::PushTextWrapPos(0);
     ImGui::TextColored(ImVec4(1, 0.4f, 0.35f, 1), "last fit failed: %s", ctx.fits.lastError().c_str());

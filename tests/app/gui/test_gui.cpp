@@ -26,6 +26,8 @@
 #include "scene/scene_fit.h"
 #include "support/gui_harness.h"
 #include "support/mesh_test_shapes.h"
+#include "support/temp_dir.h"
+#include "support/test_data.h"
 #include "support/timing_slack.h"
 
 using namespace hermite;
@@ -632,4 +634,31 @@ TEST_CASE("UI: a point file dropped on the window opens as the default scene aro
   h.frames(1);
   CHECK(h.app->status().message.find("unknown file type '.txt'") != std::string::npos);
   CHECK(h.app->document().scene().data.file == path);
+}
+
+TEST_CASE("UI: an open scan fitted globally ends at its data reach; the Fit panel's switch shows the whole zero set") {
+  const hermite::testing::TempDir dir;
+  std::string text;
+  const HermiteSamples<3> sphere = hermite::testing::goldenSphere(400);
+  for (int i = 0; i < sphere.size(); ++i)  // a cap of 100 samples: a file, a global fit
+    if (sphere.points(2, i) >= 0.5)
+      for (int k = 0; k < 6; ++k)
+        text += std::to_string(k < 3 ? sphere.points(k, i) : sphere.normals(k - 3, i)) + (k < 5 ? " " : "\n");
+  Scene s;
+  s.mode = SceneMode::Implicit3d;
+  s.data.file = s.data.resolvedFile = dir.write("cap.xyzn", text);
+  Harness h(s, true, 1000, 700);
+  h.frames(2);
+  REQUIRE(h.app->shownFit());
+  const auto shownField = [&]() -> const ImplicitField<3>& { return h.app->shownFit()->as<SceneFit<3>>()->field(); };
+  REQUIRE(h.app->shownFit()->as<SceneFit<3>>()->pu() == nullptr);
+  CHECK_FALSE(shownField().everywhereValid());
+  CHECK_FALSE(shownField().valid(Vec<3>(0, 0, -1)));
+  CHECK(h.app->widgetRect("fit.reach_mask"));
+  Scene whole = h.app->document().scene();
+  whole.fit.reachMask = AutoSwitch::Off;
+  h.app->document().apply(whole, "reach mask off");
+  h.frames(3);
+  REQUIRE(h.app->shownFit());
+  CHECK(shownField().everywhereValid());
 }
