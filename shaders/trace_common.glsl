@@ -1,6 +1,7 @@
 // Shared ray marcher of trace_baked.frag and trace_exact.frag (included after the including file
 // defined fieldValue(p), fieldGradient(p), shadingDirection(p) — ∇f or a vector along it, 0 where
-// there is none — and brickInfo(b) = (L, may contain a zero)).
+// there is none —, brickInfo(b) = (L, may contain a zero) and hasDataAt(p), whether a zero at p
+// is surface).
 // Rays follow core/trace/camera.h exactly (Camera::ray); world units throughout.
 
 layout(location = 0) out vec4 outColor;  // final colour (surface, slice plane or background)
@@ -159,7 +160,11 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
     float stepLength = (info.y > 0.5) ? 1e30 : (info.x > 0.0 ? abs(fa) / info.x : 1e30);
     float ts = min(t + stepLength + uMinStep, tExit);  // tExit ≤ t1
     float fs = fieldValue(o + ts * d);
-    if (fs == 0.0 || (fs < 0.0) != negA) {
+    bool change = fs == 0.0 || (fs < 0.0) != negA;
+    // A zero where the field has no data (at the secant point) is passed: the march goes on
+    // with the sign beyond it.
+    float tz = mix(t, ts, fa == 0.0 ? 0.0 : clamp(fa / (fa - fs), 0.0, 1.0));
+    if (change && hasDataAt(o + tz * d)) {
       found = true;
       tFree = min(t + stepLength, ts);
       tb = ts;
@@ -167,6 +172,7 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
     } else {
       t = ts;
       fa = fs;
+      negA = fs < 0.0;
     }
   }
   undecided = !found && t < t1;  // out of steps or budget before the end of the ray

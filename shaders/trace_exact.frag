@@ -33,6 +33,7 @@ float fieldValue(vec3 p);
 vec3 fieldGradient(vec3 p);
 vec2 brickInfo(ivec3 b);
 vec3 shadingDirection(vec3 p) { return fieldGradient(p); }
+bool hasDataAt(vec3 p) { return true; }  // one global sum of kernels: data everywhere
 
 #include "trace_common.glsl"
 

@@ -21,9 +21,10 @@ std::vector<std::uint8_t> bakedNormalTexels(const VolumeBake& bake) {
                        (double(bake.value(i, j, std::min(k + 1, R - 1))) - bake.value(i, j, std::max(k - 1, 0))) / h.z());
         const double norm = g.norm();
         const Vec<3> n = (norm > 0 && std::isfinite(norm)) ? Vec<3>(g / norm) : Vec<3>::Zero();
-        std::uint8_t* t = &texels[4 * (i + std::size_t(R) * (j + std::size_t(R) * k))];
+        const std::size_t at = i + std::size_t(R) * (j + std::size_t(R) * k);
+        std::uint8_t* t = &texels[4 * at];
         for (int c = 0; c < 3; ++c) t[c] = shading::toByte((n(c) + 1.0) * 0.5);
-        t[3] = 255;
+        t[3] = !bake.noData.empty() && bake.noData[at] ? 0 : 255;
       }
   return texels;
 }

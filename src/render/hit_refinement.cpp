@@ -41,7 +41,7 @@ struct Refiner {
   Ray pixelRay(int p) const { return camera.pixelRay(p % camera.width(), p / camera.width()); }
   // A root counts only where the field has data on its zero set (validOnZeroSet, as the mesher's
   // vertices; a flat-masked field, a partition of unity's edge): elsewhere its f ≈ 0 is noise,
-  // which the bake stores as outside too.
+  // which the bake marks for the march to pass too.
   bool hasData(const Vec<3>& x) const { return field.everywhereValid() || field.validOnZeroSet(x); }
   std::vector<PixelRay> seedHits();
   std::vector<PixelRay> newton(std::vector<PixelRay> active);

@@ -986,6 +986,7 @@ void ImplicitTracer::Gpu::bindBaked(const Program& p, const TraceFrame& frame, c
   p.setUniform("uBakedBricks", 2);
   normals.bind(4);
   p.setUniform("uNormals", 4);
+  p.setUniform("uHasNoData", bake.noData.empty() ? 0 : 1);
 }
 
 // Binds the exact mode's model: centres and β from the SSBOs of the program's precision, kernel,

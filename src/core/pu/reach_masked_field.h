@@ -36,7 +36,7 @@ class ReachMaskedField final : public ImplicitField<Dim> {
   bool everywhereValid() const override { return false; }
   double lipschitzBound(const Box<Dim>& box) const override { return inner_.lipschitzBound(box); }
   // No RadialSum: the GPU tracer's exact shader sums one without validity, so the GPU paths bake
-  // this field (its no-data samples stored as outside), as they do the partition of unity.
+  // this field (its no-data samples marked), as they do the partition of unity.
   const RadialSum<Dim>* asRadialSum() const override { return nullptr; }
 
  private:

@@ -83,10 +83,19 @@ void CpuTracer::advance(RayState& s, double value) const {
   auto hitAt = [&](double t) {
     // A zero where the field has no data, on either side of the root (the jump of f to its
     // no-data value at the edge of the data), or a root the field does not accept on its zero set
-    // (validOnZeroSet, as the mesher's vertices), is no surface: the ray shows the background.
+    // (validOnZeroSet, as the mesher's vertices), is no surface: the ray passes it and marches on
+    // from just beyond (an open scan seen through its opening shows its inside), as the GPU
+    // tracer's march does.
     const double before = s.phase == RayState::Bisect ? s.bracket.lo() : s.t;
     if (!field_.everywhereValid() && !(field_.validOnZeroSet(s.ray.at(t)) && field_.valid(s.ray.at(before)))) {
-      s.phase = RayState::Miss;
+      const double past = std::max(t + tol, s.phase == RayState::Bisect ? s.bracket.hi() : t + tol);
+      if (past >= s.t1) {
+        s.phase = RayState::Miss;
+        return;
+      }
+      s.t = s.query = past;
+      s.started = false;  // f at `past` restarts the march
+      s.phase = RayState::March;
       return;
     }
     s.t = t;

@@ -17,9 +17,9 @@ namespace hermite {
 
 namespace {
 
-// The least value a no-data sample is baked with: positive, so never a hit, and far above
-// float's smallest normal (1.2e-38), so trilinear weights (the largest of the eight is ≥ 1/8)
-// never flush it to zero.
+// What a no-data sample whose f is 0 in float is baked as: positive, and far above float's
+// smallest normal (1.2e-38), so trilinear weights (the largest of the eight is ≥ 1/8) never
+// flush it to zero.
 constexpr float kNoDataFloor = 1e-30f;
 
 // Fills lipschitz, centreValue and mayContainZero of a grid whose bounds, count and size are set.
@@ -189,31 +189,40 @@ void slabPoints(const Box<3>& bounds, int R, const Vec<3>& h, int k0, int k1, Po
   }
 }
 
-// out[q] = f(X.col(q)) as float, for every column of X; f and valid are scratch kept between slabs.
+// out[q] = f(X.col(q)) as float, for every column of X, and noData[q] = 1 where a zero of f would
+// not be surface (validOnZeroSet; noData null: the field has data everywhere); f and valid are
+// scratch kept between slabs.
 void storeSlabValues(const ImplicitField<3>& field, const Points<3>& X, Eigen::VectorXd& f, std::vector<char>& valid,
-                     float* out) {
+                     float* out, std::uint8_t* noData) {
   const Eigen::Index m = X.cols();
-  if (field.everywhereValid()) {
+  if (!noData) {
     field.evaluateBatch(X, f);
 #pragma omp parallel for schedule(static)
     for (Eigen::Index q = 0; q < m; ++q) out[q] = float(f(q));
     return;
   }
-  // No data is baked as |f| (docs/maths.md, "No data"): never inside, so no zero is crossed
-  // there, and |f| keeps f's Lipschitz bound for the tracer's steps away from the data's edge.
-  // At least kNoDataFloor: the shader takes f = 0 as a hit, and a flat field's no data is
-  // often exactly 0 (a compact kernel beyond r of every sample).
-  field.evaluateValidBatch(X, f, valid);
+  // No data keeps f's sign (docs/maths.md, "No data"): f is continuous across the edge of the
+  // data, so no zero appears there, and the tracer passes the zeros it meets where the samples
+  // say they are no surface (an open scan's interpolant closing it, seen through its opening) —
+  // by the zero-set test the mesher's vertices and the hit refinement take. An exact 0
+  // is stored as kNoDataFloor: the march takes f = 0 as a zero to check, and a flat field's no
+  // data is often exactly 0 (a compact kernel beyond r of every sample).
+  field.evaluateBatch(X, f);
+  field.validOnZeroSetBatch(X, valid);
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index q = 0; q < m; ++q)
-    out[q] = valid[std::size_t(q)] ? float(f(q)) : std::max(float(std::abs(f(q))), kNoDataFloor);
+  for (Eigen::Index q = 0; q < m; ++q) {
+    const bool has = valid[std::size_t(q)] != 0;
+    noData[q] = has ? 0 : 1;
+    const float v = float(f(q));
+    out[q] = has || v != 0 ? v : kNoDataFloor;
+  }
 }
 
 // The R³ samples through evaluateBatch (any field), in slabs of whole z-planes, ~64k points
 // each: large enough for evaluateBatch's threads, small enough to keep X (3 × points doubles)
-// in cache-friendly sizes.
+// in cache-friendly sizes. noData as storeSlabValues takes it, R³ entries.
 void bakeBatched(const ImplicitField<3>& field, const Box<3>& bounds, int R, const Vec<3>& h, float* out,
-                 const CancelToken* cancel) {
+                 std::uint8_t* noData, const CancelToken* cancel) {
   const std::size_t plane = std::size_t(R) * R;
   const int planesPerSlab = std::max<int>(1, int(65536 / plane));
   Points<3> X;
@@ -223,7 +232,7 @@ void bakeBatched(const ImplicitField<3>& field, const Box<3>& bounds, int R, con
     throwIfCancelled(cancel);
     const int k1 = std::min(R, k0 + planesPerSlab);
     slabPoints(bounds, R, h, k0, k1, X);
-    storeSlabValues(field, X, f, valid, out + plane * k0);
+    storeSlabValues(field, X, f, valid, out + plane * k0, noData ? noData + plane * k0 : nullptr);
   }
 }
 
@@ -331,8 +340,10 @@ VolumeBake bakeVolume(const ImplicitField<3>& field, const Box<3>& bounds, const
   const Vec<3> h = bake.spacing();
 
   auto t0 = std::chrono::steady_clock::now();
+  if (!field.everywhereValid()) bake.noData.resize(bake.values.size());
   if (!bakeCubicRadialSum(field, bounds, R, h, bake.values.data(), options.cancel))
-    bakeBatched(field, bounds, R, h, bake.values.data(), options.cancel);
+    bakeBatched(field, bounds, R, h, bake.values.data(), bake.noData.empty() ? nullptr : bake.noData.data(),
+                options.cancel);
   throwIfCancelled(options.cancel);
   bake.sampleMs = msSince(t0);
 

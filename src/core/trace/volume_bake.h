@@ -46,6 +46,10 @@ struct VolumeBake {
   Box<3> bounds;
   int resolution = 0;         // R
   std::vector<float> values;  // R³, x fastest; sample (i,j,k) at lo + (i,j,k)·(hi − lo)/(R − 1)
+  // R³ like values: 1 where a zero of f at the sample would be no surface (the field has no data
+  // on its zero set there: ImplicitField::validOnZeroSet), else 0; empty for a field with data
+  // everywhere.
+  std::vector<std::uint8_t> noData;
   int brickCells = 0;
   // Brick (bx,by,bz) covers samples bx·C … min((bx+1)·C, R−1) per axis (C = brickCells): the
   // cells whose trilinear interpolant depends only on these samples.

@@ -39,22 +39,37 @@ Box<3> cube(double h) { return Box<3>{Vec<3>::Constant(-h), Vec<3>::Constant(h)}
 
 }  // namespace
 
-TEST_CASE("no data: the CPU tracer shows the background where the hit has no data") {
+TEST_CASE("no data: the CPU tracer passes zeros without data and shows the surface beyond them") {
   const HalfValid<3, SphereField> field(SphereField(Vec<3>::Zero(), 1.0), 2);  // data where z ≥ 0
   const CpuTracer tracer(field, cube(2));
   const RayHit top = tracer.trace(Ray{Vec<3>(0.1, 0.2, 3), Vec<3>(0, 0, -1)});
   REQUIRE(top.hit);
   CHECK(top.position.z() > 0);
   CHECK(std::abs(top.position.norm() - 1.0) < 1e-6);
+  CHECK_FALSE(top.back);
+  // From below, the sphere's lower half has no data: the ray passes it and meets the upper half
+  // from inside, as an open bowl seen through its opening.
   const RayHit bottom = tracer.trace(Ray{Vec<3>(0.1, 0.2, -3), Vec<3>(0, 0, 1)});
-  CHECK_FALSE(bottom.hit);  // the sphere's lower half has no data
-  // render() (the wavefront) agrees with trace().
+  REQUIRE(bottom.hit);
+  CHECK(bottom.position.z() > 0);
+  CHECK(std::abs(bottom.position.norm() - 1.0) < 1e-6);
+  CHECK(bottom.back);
+  // render() (the wavefront) agrees with trace(): every hit seen from below is the upper half's inside.
   CameraSpec spec;
   spec.eye = {0.0, 0.0, -4.0};
   spec.target = {0.0, 0.0, 0.0};
   const Camera camera(spec, Projection::Perspective, 32, 32, 1.5);
   const CpuTraceResult image = tracer.render(camera, {0.0, 0.0, 0.0});
-  for (std::size_t p = 0; p < image.hit.size(); ++p) CHECK(image.hit[p] == 0);
+  int hits = 0;
+  for (std::size_t p = 0; p < image.hit.size(); ++p) {
+    if (!image.hit[p]) continue;
+    ++hits;
+    const RayHit h = tracer.trace(camera.pixelRay(int(p % 32), int(p / 32)));
+    REQUIRE(h.hit);
+    CHECK(h.position.z() > -1e-9);
+    CHECK(h.back);
+  }
+  CHECK(hits > 100);
 }
 
 TEST_CASE("no data: the 2D reference draws no-data pixels hatched grey, without the zero curve") {

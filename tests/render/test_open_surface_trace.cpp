@@ -1,0 +1,67 @@
+// The GPU tracer on an open surface (docs/maths.md, "No data"): a global fit of a spherical cap's
+// samples with their data reach (ReachMaskedField) is seen from below, through the cap's opening.
+// The interpolant closes the cap into a ball in front of it, where it has no data: the baked
+// march passes that zero and shows the cap's inside, as the CPU tracer and the mesh do, where it
+// used to stop there and show the background.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "core/pu/pu_model.h"
+#include "core/pu/reach_masked_field.h"
+#include "core/rbf/hrbf.h"
+#include "render/implicit_tracer.h"
+#include "support/render_test_support.h"
+#include "support/test_data.h"
+
+using namespace hermite;
+using namespace hermite::render;
+
+TEST_CASE("open surface trace: a cap seen through its opening shows its inside, beyond the no-data closure") {
+  const HermiteSamples<3> sphere = hermite::testing::goldenSphere(1200);
+  std::vector<int> keep;
+  for (int i = 0; i < sphere.size(); ++i)
+    if (sphere.points(2, i) >= 0.3) keep.push_back(i);
+  HermiteSamples<3> cap;
+  cap.points = sphere.points(Eigen::all, keep);
+  cap.normals = sphere.normals(Eigen::all, keep);
+  const HrbfModel<3> global = fitHrbf<3>(cap, HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0});
+  const ReachMaskedField<3> field(global, cap.points, PuOptions{}.dataReach, PuOptions{}.vertexReach);
+  REQUIRE_FALSE(field.valid(Vec<3>(0, 0, -1)));  // the closure's far pole has no data
+
+  auto context = hermite::render::testing::makeTestContext();
+  ImplicitTracer tracer;
+  const Box<3> bounds{Vec<3>::Constant(-1.5), Vec<3>::Constant(1.5)};
+  TracerUploadOptions upload;
+  upload.bakeResolution = 96;
+  tracer.upload(field, bounds, &cap, upload);
+  CameraSpec spec;
+  spec.eye = {0.0, 0.0, -4.0};  // below: the opening faces the eye
+  spec.up = {0.0, 1.0, 0.0};
+  const int W = 64, H = 64;
+  const Camera camera(spec, Projection::Perspective, W, H, 1.0);
+  const TraceResult result = tracer.render(camera, TraceSettings{});
+  int hits = 0, inside = 0, onCap = 0, closure = 0;
+  for (int j = 0; j < H; ++j)
+    for (int i = 0; i < W; ++i) {
+      const std::size_t p = std::size_t(j) * W + i;
+      if (!result.hit[p]) continue;
+      ++hits;
+      const Ray ray = camera.pixelRay(i, j);
+      const Vec<3> x = ray.origin + double(result.depth[p]) * ray.direction;
+      const Vec<3> n(result.normal[3 * p], result.normal[3 * p + 1], result.normal[3 * p + 2]);
+      inside += n.dot(ray.direction) > 0 ? 1 : 0;  // seen from inside
+      onCap += std::abs(x.norm() - 1.0) <= 0.05 && x.z() >= 0.3 ? 1 : 0;
+      closure += x.z() < -0.2 ? 1 : 0;  // the interpolant's closure, far below the samples
+    }
+  CAPTURE(hits);
+  CAPTURE(inside);
+  CAPTURE(onCap);
+  CAPTURE(closure);
+  // The opening (z = 0.3, radius 0.95) seen from 4.3 away: a disc of about 19 pixels' radius.
+  CHECK(hits > 900);
+  CHECK(inside >= 0.95 * hits);
+  CHECK(onCap >= 0.6 * hits);  // the rest: the zero set's run past the rim, within reach, seen around the opening
+  CHECK(closure == 0);
+}
