@@ -11,7 +11,6 @@ uniform float uVolumeResolution;  // R
 uniform vec3 uCell;               // sample spacing, world units
 // RGBA8 per sample: (n + 1) / 2, n the unit central difference one cell apart (baked_normals.h)
 uniform sampler3D uNormals;
-uniform int uHasNoData;  // 1: some sample has no data (alpha 0 in uNormals)
 
 #define TRACE_BRICK_DISTANCE 1
 float fieldValue(vec3 p);
@@ -45,13 +44,16 @@ vec3 shadingDirection(vec3 p) {
 
 vec2 brickInfo(ivec3 b) { return texelFetch(uBakedBricks, b, 0).xy; }
 
-// Whether the field has data at p: the normals texture's alpha is 1 at samples with data, 0 at
-// samples without (baked_normals.h); filtered, at least ½ nearer the data.
+// Whether a zero at p is surface: with TRACE_NO_DATA (a bake with samples without data), the
+// normals texture's alpha is 1 at samples where a zero would be surface, 0 where not
+// (baked_normals.h); filtered, at least ½ nearer the former.
+#ifdef TRACE_NO_DATA
 bool hasDataAt(vec3 p) {
-  if (uHasNoData == 0) return true;
   vec3 u = ((p - uBoundsLo) * uVolumeScale + 0.5) / uVolumeResolution;
   return texture(uNormals, u).a >= 0.5;
 }
+#else
+bool hasDataAt(vec3 p) { return true; }
+#endif
 
 float neighbourhoodLipschitz(ivec3 b) { return texelFetch(uBakedBricks, b, 0).z; }
-

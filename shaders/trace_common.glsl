@@ -160,11 +160,11 @@ bool march(vec3 o, vec3 d, float t0, float t1, out float tHit, out bool undecide
     float stepLength = (info.y > 0.5) ? 1e30 : (info.x > 0.0 ? abs(fa) / info.x : 1e30);
     float ts = min(t + stepLength + uMinStep, tExit);  // tExit ≤ t1
     float fs = fieldValue(o + ts * d);
-    bool change = fs == 0.0 || (fs < 0.0) != negA;
+    bool surface = fs == 0.0 || (fs < 0.0) != negA;
     // A zero where the field has no data (at the secant point) is passed: the march goes on
-    // with the sign beyond it.
-    float tz = mix(t, ts, fa == 0.0 ? 0.0 : clamp(fa / (fa - fs), 0.0, 1.0));
-    if (change && hasDataAt(o + tz * d)) {
+    // with the sign beyond it. Only on a sign change, which few iterations of a SIMD group see.
+    if (surface) surface = hasDataAt(o + mix(t, ts, fa == 0.0 ? 0.0 : clamp(fa / (fa - fs), 0.0, 1.0)) * d);
+    if (surface) {
       found = true;
       tFree = min(t + stepLength, ts);
       tb = ts;

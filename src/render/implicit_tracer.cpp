@@ -279,13 +279,16 @@ std::vector<T> readTexture(const Texture& texture, GLenum format, GLenum type, s
 enum TraceProgramKind { kBakedProgram = 0, kExactFloatProgram = 1, kExactDoubleProgram = 2, kBakedTileProgram = 3 };
 constexpr int kTraceProgramKinds = 4;
 
-// The trace program of a kind, with or without the slice plane (a compile-time switch: llvmpipe
-// executes untaken branches under a mask, so an unused slice would still cost its fetches).
-Program buildTraceProgram(TraceProgramKind kind, bool slice) {
+// The trace program of a kind, with or without the slice plane, and (baked) with or without the
+// test of zeros without data (compile-time switches: llvmpipe executes untaken branches under a
+// mask, so an unused slice or data test would still cost its fetches: the test alone made the
+// baked trace of a field with data everywhere a quarter slower).
+Program buildTraceProgram(TraceProgramKind kind, bool slice, bool noData) {
   const bool baked = kind == kBakedProgram || kind == kBakedTileProgram;
   const char* file = baked ? "trace_baked.frag" : "trace_exact.frag";
   std::string fragment = kernelShaderDefines();
   if (slice) fragment += "#define TRACE_SLICE 1\n";
+  if (noData && baked) fragment += "#define TRACE_NO_DATA 1\n";
   if (kind == kExactDoubleProgram) fragment += "#define EXACT_DOUBLE 1\n";
   if (baked) fragment += "#define TRACE_TILE " + std::to_string(kTraceTile) + "\n";
   if (kind == kBakedProgram) fragment += "#define TRACE_TILE_START 1\n";
@@ -622,7 +625,8 @@ HitRefinementOptions refinementOptions(const TraceSettings& settings, const Volu
 }  // namespace
 
 struct ImplicitTracer::Gpu {
-  std::unique_ptr<Program> programs[kTraceProgramKinds][2];  // [TraceProgramKind][slice], built on first use
+  // [TraceProgramKind][slice][no data], built on first use
+  std::unique_ptr<Program> programs[kTraceProgramKinds][2][2];
   VertexArray empty;
   Buffer rectVertices;  // the baked trace pass's rectangles: (x, y) pixel corners, 2 triangles each
   GLsizei rectVertexCount = 0;
@@ -645,9 +649,9 @@ struct ImplicitTracer::Gpu {
   double sampleSpacing = 0;  // mean nearest-neighbour distance of the uploaded samples (0: none)
   bool softwareLoopLimit = isMesaSoftwareRenderer();
 
-  const Program& program(TraceProgramKind kind, bool slice) {
-    std::unique_ptr<Program>& slot = programs[kind][slice ? 1 : 0];
-    if (!slot) slot = std::make_unique<Program>(buildTraceProgram(kind, slice));
+  const Program& program(TraceProgramKind kind, bool slice, bool noData = false) {
+    std::unique_ptr<Program>& slot = programs[kind][slice ? 1 : 0][noData ? 1 : 0];
+    if (!slot) slot = std::make_unique<Program>(buildTraceProgram(kind, slice, noData));
     return *slot;
   }
   TraceTarget& targetFor(int width, int height) {
@@ -921,7 +925,7 @@ void ImplicitTracer::Gpu::traceRows(const TraceFrame& frame, const VolumeBake& b
   const int loopBudget =
       !baked && softwareLoopLimit ? exactLoopBudget(paddedCentres, model->centres().cols()) : 1 << 30;
   const TraceProgramKind kind = baked ? kBakedProgram : exactDouble ? kExactDoubleProgram : kExactFloatProgram;
-  const Program& p = program(kind, settings.slice.enabled);
+  const Program& p = program(kind, settings.slice.enabled, baked && !bake.noData.empty());
   p.use();
   setTraceUniforms(p, frame, bake);
   if (baked) {
@@ -986,7 +990,6 @@ void ImplicitTracer::Gpu::bindBaked(const Program& p, const TraceFrame& frame, c
   p.setUniform("uBakedBricks", 2);
   normals.bind(4);
   p.setUniform("uNormals", 4);
-  p.setUniform("uHasNoData", bake.noData.empty() ? 0 : 1);
 }
 
 // Binds the exact mode's model: centres and β from the SSBOs of the program's precision, kernel,
