@@ -21,29 +21,28 @@ const Points<Dim>& checkedPoints(const Points<Dim>& points, double reach, double
 template <int Dim>
 ReachMaskedField<Dim>::ReachMaskedField(const ImplicitField<Dim>& inner, const Points<Dim>& points, double reach,
                                         double vertexReach, std::unique_ptr<ImplicitField<Dim>> owned)
-    : owned_(std::move(owned)),
-      inner_(inner),
+    : MaskedField<Dim>(inner, std::move(owned)),
       tree_(checkedPoints<Dim>(points, reach, vertexReach), PuTreeOptions{}),
       reach_(tree_, points, reach),
       zeroSetScale_(std::min(1.0, vertexReach / reach)) {}
 
 template <int Dim>
 bool ReachMaskedField<Dim>::validNear(const Vec<Dim>& x, double margin) const {
-  if (!(margin > 0 ? inner_.validNear(x, margin) : inner_.valid(x))) return false;
+  if (!(margin > 0 ? this->inner().validNear(x, margin) : this->inner().valid(x))) return false;
   return reach_.reaches(tree_, x, margin);
 }
 
 template <int Dim>
 bool ReachMaskedField<Dim>::validOnZeroSet(const Vec<Dim>& x) const {
-  return inner_.validOnZeroSet(x) && reach_.reaches(tree_, x, 0.0, zeroSetScale_);
+  return this->inner().validOnZeroSet(x) && reach_.reaches(tree_, x, 0.0, zeroSetScale_);
 }
 
 template <int Dim>
 void ReachMaskedField<Dim>::evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f,
                                                std::vector<char>& valid) const {
-  inner_.evaluateBatch(X, f);
-  if (inner_.everywhereValid()) valid.assign(std::size_t(X.cols()), 1);
-  else inner_.validBatch(X, valid);
+  this->inner().evaluateBatch(X, f);
+  if (this->inner().everywhereValid()) valid.assign(std::size_t(X.cols()), 1);
+  else this->inner().validBatch(X, valid);
 #pragma omp parallel for schedule(dynamic, 256)
   for (Eigen::Index i = 0; i < X.cols(); ++i)
     if (valid[std::size_t(i)] && !reach_.reaches(tree_, X.col(i))) valid[std::size_t(i)] = 0;

@@ -8,14 +8,14 @@
 
 #include <memory>
 
-#include "core/base/implicit_field.h"
+#include "core/base/masked_field.h"
 #include "core/pu/pu_data_reach.h"
 #include "core/pu/pu_tree.h"
 
 namespace hermite {
 
 template <int Dim>
-class ReachMaskedField final : public ImplicitField<Dim> {
+class ReachMaskedField final : public MaskedField<Dim> {
  public:
   // The reach of `points` (Dim × N, N ≥ 1, the world positions the inner field interpolates)
   // with factor c = `reach` > 0 and zero-set reach β = `vertexReach` > 0 capped spacings.
@@ -23,25 +23,12 @@ class ReachMaskedField final : public ImplicitField<Dim> {
   ReachMaskedField(const ImplicitField<Dim>& inner, const Points<Dim>& points, double reach, double vertexReach,
                    std::unique_ptr<ImplicitField<Dim>> owned = nullptr);
 
-  double evaluate(const Vec<Dim>& x, Vec<Dim>* g = nullptr, Mat<Dim>* H = nullptr) const override {
-    return inner_.evaluate(x, g, H);
-  }
-  void evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G = nullptr) const override {
-    inner_.evaluateBatch(X, f, G);
-  }
   bool valid(const Vec<Dim>& x) const override { return validNear(x, 0.0); }
   bool validNear(const Vec<Dim>& x, double margin) const override;
   bool validOnZeroSet(const Vec<Dim>& x) const override;
   void evaluateValidBatch(const Points<Dim>& X, Eigen::VectorXd& f, std::vector<char>& valid) const override;
-  bool everywhereValid() const override { return false; }
-  double lipschitzBound(const Box<Dim>& box) const override { return inner_.lipschitzBound(box); }
-  // No RadialSum: the GPU tracer's exact shader sums one without validity, so the GPU paths bake
-  // this field (its no-data samples marked), as they do the partition of unity.
-  const RadialSum<Dim>* asRadialSum() const override { return nullptr; }
 
  private:
-  std::unique_ptr<ImplicitField<Dim>> owned_;
-  const ImplicitField<Dim>& inner_;
   PuTree<Dim> tree_;  // the samples' boxes: what the reach queries walk
   PuDataReach<Dim> reach_;
   double zeroSetScale_;  // β / c, at most 1
