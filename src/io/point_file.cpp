@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "core/base/errors.h"
+#include "core/points/layer_thickness.h"
 #include "core/points/normal_estimation.h"
 #include "io/atomic_file.h"
 #include "io/input_file.h"
@@ -94,6 +95,22 @@ void orientGivenNormals(const Points<Dim>& points, Points<Dim>& normals, int est
                      "given");
 }
 
+// Warns when the points lie in a layer as thick as their spacing (layer_thickness.h): a noisy
+// scan, which an interpolating fit follows into a rough surface with many handles.
+template <int Dim>
+void warnIfNoisy(const Points<Dim>& points, const std::string& path, std::vector<std::string>& warnings) {
+  const LayerThickness t = layerThickness<Dim>(points);
+  if (t.median < kNoisyLayer) return;
+  char text[64];
+  std::snprintf(text, sizeof text, "%.2f", t.median);
+  warnings.push_back(path + ": the samples look noisy: they lie in a layer " + text +
+                     " of their neighbourhood's radius thick (the median over " + std::to_string(t.probes) +
+                     " points of the spread of their 12 nearest neighbours off a common plane; a sampled surface "
+                     "gives under 0.1), so the interpolating fit follows the noise into a rough surface with "
+                     "many handles; fit.smoothing (e.g. 0.1) with larger boxes (fit.partition.max_points_per_box "
+                     "60) trades interpolation for a smoother surface");
+}
+
 // Whether every complete line of `text` reads "x y c nx ny 0" with the first line's c (exactly:
 // what a 2D exporter writes). `whole`: the text is the whole file; otherwise its last line may be
 // cut and is not read. A line that does not parse answers false (the loader then reports it).
@@ -164,6 +181,7 @@ HermiteSamples<Dim> parseSamples(std::string_view text, const std::string& path,
       fillMissingNormals<Dim>(P, N, path, columns == fileDim ? std::to_string(fileDim) + " columns" : std::string(),
                               warnings);
   orientGivenNormals<Dim>(P, N, estimated, path, options, warnings);
+  warnIfNoisy<Dim>(P, path, warnings);
   normals.assign(N.data(), N.data() + N.size());
 
   HermiteSamples<Dim> samples;
@@ -331,6 +349,7 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
       fillMissingNormals<3>(samples.points, samples.normals, path,
                             given || mesh.triangleCount() > 0 ? std::string() : std::string("positions only"), warnings);
   orientGivenNormals<3>(samples.points, samples.normals, estimated, path, options, warnings);
+  if (mesh.triangleCount() == 0) warnIfNoisy<3>(samples.points, path, warnings);  // a scanned point set
   validateSamples(samples, warnings, path);
   return samples;
 }

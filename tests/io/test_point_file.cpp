@@ -507,3 +507,30 @@ TEST_CASE("io_points: a mesh split at its edges is one sample per position, norm
     return w.find("flat.obj: 16 vertices repeat the position of another with a different normal") != std::string::npos;
   }));
 }
+
+TEST_CASE("io_points: a cloud as thick as its spacing is warned about as noisy; a sampled surface is not") {
+  TempDir dir;
+  const hermite::HermiteSamples<3> sphere = hermite::testing::goldenSphere(5000);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> noise(0.0, 0.08);  // twice the spacing of 5 000 points on a unit sphere
+  std::string clean, rough;
+  for (int i = 0; i < sphere.size(); ++i) {
+    const Eigen::Vector3d p = sphere.points.col(i), q = p + Eigen::Vector3d(noise(rng), noise(rng), noise(rng));
+    clean += std::to_string(p.x()) + " " + std::to_string(p.y()) + " " + std::to_string(p.z()) + "\n";
+    rough += std::to_string(q.x()) + " " + std::to_string(q.y()) + " " + std::to_string(q.z()) + "\n";
+  }
+  const auto noisyWarning = [](const std::vector<std::string>& warnings) {
+    for (const std::string& w : warnings)
+      if (w.find("the samples look noisy") != std::string::npos) return w;
+    return std::string();
+  };
+  std::vector<std::string> warnings;
+  hermite::loadPointFile3d(dir.write("clean.xyz", clean), warnings);
+  CHECK(noisyWarning(warnings).empty());
+  warnings.clear();
+  const std::string path = dir.write("rough.xyz", rough);
+  hermite::loadPointFile3d(path, warnings);
+  const std::string w = noisyWarning(warnings);
+  CHECK(w.rfind(path + ": the samples look noisy: they lie in a layer 0.", 0) == 0);
+  CHECK(w.find("fit.smoothing") != std::string::npos);
+}
