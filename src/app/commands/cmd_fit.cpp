@@ -12,6 +12,7 @@
 #include "app/gui/scene_loading.h"
 #include "core/base/errors.h"
 #include "core/points/hermite_samples.h"
+#include "scene/data_reach_mask.h"
 #include "scene/degenerate_check.h"
 #include "scene/scene_fit.h"
 
@@ -170,6 +171,9 @@ json fitReportJson(const Scene& scene, const SceneFit<Dim>& fit, bool coefficien
   out["smoothing"] = scene.fit.smoothing;
   out["mean_spacing"] = meanSampleSpacing<Dim>(fit.samples.points);
   out["partition_chosen"] = fit.pu() ? "pu" : "dense";  // what fit.partition.enabled ("auto": by size) ran
+  // Whether the global field ends at the samples' data reach for mesh, render and the GUI
+  // (fit.reach_mask; the partition of unity always does).
+  out["data_reach_mask"] = dataReachApplies<Dim>(scene, fit);
   if (coefficients) out["model"] = fittedModelJson<Dim>(scene, fit.model);
   return out;
 }
@@ -205,6 +209,9 @@ void printReadable(const Scene& scene, const json& j) {
          std::to_string(j["partition"]["max_box_samples"].get<int>()) + " samples per box, " +
          std::to_string(j["partition"]["max_support_samples"].get<int>()) + " per local fit (" +
          j["partition"]["blend"].get<std::string>() + " blend)\n";
+  if (j["data_reach_mask"].get<bool>())
+    s += "data reach   the surface ends within " + sci(scene.fit.partition.dataReach) +
+         " local spacings of the samples in mesh, render and the GUI (fit.reach_mask)\n";
   if (const json& t = j["transform"]; !t.is_null()) {
     s += "transform    " + t["method"].get<std::string>() + "; update " + sci(t["update_ms"]) + " ms";
     if (!t["resolve_ms"].is_null())

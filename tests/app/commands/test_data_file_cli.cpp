@@ -49,6 +49,7 @@ TEST_CASE("data files: fit FILE builds the default scene, estimates missing and 
   CHECK(j["n_samples"] == 300);
   CHECK(j["kernel"] == "cubic");
   CHECK(j["partition_chosen"] == "dense");
+  CHECK(j["data_reach_mask"] == true);  // a file of at least 50 samples, fitted globally
   CHECK(j["max_abs_f"].get<double>() < 1e-6);
   REQUIRE(j["warnings"].size() == 1);
   CHECK(contains(j["warnings"][0], "normals estimated for all 300 samples"));
@@ -59,6 +60,8 @@ TEST_CASE("data files: fit FILE builds the default scene, estimates missing and 
   REQUIRE(text.rc == 0);
   CHECK(contains(text.out, "scene        " + zeros + " (implicit3d, 300 samples"));
   CHECK(contains(text.out, "300 of 300 normals are zero"));
+  CHECK(contains(text.out, "data reach   the surface ends within 3 local spacings of the samples"));
+  CHECK(fitJson(zeros + " --set fit.reach_mask=false")["data_reach_mask"] == false);
 
   // A mesh without vertex normals is data too: area-weighted face normals.
   const std::string off = writeTemp("data_tetra.off", "OFF\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n"
@@ -73,6 +76,7 @@ TEST_CASE("data files: fit.partition.enabled \"auto\" picks the fit by size, fal
   const std::string big = sphereFile("data_big.xyz", 3000, "");
   const json pu = fitJson(big);
   CHECK(pu["partition_chosen"] == "pu");
+  CHECK(pu["data_reach_mask"] == false);  // the partition of unity has its reach of its own
   CHECK(pu["partition"].is_object());
   bool said = false;
   for (const auto& w : pu["warnings"]) said |= contains(w, "3000 samples make a global fit of 12004 unknowns");
