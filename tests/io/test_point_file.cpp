@@ -529,8 +529,14 @@ TEST_CASE("io_points: a cloud as thick as its spacing is warned about as noisy; 
   CHECK(noisyWarning(warnings).empty());
   warnings.clear();
   const std::string path = dir.write("rough.xyz", rough);
-  hermite::loadPointFile3d(path, warnings);
+  const hermite::HermiteSamples<3> s = hermite::loadPointFile3d(path, warnings);
   const std::string w = noisyWarning(warnings);
   CHECK(w.rfind(path + ": the samples look noisy: they lie in a layer 0.", 0) == 0);
   CHECK(w.find("fit.smoothing") != std::string::npos);
+  // Its normals are estimated as one sheet over 40 neighbours: outward, as the sphere's (with the
+  // defaults, the gap rule turned about half of them inward).
+  CHECK(warnings[0].find("by PCA over 40 nearest neighbours (the cloud is noisy") != std::string::npos);
+  int outward = 0;
+  for (int i = 0; i < s.size(); ++i) outward += s.points.col(i).dot(s.normals.col(i)) > 0;
+  CHECK(outward >= 0.98 * s.size());
 }
