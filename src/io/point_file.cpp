@@ -65,7 +65,8 @@ int fillMissingNormals(const Points<Dim>& points, Points<Dim>& normals, const st
                                                        : "those " + std::to_string(estimated);
   warnings.push_back(path + ": " + what + ": normals estimated for " + which + " by PCA over " +
                      std::to_string(estimation.neighbours) + " nearest neighbours" +
-                     (noisy ? " (the cloud is noisy, see below: as one sheet)" : "") + " and oriented by propagation over a minimum spanning tree" +
+                     (noisy ? " (the cloud is noisy, see below: as one sheet)" : "") +
+                     " and oriented by propagation over a minimum spanning tree" +
                      (estimated == points.cols() ? ", outward at each part's extreme point"
                                                  : ", consistently with the given normals") +
                      "; check their direction (flip if inside out)");
@@ -117,7 +118,8 @@ void warnIfNoisy(const LayerThickness& t, const std::string& path, std::vector<s
   std::snprintf(text, sizeof text, "%.2f", t.median);
   warnings.push_back(path + ": the samples look noisy: they lie in a layer " + text +
                      " of their neighbourhood's radius thick (the median over " + std::to_string(t.probes) +
-                     " points of the spread of their 12 nearest neighbours off a common plane; a sampled surface "
+                     " points of the spread of their " + std::to_string(LayerThicknessOptions{}.neighbours) +
+                     " nearest neighbours off a common plane; a sampled surface "
                      "gives under 0.1), so the interpolating fit follows the noise into a rough surface with "
                      "many handles; fit.smoothing (e.g. 0.1) with larger boxes (fit.partition.max_points_per_box "
                      "60) trades interpolation for a smoother surface");

@@ -86,7 +86,7 @@ TEST_CASE("data reach mask: a global fit of an open scan's file ends near its sa
   CHECK(check.boundaryEdges > 0);  // open at the rim, as the scan is
 }
 
-TEST_CASE("data reach mask: presets, inline data, hand-made files and partitions of unity are left as they are, unless asked") {
+TEST_CASE("data reach mask: presets, inline data, hand-made files and PU fits are left as they are, unless asked") {
   const testing::TempDir dir;
   int count = 0;
   const std::string small = dir.write("cap.xyzn", capText(100, 0.6, &count));

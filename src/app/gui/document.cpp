@@ -119,7 +119,8 @@ Scene withInlineSamples(const Scene& scene, std::vector<std::string>& warnings) 
   const HermiteSamples<Dim> samples = sceneSamples<Dim>(scene, warnings);
   Scene s = scene;
   // A data file's reach stays when its samples become inline (the edited scan is still a scan).
-  if (s.fit.reachMask == AutoSwitch::Auto && reachMaskAuto(scene.data, samples.size())) s.fit.reachMask = AutoSwitch::On;
+  if (s.fit.reachMask == AutoSwitch::Auto && reachMaskAuto(scene.data, samples.size()))
+    s.fit.reachMask = AutoSwitch::On;
   s.data = DataSpec{};
   setInlineSamples<Dim>(s, samples);
   return s;
