@@ -9,7 +9,8 @@ uniform highp sampler3D uBakedBricks;
 uniform vec3 uVolumeScale;        // (R − 1) / (hi − lo): world → sample index
 uniform float uVolumeResolution;  // R
 uniform vec3 uCell;               // sample spacing, world units
-// RGBA8 per sample: (n + 1) / 2, n the unit central difference one cell apart (baked_normals.h)
+// RGBA8 per sample: (n + 1) / 2, n the unit central difference one cell apart, and alpha 0 where
+// a zero would be no surface (baked_normals.h)
 uniform sampler3D uNormals;
 
 #define TRACE_BRICK_DISTANCE 1

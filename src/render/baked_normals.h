@@ -18,8 +18,8 @@ namespace hermite::render {
 
 // R³ RGBA8 texels, x fastest: (n + 1) / 2 · 255 rounded, n the unit central-difference
 // direction; (128, 128, 128) — n ≈ 0, shaded as facing the viewer — where the difference
-// vanishes or is not finite. Alpha 255 where the sample has data, 0 where it has none
-// (VolumeBake::noData): filtered, the tracer's test of a zero. Threaded (OpenMP).
+// vanishes or is not finite. Alpha 255, or 0 where a zero at the sample would be no surface
+// (VolumeBake::noData): filtered, the baked march's test of a zero. Threaded (OpenMP).
 std::vector<std::uint8_t> bakedNormalTexels(const VolumeBake& bake);
 
 // The unit direction a texel holds (for tests): 2 · byte / 255 − 1 per component.
