@@ -3,6 +3,7 @@
 #include <chrono>
 #include <cstdint>
 
+#include "scene/data_reach_mask.h"
 #include "scene/scene_fit_memory.h"
 
 namespace hermite::app {
@@ -99,6 +100,7 @@ std::shared_ptr<const FitOutcome> DragRefit::fitDim(const Scene& scene, const Ca
     fitted.data = samples;
     fitted.warnings = dataWarnings;
     fitted.warnings.insert(fitted.warnings.end(), fitted.report.warnings.begin(), fitted.report.warnings.end());
+    maskBeyondDataReach<Dim>(scene, fitted);  // an edited scan keeps its reach while a sample is dragged
     auto out = std::make_shared<FitOutcome>();
     out->scene = scene;
     out->result = std::move(fitted);

@@ -121,3 +121,22 @@ TEST_CASE("drag refit: a prepared drag refits its very first move through the bo
   CHECK(fieldDifference<2>(*first, *fitOutcome(scene)) < 1e-9);
   CHECK(refit.factorisations() == 1);
 }
+
+TEST_CASE("drag refit: an edited scan's bordered refit keeps its data reach, as the fit from scratch does") {
+  DragRefit refit;
+  Scene scene = inlineScene<2>("curve2d", 60);
+  scene.fit.reachMask = AutoSwitch::On;  // what a file's samples made inline carry (withInlineSamples)
+  REQUIRE(refit.fit(scene)->ok());
+  scene = moved<2>(scene, 7, Vec<2>(0.02, -0.01));
+  const auto fast = refit.fit(scene);
+  REQUIRE(fast->ok());
+  CHECK(fast->as<SceneFit<2>>()->report.solver == "bordered-lu");
+  CHECK_FALSE(fast->as<SceneFit<2>>()->field().everywhereValid());
+  const auto scratch = fitOutcome(scene);
+  CHECK_FALSE(scratch->as<SceneFit<2>>()->field().everywhereValid());
+  // The same validity: far from the curve neither has data, on a sample both have.
+  const Vec<2> far(50.0, 50.0), on = fast->as<SceneFit<2>>()->data.points.col(0);
+  CHECK_FALSE(fast->as<SceneFit<2>>()->field().valid(far));
+  CHECK(fast->as<SceneFit<2>>()->field().valid(on));
+  CHECK(scratch->as<SceneFit<2>>()->field().valid(on));
+}
