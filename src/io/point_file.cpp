@@ -13,6 +13,7 @@
 
 #include "core/base/errors.h"
 #include "core/points/layer_thickness.h"
+#include "core/points/lexicographic_order.h"
 #include "core/points/normal_estimation.h"
 #include "io/atomic_file.h"
 #include "io/input_file.h"
@@ -338,7 +339,9 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
                                       const PointFileOptions& options) {
   TriMesh mesh = loadMeshFile(path);
   if (mesh.vertexCount() == 0) throw InputError(path + ": no points");
-  const std::vector<int> root = coincidentVertexRoots(mesh);
+  // One sort of the positions serves the repeated vertices here and the duplicates in validateSamples.
+  const std::vector<Eigen::Index> order = lexicographicOrder<3>(mesh.vertices);
+  const std::vector<int> root = coincidentVertexRoots(mesh, order);
   std::optional<Eigen::Matrix3Xd> fromFaces;  // built on first use
   const auto faces = [&]() -> const Eigen::Matrix3Xd& {
     if (!fromFaces) fromFaces = mesh.triangleCount() > 0 ? faceNormalsAtPositions(mesh, root)
@@ -368,7 +371,7 @@ HermiteSamples<3> readMeshFileSamples(const std::string& path, std::vector<std::
                             layer.median >= kNoisyLayer, warnings);
   orientGivenNormals<3>(samples.points, samples.normals, estimated, path, options, warnings);
   warnIfNoisy(layer, path, warnings);
-  validateSamples(samples, warnings, path);
+  validateSamples(samples, warnings, path, &order);  // the positions are the mesh's, unchanged
   return samples;
 }
 

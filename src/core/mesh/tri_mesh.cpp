@@ -1,7 +1,6 @@
 #include "core/mesh/tri_mesh.h"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <numeric>
 #include <utility>
@@ -9,6 +8,7 @@
 #include <Eigen/Geometry>
 
 #include "core/base/parallel_sort.h"
+#include "core/points/lexicographic_order.h"
 
 namespace hermite {
 
@@ -151,15 +151,14 @@ std::vector<int> triangleComponents(const TriMesh& mesh, int* count, std::vector
 }
 
 std::vector<int> coincidentVertexRoots(const TriMesh& mesh) {
-  std::vector<std::pair<std::array<double, 3>, int>> byPosition(static_cast<std::size_t>(mesh.vertexCount()));
-  for (int v = 0; v < mesh.vertexCount(); ++v)
-    byPosition[static_cast<std::size_t>(v)] = {{mesh.vertices(0, v), mesh.vertices(1, v), mesh.vertices(2, v)}, v};
-  std::sort(byPosition.begin(), byPosition.end());  // equal positions by ascending id
+  return coincidentVertexRoots(mesh, lexicographicOrder<3>(mesh.vertices));
+}
+
+std::vector<int> coincidentVertexRoots(const TriMesh& mesh, const std::vector<Eigen::Index>& order) {
   std::vector<int> root(static_cast<std::size_t>(mesh.vertexCount()));
-  for (std::size_t k = 0; k < byPosition.size(); ++k) {
-    const bool same = k > 0 && byPosition[k].first == byPosition[k - 1].first;
-    root[static_cast<std::size_t>(byPosition[k].second)] =
-        same ? root[static_cast<std::size_t>(byPosition[k - 1].second)] : byPosition[k].second;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const bool same = k > 0 && mesh.vertices.col(order[k]) == mesh.vertices.col(order[k - 1]);
+    root[static_cast<std::size_t>(order[k])] = same ? root[static_cast<std::size_t>(order[k - 1])] : int(order[k]);
   }
   return root;
 }

@@ -69,6 +69,9 @@ void dropUnusedVertices(TriMesh& mesh);
 // Per vertex, the smallest vertex id at exactly its position (itself when no earlier vertex is
 // there): what welding merges each vertex into.
 std::vector<int> coincidentVertexRoots(const TriMesh& mesh);
+// The same from the vertices' lexicographicOrder (core/points/lexicographic_order.h), for a caller
+// that sorts them for something else too.
+std::vector<int> coincidentVertexRoots(const TriMesh& mesh, const std::vector<Eigen::Index>& order);
 
 // Removes the triangles of every component c with drop[c] set (label: a component per triangle,
 // as triangleComponents or vertexConnectedComponents give), then the vertices no triangle uses;

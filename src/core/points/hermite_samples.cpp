@@ -12,6 +12,7 @@
 #include "core/base/format_number.h"
 #include "core/base/parallel_sort.h"
 #include "core/points/flat_cell_map.h"
+#include "core/points/lexicographic_order.h"
 
 namespace hermite {
 
@@ -191,34 +192,6 @@ void normalizeNormals(const Points<Dim>& P, Points<Dim>& N, const std::string& s
   }
 }
 
-// The sample indices sorted lexicographically by coordinates, equal points by index (so the
-// first of a run is the smallest index), O(N log N). The coordinates are copied next to their
-// index so the sort compares contiguous keys instead of chasing indices.
-template <int Dim>
-std::vector<Eigen::Index> lexicographicOrder(const Points<Dim>& P) {
-  struct Key {
-    std::array<double, Dim> p;
-    Eigen::Index index;
-  };
-  const Eigen::Index n = P.cols();
-  std::vector<Key> keys(static_cast<std::size_t>(n));
-  for (Eigen::Index i = 0; i < n; ++i) {
-    Key& k = keys[static_cast<std::size_t>(i)];
-    for (int c = 0; c < Dim; ++c) k.p[static_cast<std::size_t>(c)] = P(c, i);
-    k.index = i;
-  }
-  parallelSort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
-    for (std::size_t c = 0; c < Dim; ++c) {
-      if (a.p[c] < b.p[c]) return true;
-      if (b.p[c] < a.p[c]) return false;
-    }
-    return a.index < b.index;
-  });
-  std::vector<Eigen::Index> order(static_cast<std::size_t>(n));
-  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].index;
-  return order;
-}
-
 // Exact duplicates found in runs of equal points: each but the first of a run, with one
 // example pair for the warning.
 struct Duplicates {
@@ -227,11 +200,12 @@ struct Duplicates {
   Eigen::Index exampleKept = -1, exampleRemoved = -1;
 };
 
-// The repeats of earlier samples; throws when a repeat's normal differs from its first's.
+// The repeats of earlier samples (`order`: P's lexicographicOrder); throws when a repeat's
+// normal differs from its first's.
 template <int Dim>
-Duplicates findDuplicates(const Points<Dim>& P, const Points<Dim>& N, const std::string& source) {
+Duplicates findDuplicates(const Points<Dim>& P, const Points<Dim>& N, const std::string& source,
+                          const std::vector<Eigen::Index>& order) {
   constexpr double kNormalTolerance = 1e-12;
-  const std::vector<Eigen::Index> order = lexicographicOrder<Dim>(P);
   Duplicates d;
   d.removed.assign(static_cast<std::size_t>(P.cols()), 0);
   for (std::size_t s = 0; s < order.size();) {
@@ -274,15 +248,16 @@ Eigen::Index removeSamples(Points<Dim>& P, Points<Dim>& N, const std::vector<cha
 }  // namespace
 
 template <int Dim>
-void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& warnings,
-                     const std::string& source) {
+void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& warnings, const std::string& source,
+                     const std::vector<Eigen::Index>* order) {
   Points<Dim>& P = samples.points;
   Points<Dim>& N = samples.normals;
   if (P.cols() != N.cols())
     throw InputError(source + ": " + std::to_string(P.cols()) + " points but " +
                      std::to_string(N.cols()) + " normals (one normal per point)");
   normalizeNormals<Dim>(P, N, source);
-  const Duplicates d = findDuplicates<Dim>(P, N, source);
+  const std::vector<Eigen::Index> own = order ? std::vector<Eigen::Index>{} : lexicographicOrder<Dim>(P);
+  const Duplicates d = findDuplicates<Dim>(P, N, source, order ? *order : own);
   if (d.count == 0) return;
   const Eigen::Index remaining = removeSamples<Dim>(P, N, d.removed);
   warnings.push_back(source + ": merged " + std::to_string(d.count) + " exact duplicate sample" +
@@ -312,8 +287,10 @@ double meanSampleSpacing(const Points<Dim>& points) {
   return sum / double(n);
 }
 
-template void validateSamples<2>(HermiteSamples<2>&, std::vector<std::string>&, const std::string&);
-template void validateSamples<3>(HermiteSamples<3>&, std::vector<std::string>&, const std::string&);
+template void validateSamples<2>(HermiteSamples<2>&, std::vector<std::string>&, const std::string&,
+                                 const std::vector<Eigen::Index>*);
+template void validateSamples<3>(HermiteSamples<3>&, std::vector<std::string>&, const std::string&,
+                                 const std::vector<Eigen::Index>*);
 template double meanSampleSpacing<2>(const Points<2>&);
 template double meanSampleSpacing<3>(const Points<3>&);
 

@@ -25,10 +25,12 @@ HermiteSamples<Dim> withoutSample(const HermiteSamples<Dim>& samples, int i);
 //  - normals are normalised;
 //  - exact duplicate points with the same normal (after normalisation, to 1e-12) are merged,
 //    with a warning appended to `warnings`; duplicates with conflicting normals → InputError.
-// `source` (a file name or "inline data") prefixes every message.
+// `source` (a file name or "inline data") prefixes every message. `order`, when given, is the
+// points' lexicographicOrder (lexicographic_order.h), which a caller that sorted them already
+// passes instead of having them sorted again.
 template <int Dim>
 void validateSamples(HermiteSamples<Dim>& samples, std::vector<std::string>& warnings,
-                     const std::string& source = "samples");
+                     const std::string& source = "samples", const std::vector<Eigen::Index>* order = nullptr);
 
 // Mean distance from each sample to its nearest other sample (0 for fewer than two samples).
 // Used to express r in units of the sample spacing.
