@@ -135,6 +135,11 @@ void appendContourText(const MarchingReport& r, char* line, std::size_t size) {
   if (r.droppedGaps > 0)
     std::snprintf(line + used, size - used,
                   "; %d pockets of gaps thinner than a cell, enclosed by the grid, left out", r.droppedGaps);
+  used = std::strlen(line);
+  if (r.centresOffZeroSet > 0)
+    std::snprintf(line + used, size - used,
+                  "; %d polygon centres with no root of f in their cube, left at their polygon's mean",
+                  r.centresOffZeroSet);
 }
 
 // What the winding-number check did (stray_pockets.h), appended to the summary line.

@@ -13,6 +13,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "core/mesh/centre_vertices.h"
 #include "core/mesh/cut_tips.h"
 #include "core/mesh/marching_anchors.h"
 #include "core/mesh/marching_memory.h"
@@ -169,12 +170,45 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
 
 
 
+// Starts for the centre vertices (centre_vertices.h): per polygon its mean vertex, area normal and
+// the box of its vertices.
+struct CentreStarts {
+  Points<3> X, axis, lo, hi;
+};
+
+CentreStarts centreStarts(const Points<3>& vertices, const std::vector<LayerOutput>& out, size_t count) {
+  CentreStarts s;
+  for (Points<3>* m : {&s.X, &s.axis, &s.lo, &s.hi}) m->resize(3, static_cast<Eigen::Index>(count));
+  Eigen::Index c = 0;
+  for (const LayerOutput& o : out)
+    for (const std::vector<int>& ring : o.centres) {
+      Eigen::Vector3d mean = Eigen::Vector3d::Zero(), area = Eigen::Vector3d::Zero();
+      Eigen::Vector3d lo = vertices.col(ring[0]), hi = lo;
+      for (int id : ring) {
+        mean += vertices.col(id);
+        lo = lo.cwiseMin(vertices.col(id));
+        hi = hi.cwiseMax(vertices.col(id));
+      }
+      mean /= static_cast<double>(ring.size());
+      for (size_t i = 0; i < ring.size(); ++i)
+        area += (vertices.col(ring[i]) - mean).cross(vertices.col(ring[(i + 1) % ring.size()]) - mean);
+      s.X.col(c) = mean;
+      s.axis.col(c) = area;
+      s.lo.col(c) = lo;
+      s.hi.col(c) = hi;
+      ++c;
+    }
+  return s;
+}
+
 // The mesh from the edge vertices (3 × V positions and ∇f), the cubes' triangles and their
-// centre vertices, in the order of `out`: centres follow the edge vertices; normals are
-// ∇f / ‖∇f‖ (centres evaluated here), the area-weighted mesh normal where ∇f vanishes. Where the
-// field has no data somewhere (`someInvalid`), edge vertices no triangle uses are dropped.
+// centre vertices, in the order of `out`: centres follow the edge vertices, placed on f = 0 by
+// placeCentreVertices; normals are ∇f / ‖∇f‖, the area-weighted mesh normal where ∇f vanishes.
+// Where the field has no data somewhere (`someInvalid`), edge vertices no triangle uses are
+// dropped. `report` gains the centres' count and |f|.
 TriMesh assembleMesh(const ImplicitField<3>& field, const Points<3>& vertices, const Points<3>& gradients,
-                     const std::vector<LayerOutput>& out, bool someInvalid) {
+                     const std::vector<LayerOutput>& out, bool someInvalid, const CancelToken* cancel,
+                     MarchingReport* report) {
   const int V = static_cast<int>(vertices.cols());
   size_t nCentres = 0, nTriangles = 0;
   for (const LayerOutput& o : out) {
@@ -184,28 +218,29 @@ TriMesh assembleMesh(const ImplicitField<3>& field, const Points<3>& vertices, c
   TriMesh mesh;
   mesh.vertices.resize(3, V + static_cast<Eigen::Index>(nCentres));
   mesh.vertices.leftCols(V) = vertices;
+  mesh.normals.resize(3, mesh.vertexCount());
+  mesh.normals.leftCols(V) = gradients;
+  if (nCentres > 0) {
+    CentreStarts s = centreStarts(vertices, out, nCentres);
+    Points<3> G;
+    const CentreVertexReport placed = placeCentreVertices(field, s.X, s.axis, s.lo, s.hi, G, cancel);
+    mesh.vertices.rightCols(static_cast<Eigen::Index>(nCentres)) = s.X;
+    mesh.normals.rightCols(static_cast<Eigen::Index>(nCentres)) = G;
+    if (report) {
+      report->centreVertices = placed.centres;
+      report->centresOffZeroSet = placed.offZeroSet;
+      report->maxAbsF = std::max(report->maxAbsF, placed.maxAbsF);
+    }
+  }
   mesh.triangles.resize(3, static_cast<Eigen::Index>(nTriangles));
   int centreBase = V;
   Eigen::Index t = 0;
   for (const LayerOutput& o : out) {
-    for (size_t c = 0; c < o.centres.size(); ++c) {
-      Eigen::Vector3d x = Eigen::Vector3d::Zero();
-      for (int id : o.centres[c]) x += vertices.col(id);
-      mesh.vertices.col(centreBase + static_cast<int>(c)) = x / static_cast<double>(o.centres[c].size());
-    }
     for (const std::array<int, 3>& tri : o.triangles) {
       for (int k = 0; k < 3; ++k) mesh.triangles(k, t) = tri[k] >= 0 ? tri[k] : centreBase - 1 - tri[k];
       ++t;
     }
     centreBase += static_cast<int>(o.centres.size());
-  }
-  mesh.normals.resize(3, mesh.vertexCount());
-  mesh.normals.leftCols(V) = gradients;
-  if (nCentres > 0) {
-    Eigen::VectorXd f;
-    Points<3> G;
-    field.evaluateBatch(mesh.vertices.rightCols(static_cast<Eigen::Index>(nCentres)), f, &G);
-    mesh.normals.rightCols(static_cast<Eigen::Index>(nCentres)) = G;
   }
   const Eigen::Matrix3Xd fallback = vertexNormals(mesh);
   for (int v = 0; v < mesh.vertexCount(); ++v) {
@@ -232,7 +267,7 @@ TriMesh marchDense(const ImplicitField<3>& field, const GridLines<3>& lines, con
   for (int k = 0; k < layers; ++k)
     for (int j = 0; j < g.n[1]; ++j)
       for (int i = 0; i < g.n[0]; ++i) marchCube(g, i + g.stride[1] * j + g.stride[2] * k, out[static_cast<size_t>(k)]);
-  return assembleMesh(field, g.vertices, g.gradients, out, !g.valid.empty());
+  return assembleMesh(field, g.vertices, g.gradients, out, !g.valid.empty(), options.cancel, report);
 }
 
 // The cubes of the sorted cells, in chunks marched in parallel and kept in order.
@@ -347,7 +382,7 @@ TriMesh marchStreamed(const ImplicitField<3>& field, const GridLines<3>& lines, 
     report->evaluateMs = st.evaluateMs;
     report->maxAbsF = st.maxAbsF;
   }
-  return assembleMesh(field, vertices, gradients, st.done, !field.everywhereValid());
+  return assembleMesh(field, vertices, gradients, st.done, !field.everywhereValid(), options.cancel, report);
 }
 
 // One contouring pass over `lines`, recording which anchors it sees when `anchors` is given.
@@ -393,6 +428,8 @@ TriMesh contourRefined(const ImplicitField<3>& field, const ImplicitField<3>& co
     report->evaluateMs += pass.evaluateMs;
     report->evaluatedPoints += pass.evaluatedPoints;
     report->maxAbsF = pass.maxAbsF;
+    report->centreVertices = pass.centreVertices;
+    report->centresOffZeroSet = pass.centresOffZeroSet;
     report->refinedCells = pass.cells;
   }
   *stillMissed = detail::missedAnchors(seen, *options.anchors, field, h.norm());

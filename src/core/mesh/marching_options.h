@@ -77,7 +77,9 @@ struct MarchingReport {
   long long gridPoints = 0;           // points of the grid
   long long evaluatedPoints = 0;      // of which f was evaluated (the rest culled, plus block centres)
   double totalMs = 0;
-  double maxAbsF = 0;                 // max |f| over the edge vertices after refinement
+  double maxAbsF = 0;                 // max |f| over the edge and centre vertices after refinement
+  int centreVertices = 0;             // polygons fanned around a centre vertex (centre_vertices.h)
+  int centresOffZeroSet = 0;          // of those, centres with no root of f on their segment (not in maxAbsF)
   int missedAnchors = 0;              // anchors the uniform grid missed (MarchingOptions::anchors)
   // What was done about them: Refined, or why not.
   enum class Refinement { None, Refined, OnePiece, TooLarge, NoGain } refinement = Refinement::None;

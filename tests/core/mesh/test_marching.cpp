@@ -160,6 +160,57 @@ TEST_CASE("marching cubes: ambiguous faces stay manifold and consistently orient
   }
 }
 
+// f = xyz + a·x + b·y + c·z + d: on a single cube about the origin the corners' signs alternate
+// (xyz dominates there) while a, b, c, d decide each face's saddle, so some choices chain one
+// polygon through all twelve edges.
+class SaddleField final : public ImplicitField<3> {
+ public:
+  explicit SaddleField(const Eigen::Vector4d& k) : k_(k) {}
+  double evaluate(const Vec<3>& x, Vec<3>* g, Mat<3>* H) const override {
+    if (g) *g = Vec<3>(x[1] * x[2] + k_[0], x[0] * x[2] + k_[1], x[0] * x[1] + k_[2]);
+    if (H) *H << 0, x[2], x[1], x[2], 0, x[0], x[1], x[0], 0;
+    return x[0] * x[1] * x[2] + k_[0] * x[0] + k_[1] * x[1] + k_[2] * x[2] + k_[3];
+  }
+  double lipschitzBound(const Box<3>&) const override { return 4; }  // ‖∇f‖ ≤ √3 (1 + 0.3) on [−1, 1]³
+
+ private:
+  Eigen::Vector4d k_;
+};
+
+TEST_CASE("marching cubes: polygons fanned around a centre have the centre on f = 0") {
+  // Their centres start at the mean of the polygon, off the zero set, and move onto it inside
+  // their cube (centre_vertices.h).
+  const double values[] = {-0.3, -0.1, 0.1, 0.3};
+  int centres = 0, offMean = 0;
+  for (int i = 0; i < 256; ++i) {
+    const Eigen::Vector4d k(values[i & 3], values[(i >> 2) & 3], values[(i >> 4) & 3], values[i >> 6]);
+    CAPTURE(k.transpose());
+    const SaddleField field(k);
+    MarchingReport report;
+    const TriMesh mesh = marchingCubes(field, cube(1.0), {1}, &report);
+    centres += report.centreVertices;
+    CHECK(report.centresOffZeroSet == 0);
+    const int V = mesh.vertexCount();
+    for (int v = V - report.centreVertices; v < V; ++v) {
+      const Vec<3> x = mesh.vertices.col(v);
+      Vec<3> g;
+      CHECK(std::abs(field.evaluate(x, &g, nullptr)) <= 1e-12);
+      CHECK(std::abs(mesh.normals.col(v).dot(g.normalized()) - 1) <= 1e-12);
+      CHECK(x.cwiseAbs().maxCoeff() <= 1);  // inside its cube
+      Vec<3> mean = Vec<3>::Zero();  // of the edge vertices of its fan
+      int ring = 0;
+      for (int t = 0; t < mesh.triangleCount(); ++t)
+        for (int c = 0; c < 3; ++c)
+          if (mesh.triangles(c, t) == v) mean += mesh.vertices.col(mesh.triangles((c + 1) % 3, t)), ++ring;
+      offMean += std::abs(field.evaluate(mean / ring, nullptr, nullptr)) > 1e-3;
+    }
+    CHECK(checkMesh(mesh).edgeManifold());
+    CHECK(checkMesh(mesh).consistentlyOriented());
+  }
+  CHECK(centres > 0);
+  CHECK(offMean > 0);  // the means alone would have been off f = 0
+}
+
 TEST_CASE("marching cubes: bad arguments are errors") {
   const SphereField sphere;
   CHECK_THROWS_AS(marchingCubes(sphere, cube(1), {0}), InputError);
