@@ -14,9 +14,11 @@ with open3d's screened Poisson at depth 8 on the same oriented points, and repor
 Usage:
   scripts/realdata_bench.py [--lab build/release/hermite-lab] [--points 200000] [--resolution 256]
                             [--chord-tolerance F] [--meshes armadillo,elephant,bunny00,fandisk] [--threads N]
+                            [--set KEY=VALUE ...]
                             [--no-poisson] [--json OUT]
 --chord-tolerance passes `mesh --chord-tolerance F` (docs/cli.md; 0 turns it off); without it the
-command's default applies (0.02 cells since issue 17's timing work).
+command's default applies (0.02 cells since issue 17's timing work). --set KEY=VALUE overrides a key
+of the scene the bench writes (fit.partition.max_points_per_box 20, ...), as `mesh --set` does.
 Meshes are looked up in /work/cgaldata/data/meshes (CGAL's data set; Debian's libcgal-demo ships
 it as data.tar.gz) unless a path is given. Needs python3 with numpy and open3d (Debian:
 python3-open3d); never a dependency of the product or its tests.
@@ -83,7 +85,7 @@ def distances(truth, recon, diagonal, seed):
     return float(d_in.mean() * scale), float(np.percentile(d_in, 99) * scale), float(d_out.max() * scale)
 
 
-def run_lab(lab, pcd, resolution, threads, workdir, chord_tolerance=None):
+def run_lab(lab, pcd, resolution, threads, workdir, chord_tolerance=None, settings=()):
     pts = np.hstack([np.asarray(pcd.points), np.asarray(pcd.normals)])
     data = os.path.join(workdir, "points.xyzn")
     np.savetxt(data, pts, fmt="%.9g")
@@ -103,6 +105,8 @@ def run_lab(lab, pcd, resolution, threads, workdir, chord_tolerance=None):
         cmd += ["--threads", str(threads)]
     if chord_tolerance is not None:
         cmd += ["--chord-tolerance", str(chord_tolerance)]
+    for setting in settings:
+        cmd += ["--set", setting]
     t0 = time.perf_counter()
     proc = subprocess.run(cmd, capture_output=True, text=True)
     elapsed = time.perf_counter() - t0
@@ -136,6 +140,8 @@ def main():
     ap.add_argument("--chord-tolerance", type=float, default=None)
     ap.add_argument("--seed", type=int, default=17)
     ap.add_argument("--no-poisson", action="store_true")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                    help="passed to `mesh --set` (repeatable), e.g. fit.partition.max_points_per_box=30")
     ap.add_argument("--json", help="also write the rows as JSON here")
     args = ap.parse_args()
 
@@ -148,7 +154,8 @@ def main():
         diagonal = float(np.linalg.norm(hi - lo))
         pcd = sample_oriented(truth, args.points, args.seed)
         with tempfile.TemporaryDirectory() as work:
-            methods = [("hermite-lab PU", lambda: run_lab(args.lab, pcd, args.resolution, args.threads, work, args.chord_tolerance))]
+            methods = [("hermite-lab PU", lambda: run_lab(args.lab, pcd, args.resolution, args.threads, work,
+                                                                args.chord_tolerance, args.set))]
             if not args.no_poisson:
                 methods.append(("poisson depth 8", lambda: run_poisson(pcd, 8)))
             for label, run in methods:
@@ -159,6 +166,7 @@ def main():
                        "resolution": args.resolution if label.startswith("hermite") else None,
                        "chord_tolerance": (args.chord_tolerance if args.chord_tolerance is not None else "default")
                        if label.startswith("hermite") else None,
+                       "settings": args.set if label.startswith("hermite") else None,
                        "time_s": elapsed, "components": comps, "closed": closed,
                        "mean_pct": mean, "p99_pct": p99, "max_vertex_pct": worst, **extra}
                 rows.append(row)

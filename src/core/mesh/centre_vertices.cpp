@@ -173,10 +173,11 @@ CentreVertexReport placeCentreVertices(const ImplicitField<3>& field, Points<3>&
   findBrackets(field, candidates, fStart, cancel);
   std::vector<CentreLine> lines = nearestLines(candidates);
   const std::vector<double> t = solveBrackets(field, lines, cancel);
-  for (Eigen::Index i = 0; i < n; ++i) X.col(i) = lines[static_cast<std::size_t>(i)].at(t[static_cast<std::size_t>(i)]);
+  for (std::size_t i = 0; i < lines.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = lines[i].at(t[i]);
   detail::evaluateChunked<3>(field, X, f, G, cancel);
   for (Eigen::Index i = 0; i < n; ++i) {
-    if (lines[static_cast<std::size_t>(i)].found || f[i] == 0) report.maxAbsF = std::max(report.maxAbsF, std::abs(f[i]));
+    const bool onZeroSet = lines[static_cast<std::size_t>(i)].found || f[i] == 0;
+    if (onZeroSet) report.maxAbsF = std::max(report.maxAbsF, std::abs(f[i]));
     else ++report.offZeroSet;
   }
   return report;
