@@ -47,6 +47,11 @@ struct Refiner {
   std::vector<PixelRay> newton(std::vector<PixelRay> active);
   int searchWindows(const std::vector<SearchWindow>& windows);
   int searchUnsettled(const std::vector<PixelRay>& unsettled);
+  struct TraceStart {
+    int pixel;
+    double t;  // ray parameter the trace starts from
+  };
+  void followOnward(const std::vector<TraceStart>& starts);
   void traceUndecided();
   std::vector<SearchWindow> silhouetteRing() const;
 };
@@ -138,7 +143,9 @@ int Refiner::searchWindows(const std::vector<SearchWindow>& windows) {
 }
 
 // Looks for the surface within 2 cells of the GPU's t where Newton did not settle; returns how
-// many GPU hits the true field does not confirm there (they stay misses).
+// many GPU hits the true field does not confirm there. Where the field can lack data, such a hit
+// is often a zero without data that the bake's filtered marks let through (the rim of an open
+// scan): followOnward then goes on along the ray past it.
 int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
   std::vector<SearchWindow> windows;
   windows.reserve(unsettled.size());
@@ -146,7 +153,63 @@ int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
     const double t = gpu.t[w.pixel];
     windows.push_back({w.pixel, w.ray, std::max(w.tLo, t - 2 * options.cell), std::min(w.tHi, t + 2 * options.cell)});
   }
-  return int(unsettled.size()) - searchWindows(windows);
+  const int dropped = int(unsettled.size()) - searchWindows(windows);
+  if (dropped > 0 && !field.everywhereValid() && options.bake) {
+    std::vector<TraceStart> onward;
+    for (const SearchWindow& w : windows)
+      if (out.t[w.pixel] < 0) onward.push_back({w.pixel, w.hi});
+    followOnward(onward);
+  }
+  return dropped;
+}
+
+// The first sign change of the bake's interpolant on the ray after `from` (steps of half a
+// sample spacing, up to `to`), as the bracket [a, b]; false when there is none.
+bool nextBakeSignChange(const VolumeBake& bake, const Ray& ray, double from, double to, double& a, double& b) {
+  const double step = 0.5 * bake.spacing().minCoeff();
+  double t = from, f = bake.interpolate(ray.at(t));
+  while (t < to) {
+    const double tn = std::min(to, t + step), fn = bake.interpolate(ray.at(tn));
+    if ((f < 0) != (fn < 0)) {
+      a = t;
+      b = tn;
+      return true;
+    }
+    t = tn;
+    f = fn;
+  }
+  return false;
+}
+
+// Follows each ray on from its start through the bake: every sign change of the interpolant is
+// searched with the true field within 2 cells (as a GPU hit is), and the first root with data is
+// the pixel's hit. At most kOnwardWindows windows a ray: what the march would pass again.
+void Refiner::followOnward(const std::vector<TraceStart>& starts) {
+  constexpr int kOnwardWindows = 8;
+  RayRootOptions search;
+  search.samples = 16;
+  search.tolerance = tol;
+  search.rule = ZeroRule::ZeroIsPast;
+#pragma omp parallel for schedule(dynamic, 4)
+  for (std::size_t q = 0; q < starts.size(); ++q) {
+    const int p = starts[q].pixel;
+    const Ray ray = pixelRay(p);
+    double lo = 0, hi = 0, a = 0, b = 0;
+    if (!clipRayToBox(ray, bounds, lo, hi)) continue;
+    double from = std::max(lo, starts[q].t);
+    for (int w = 0; w < kOnwardWindows && nextBakeSignChange(*options.bake, ray, from, hi, a, b); ++w) {
+      const double wLo = std::max(lo, a - 2 * options.cell), wHi = std::min(hi, b + 2 * options.cell);
+      const std::optional<double> t = refineRayRoot(field, ray, wLo, wHi, search);
+      if (t && hasData(ray.at(*t))) {
+        Vec<3> g;
+        field.evaluate(ray.at(*t), &g);
+        out.t[p] = *t;
+        out.gradient[p] = g;
+        break;
+      }
+      from = wHi;
+    }
+  }
 }
 
 // Traces the pixels the GPU march left undecided with the CPU reference tracer, whose ε matches

@@ -13,6 +13,7 @@
 #include "core/base/cancel_token.h"
 #include "core/base/implicit_field.h"
 #include "core/trace/camera.h"
+#include "core/trace/volume_bake.h"
 
 namespace hermite::render {
 
@@ -29,6 +30,11 @@ struct HitRefinementOptions {
   bool refine = true;     // false: GPU hits stand as they are; only the undecided pixels are traced
   double cell = 0;        // the bake's cell diagonal: how far from the GPU's t a hit is looked for
   double cpuMinStep = 1e-4;  // ε of the CPU tracer for undecided pixels, relative to the bounds diagonal
+  // The bake the GPU marched (null: none). Where the field can lack data, a GPU hit the true field
+  // does not confirm (a zero without data the bake's filtered marks let through, at the rim of an
+  // open scan) is followed on along its ray through it, each sign change of its interpolant
+  // checked with the true field, so the pixel shows what lies behind instead of nothing.
+  const VolumeBake* bake = nullptr;
   // Polled between bands of rows (each a few tens of ms of work); throws Cancelled when set.
   const CancelToken* cancel = nullptr;
   int bandRows = 16;  // rows refined per band
@@ -48,7 +54,7 @@ struct HitRefinement {
 
 // Refines the GPU's hits band of rows by band of rows, each in four steps: safeguarded Newton on f along the ray from the GPU's t
 // (batched over pixels); a bracket search with bisection within 2 cells of it where Newton does
-// not settle (hits it finds nothing for are dropped); the CPU reference tracer for undecided
+// not settle (hits it finds nothing for are dropped, or followed on through the bake, above); the CPU reference tracer for undecided
 // pixels; and, with `refine`, a bracket search on the misses next to a hit (the silhouette ring)
 // near their neighbours' depth, so thin rims the bake loses come back.
 HitRefinement refineHits(const ImplicitField<3>& field, const Box<3>& bounds, const Camera& camera, const GpuHits& gpu,

@@ -618,6 +618,7 @@ HitRefinementOptions refinementOptions(const TraceSettings& settings, const Volu
   options.refine = settings.refineExact;
   options.cell = bake.spacing().norm();
   options.cpuMinStep = settings.minStepCells * 1e-3;  // the exact march's ε, relative to the diagonal
+  options.bake = &bake;
   options.cancel = cancel;
   return options;
 }
