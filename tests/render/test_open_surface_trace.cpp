@@ -7,6 +7,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <memory>
 
 #include "core/pu/pu_model.h"
 #include "core/pu/reach_masked_field.h"
@@ -19,24 +20,43 @@
 using namespace hermite;
 using namespace hermite::render;
 
-TEST_CASE("open surface trace: a cap seen through its opening shows its inside, beyond the no-data closure") {
-  const HermiteSamples<3> sphere = hermite::testing::goldenSphere(1200);
-  std::vector<int> keep;
-  for (int i = 0; i < sphere.size(); ++i)
-    if (sphere.points(2, i) >= 0.3) keep.push_back(i);
+namespace {
+
+// The samples of a unit sphere's cap z ≥ 0.3, their global cubic fit and its data reach.
+struct CapFit {
   HermiteSamples<3> cap;
-  cap.points = sphere.points(Eigen::all, keep);
-  cap.normals = sphere.normals(Eigen::all, keep);
-  const HrbfModel<3> global = fitHrbf<3>(cap, HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0});
-  const ReachMaskedField<3> field(global, cap.points, PuOptions{}.dataReach, PuOptions{}.vertexReach);
+  HrbfModel<3> global;
+  std::unique_ptr<ReachMaskedField<3>> field;
+  Box<3> bounds{Vec<3>::Constant(-1.5), Vec<3>::Constant(1.5)};
+
+  CapFit() {
+    const HermiteSamples<3> sphere = hermite::testing::goldenSphere(1200);
+    std::vector<int> keep;
+    for (int i = 0; i < sphere.size(); ++i)
+      if (sphere.points(2, i) >= 0.3) keep.push_back(i);
+    cap.points = sphere.points(Eigen::all, keep);
+    cap.normals = sphere.normals(Eigen::all, keep);
+    global = fitHrbf<3>(cap, HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0});
+    field = std::make_unique<ReachMaskedField<3>>(global, cap.points, PuOptions{}.dataReach, PuOptions{}.vertexReach);
+  }
+  // The masked fit and its samples to the tracer, baked at 96³ over `bounds`.
+  void upload(ImplicitTracer& tracer) const {
+    TracerUploadOptions options;
+    options.bakeResolution = 96;
+    tracer.upload(*field, bounds, &cap, options);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("open surface trace: a cap seen through its opening shows its inside, beyond the no-data closure") {
+  const CapFit fit;
+  const ReachMaskedField<3>& field = *fit.field;
   REQUIRE_FALSE(field.valid(Vec<3>(0, 0, -1)));  // the closure's far pole has no data
 
   auto context = hermite::render::testing::makeTestContext();
   ImplicitTracer tracer;
-  const Box<3> bounds{Vec<3>::Constant(-1.5), Vec<3>::Constant(1.5)};
-  TracerUploadOptions upload;
-  upload.bakeResolution = 96;
-  tracer.upload(field, bounds, &cap, upload);
+  fit.upload(tracer);
   CameraSpec spec;
   spec.eye = {0.0, 0.0, -4.0};  // below: the opening faces the eye
   spec.up = {0.0, 1.0, 0.0};
@@ -72,22 +92,11 @@ TEST_CASE("open surface trace: the rim of an open cap has no gaps where the bake
   // where the bake's filtered marks still say "data" but the true field says none. Refinement
   // used to turn such a hit into a miss: a ring of background pixels between the cap's outside
   // and the inside seen through its opening. Now it follows the ray on through the bake.
-  const HermiteSamples<3> sphere = hermite::testing::goldenSphere(1200);
-  std::vector<int> keep;
-  for (int i = 0; i < sphere.size(); ++i)
-    if (sphere.points(2, i) >= 0.3) keep.push_back(i);
-  HermiteSamples<3> cap;
-  cap.points = sphere.points(Eigen::all, keep);
-  cap.normals = sphere.normals(Eigen::all, keep);
-  const HrbfModel<3> global = fitHrbf<3>(cap, HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0});
-  const ReachMaskedField<3> field(global, cap.points, PuOptions{}.dataReach, PuOptions{}.vertexReach);
-
+  const CapFit fit;
+  const ReachMaskedField<3>& field = *fit.field;
   auto context = hermite::render::testing::makeTestContext();
   ImplicitTracer tracer;
-  const Box<3> bounds{Vec<3>::Constant(-1.5), Vec<3>::Constant(1.5)};
-  TracerUploadOptions upload;
-  upload.bakeResolution = 96;
-  tracer.upload(field, bounds, &cap, upload);
+  fit.upload(tracer);
   CameraSpec spec;
   spec.eye = {0.0, -2.6, -3.0};
   spec.up = {0.0, 0.0, 1.0};
@@ -95,7 +104,7 @@ TEST_CASE("open surface trace: the rim of an open cap has no gaps where the bake
   const Camera camera(spec, Projection::Perspective, W, H, 1.0);
   const TraceResult result = tracer.render(camera, TraceSettings{});
   // Misses next to a hit, traced by the CPU reference tracer (which passes zeros without data).
-  const CpuTracer cpu(field, bounds);
+  const CpuTracer cpu(field, fit.bounds);
   int hits = 0, edge = 0, lost = 0;
   for (int j = 0; j < H; ++j)
     for (int i = 0; i < W; ++i) {
