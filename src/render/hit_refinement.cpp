@@ -157,7 +157,7 @@ int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
   if (dropped > 0 && !field.everywhereValid() && options.bake) {
     std::vector<TraceStart> onward;
     for (const SearchWindow& w : windows)
-      if (out.t[w.pixel] < 0) onward.push_back({w.pixel, w.hi});
+      if (out.t[w.pixel] < 0) onward.push_back({w.pixel, double(gpu.t[w.pixel])});
     followOnward(onward);
   }
   return dropped;
@@ -181,9 +181,11 @@ bool nextBakeSignChange(const VolumeBake& bake, const Ray& ray, double from, dou
   return false;
 }
 
-// Follows each ray on from its start through the bake: every sign change of the interpolant is
-// searched with the true field within 2 cells (as a GPU hit is), and the first root with data is
-// the pixel's hit. At most kOnwardWindows windows a ray: what the march would pass again.
+// Follows each ray on from its start (the GPU's t) through the bake: every sign change of the
+// interpolant is searched with the true field within 2 cells (as a GPU hit is), and the first
+// root with data is the pixel's hit; past a root without data the walk goes on from that root
+// (or the sign change, if later), so a surface just behind it (the inside, a cell past the rim)
+// is not skipped. At most kOnwardWindows windows a ray: what the march would pass again.
 void Refiner::followOnward(const std::vector<TraceStart>& starts) {
   constexpr int kOnwardWindows = 8;
   RayRootOptions search;
@@ -199,7 +201,7 @@ void Refiner::followOnward(const std::vector<TraceStart>& starts) {
     double from = std::max(lo, starts[q].t);
     for (int w = 0; w < kOnwardWindows && nextBakeSignChange(*options.bake, ray, from, hi, a, b); ++w) {
       const double wLo = std::max(lo, a - 2 * options.cell), wHi = std::min(hi, b + 2 * options.cell);
-      const std::optional<double> t = refineRayRoot(field, ray, wLo, wHi, search);
+      const std::optional<double> t = refineRayRoot(field, ray, std::max(from, wLo), wHi, search);
       if (t && hasData(ray.at(*t))) {
         Vec<3> g;
         field.evaluate(ray.at(*t), &g);
@@ -207,7 +209,7 @@ void Refiner::followOnward(const std::vector<TraceStart>& starts) {
         out.gradient[p] = g;
         break;
       }
-      from = wHi;
+      from = t ? std::max(b, *t + 4 * tol) : b;
     }
   }
 }
