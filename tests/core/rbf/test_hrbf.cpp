@@ -1,5 +1,6 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <random>
 
 #include "core/base/errors.h"
@@ -245,7 +246,11 @@ TEST_CASE("Lipschitz bound of a fitted model dominates the gradient over a box")
 
 TEST_CASE("regression: the LU fallback after a failed Cholesky factorises the original matrix") {
   // dpotrf overwrites the diagonal; an early version restored only the strict lower triangle and
-  // the fallback solved a different system (residuals 0.08 instead of 1e-7).
+  // the fallback solved a different system (residuals 0.08 instead of 1e-7). The coefficients
+  // themselves are not compared: the system is so ill-conditioned that the last bits of its
+  // assembly move them (an x86-64-v4 build, whose contracted multiply-adds make the fully
+  // assembled matrix of the direct solve differ from the mirrored lower triangle in the last
+  // bit, gave coefficient vectors 134 apart, both interpolating to 1e-7).
   HermiteSamples<3> s = testing::goldenSphere(200);
   const HrbfOptions o{{KernelType::Gaussian, 0.9}, Polynomial::Linear, 0.0, SolverChoice::NullspaceCholesky};
   FitReport rep;
@@ -254,8 +259,15 @@ TEST_CASE("regression: the LU fallback after a failed Cholesky factorises the or
   HrbfOptions lu = o;
   lu.solver = SolverChoice::Lu;
   const HrbfModel<3> direct = fitHrbf<3>(s, lu);
-  CHECK((fallback.alpha() - direct.alpha()).norm() == 0.0);
-  CHECK((fallback.beta() - direct.beta()).norm() == 0.0);
+  const auto residual = [&](const HrbfModel<3>& m) {  // max over the samples of |f| and ‖∇f − n‖
+    double r = 0;
+    for (int i = 0; i < s.size(); ++i)
+      r = std::max({r, std::abs(m.value(s.points.col(i))), (m.gradient(s.points.col(i)) - s.normals.col(i)).norm()});
+    return r;
+  };
+  CAPTURE(residual(direct));
+  CHECK(residual(fallback) <= 1e-5);
+  CHECK(residual(fallback) <= 10 * residual(direct) + 1e-9);
   const HermiteSamples<3> s2 = testing::goldenSphere(30);
   const HrbfOptions o2{{KernelType::Gaussian, 0.9}, Polynomial::None, 0.0, SolverChoice::Cholesky};
   SaddleSystem sys = assembleHrbf<3>(s2, o2);
