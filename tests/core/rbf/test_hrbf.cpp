@@ -248,9 +248,9 @@ TEST_CASE("regression: the LU fallback after a failed Cholesky factorises the or
   // dpotrf overwrites the diagonal; an early version restored only the strict lower triangle and
   // the fallback solved a different system (residuals 0.08 instead of 1e-7). The coefficients
   // themselves are not compared: the system is so ill-conditioned that the last bits of its
-  // assembly move them (an x86-64-v4 build, whose contracted multiply-adds make the fully
-  // assembled matrix of the direct solve differ from the mirrored lower triangle in the last
-  // bit, gave coefficient vectors 134 apart, both interpolating to 1e-7).
+  // assembly move them (an x86-64-v4 build gave coefficient vectors 134 apart, both fits
+  // interpolating to 1e-13: the direct solve assembles both triangles, the fallback mirrors the
+  // lower one).
   HermiteSamples<3> s = testing::goldenSphere(200);
   const HrbfOptions o{{KernelType::Gaussian, 0.9}, Polynomial::Linear, 0.0, SolverChoice::NullspaceCholesky};
   FitReport rep;
