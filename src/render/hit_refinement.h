@@ -52,11 +52,12 @@ struct HitRefinement {
   int droppedHits = 0;              // GPU hits the true field does not confirm (now misses)
 };
 
-// Refines the GPU's hits band of rows by band of rows, each in four steps: safeguarded Newton on f along the ray from the GPU's t
-// (batched over pixels); a bracket search with bisection within 2 cells of it where Newton does
-// not settle (hits it finds nothing for are dropped, or followed on through the bake, above); the CPU reference tracer for undecided
-// pixels; and, with `refine`, a bracket search on the misses next to a hit (the silhouette ring)
-// near their neighbours' depth, so thin rims the bake loses come back.
+// Refines the GPU's hits band of rows by band of rows, each in four steps: safeguarded Newton on
+// f along the ray from the GPU's t (batched over pixels); a bracket search with bisection within
+// 2 cells of it where Newton does not settle (hits it finds nothing for are dropped, or followed
+// on through the bake, above); the CPU reference tracer for undecided pixels; and, with
+// `refine`, a bracket search on the misses next to a hit (the silhouette ring) near their
+// neighbours' depth, so thin rims the bake loses come back.
 HitRefinement refineHits(const ImplicitField<3>& field, const Box<3>& bounds, const Camera& camera, const GpuHits& gpu,
                          const HitRefinementOptions& options);
 
