@@ -185,7 +185,8 @@ bool nextBakeSignChange(const VolumeBake& bake, const Ray& ray, double from, dou
 // interpolant is searched with the true field within 2 cells (as a GPU hit is), and the first
 // root with data is the pixel's hit; past a root without data the walk goes on from that root
 // (or the sign change, if later), so a surface just behind it (the inside, a cell past the rim)
-// is not skipped. At most kOnwardWindows windows a ray: what the march would pass again.
+// is not skipped. At most kOnwardWindows windows a ray: what the march would pass again. Polls
+// the cancel token per ray (a band can hold thousands of them) and throws Cancelled after.
 void Refiner::followOnward(const std::vector<TraceStart>& starts) {
   constexpr int kOnwardWindows = 8;
   RayRootOptions search;
@@ -194,6 +195,7 @@ void Refiner::followOnward(const std::vector<TraceStart>& starts) {
   search.rule = ZeroRule::ZeroIsPast;
 #pragma omp parallel for schedule(dynamic, 4)
   for (std::size_t q = 0; q < starts.size(); ++q) {
+    if (options.cancel && options.cancel->cancelled()) continue;
     const int p = starts[q].pixel;
     const Ray ray = pixelRay(p);
     double lo = 0, hi = 0, a = 0, b = 0;
@@ -212,6 +214,7 @@ void Refiner::followOnward(const std::vector<TraceStart>& starts) {
       from = t ? std::max(b, *t + 4 * tol) : b;
     }
   }
+  throwIfCancelled(options.cancel);
 }
 
 // Traces the pixels the GPU march left undecided with the CPU reference tracer, whose ε matches
