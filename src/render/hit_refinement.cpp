@@ -46,12 +46,10 @@ struct Refiner {
   std::vector<PixelRay> seedHits();
   std::vector<PixelRay> newton(std::vector<PixelRay> active);
   int searchWindows(const std::vector<SearchWindow>& windows);
+  std::optional<double> rootIn(const Ray& ray, double lo, double hi) const;
+  void storeHit(int pixel, const Ray& ray, double t);
   int searchUnsettled(const std::vector<PixelRay>& unsettled);
-  struct TraceStart {
-    int pixel;
-    double t;  // ray parameter the trace starts from
-  };
-  void followOnward(const std::vector<TraceStart>& starts);
+  void followOnward(const std::vector<SearchWindow>& dropped);
   void traceUndecided();
   std::vector<SearchWindow> silhouetteRing() const;
 };
@@ -123,23 +121,33 @@ std::vector<PixelRay> Refiner::newton(std::vector<PixelRay> active) {
 // Searches every window with the true field (16 probes over [lo, hi], then bisection to tol,
 // ray_root.h) and stores each hit found with its gradient; returns how many it found.
 int Refiner::searchWindows(const std::vector<SearchWindow>& windows) {
-  RayRootOptions search;
-  search.samples = 16;
-  search.tolerance = tol;
-  search.rule = ZeroRule::ZeroIsPast;
   int found = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : found)
   for (std::size_t q = 0; q < windows.size(); ++q) {
     const SearchWindow& w = windows[q];
-    const std::optional<double> t = refineRayRoot(field, w.ray, w.lo, w.hi, search);
+    const std::optional<double> t = rootIn(w.ray, w.lo, w.hi);
     if (!t || !hasData(w.ray.at(*t))) continue;
-    Vec<3> g;
-    field.evaluate(w.ray.at(*t), &g);
-    out.t[w.pixel] = *t;
-    out.gradient[w.pixel] = g;
+    storeHit(w.pixel, w.ray, *t);
     ++found;
   }
   return found;
+}
+
+// The first zero of the true field on the ray within [lo, hi]: 16 probes, then bisection to tol.
+std::optional<double> Refiner::rootIn(const Ray& ray, double lo, double hi) const {
+  RayRootOptions search;
+  search.samples = 16;
+  search.tolerance = tol;
+  search.rule = ZeroRule::ZeroIsPast;
+  return refineRayRoot(field, ray, lo, hi, search);
+}
+
+// The pixel's hit at ray parameter t, with ∇f there.
+void Refiner::storeHit(int pixel, const Ray& ray, double t) {
+  Vec<3> g;
+  field.evaluate(ray.at(t), &g);
+  out.t[pixel] = t;
+  out.gradient[pixel] = g;
 }
 
 // Looks for the surface within 2 cells of the GPU's t where Newton did not settle; returns how
@@ -155,9 +163,9 @@ int Refiner::searchUnsettled(const std::vector<PixelRay>& unsettled) {
   }
   const int dropped = int(unsettled.size()) - searchWindows(windows);
   if (dropped > 0 && !field.everywhereValid() && options.bake) {
-    std::vector<TraceStart> onward;
+    std::vector<SearchWindow> onward;
     for (const SearchWindow& w : windows)
-      if (out.t[w.pixel] < 0) onward.push_back({w.pixel, double(gpu.t[w.pixel])});
+      if (out.t[w.pixel] < 0) onward.push_back(w);
     followOnward(onward);
   }
   return dropped;
@@ -181,34 +189,27 @@ bool nextBakeSignChange(const VolumeBake& bake, const Ray& ray, double from, dou
   return false;
 }
 
-// Follows each ray on from its start (the GPU's t) through the bake: every sign change of the
+// Follows each dropped hit's ray on from the GPU's t through the bake: every sign change of the
 // interpolant is searched with the true field within 2 cells (as a GPU hit is), and the first
 // root with data is the pixel's hit; past a root without data the walk goes on from that root
 // (or the sign change, if later), so a surface just behind it (the inside, a cell past the rim)
 // is not skipped. At most kOnwardWindows windows a ray: what the march would pass again. Polls
 // the cancel token per ray (a band can hold thousands of them) and throws Cancelled after.
-void Refiner::followOnward(const std::vector<TraceStart>& starts) {
+void Refiner::followOnward(const std::vector<SearchWindow>& dropped) {
   constexpr int kOnwardWindows = 8;
-  RayRootOptions search;
-  search.samples = 16;
-  search.tolerance = tol;
-  search.rule = ZeroRule::ZeroIsPast;
 #pragma omp parallel for schedule(dynamic, 4)
-  for (std::size_t q = 0; q < starts.size(); ++q) {
+  for (std::size_t q = 0; q < dropped.size(); ++q) {
     if (options.cancel && options.cancel->cancelled()) continue;
-    const int p = starts[q].pixel;
-    const Ray ray = pixelRay(p);
+    const int p = dropped[q].pixel;
+    const Ray& ray = dropped[q].ray;
     double lo = 0, hi = 0, a = 0, b = 0;
     if (!clipRayToBox(ray, bounds, lo, hi)) continue;
-    double from = std::max(lo, starts[q].t);
+    double from = std::max(lo, double(gpu.t[p]));
     for (int w = 0; w < kOnwardWindows && nextBakeSignChange(*options.bake, ray, from, hi, a, b); ++w) {
       const double wLo = std::max(lo, a - 2 * options.cell), wHi = std::min(hi, b + 2 * options.cell);
-      const std::optional<double> t = refineRayRoot(field, ray, std::max(from, wLo), wHi, search);
+      const std::optional<double> t = rootIn(ray, std::max(from, wLo), wHi);
       if (t && hasData(ray.at(*t))) {
-        Vec<3> g;
-        field.evaluate(ray.at(*t), &g);
-        out.t[p] = *t;
-        out.gradient[p] = g;
+        storeHit(p, ray, *t);
         break;
       }
       from = t ? std::max(b, *t + 4 * tol) : b;
