@@ -131,7 +131,11 @@ TEST_CASE("eval and --coefficients agree with an independent implementation of d
     CAPTURE(c.dim);
     const std::string scene = writeTemp("eval_" + c.kernel + std::to_string(c.dim) + ".json",
                                         sceneJson(c.dim, c.kernel, c.radius, c.poly));
-    const auto fit = runCli("fit " + scene + " --json --coefficients");
+    // One thread each: the dense solve takes as many BLAS threads as the machine has idle cores
+    // (BlasThreadsForLoad), and for this ill-conditioned gaussian fit a one-thread and a
+    // two-thread LU differ by 4e-9 relative, so `fit` and `eval` would disagree whenever the
+    // load changed between them (about 1 run in 10 under ctest -j2).
+    const auto fit = runCli("fit " + scene + " --json --coefficients --threads 1");
     REQUIRE(fit.rc == 0);
     const IndependentModel model(json::parse(fit.out)["model"]);
     std::ostringstream probes;
@@ -145,7 +149,7 @@ TEST_CASE("eval and --coefficients agree with an independent implementation of d
       probes << '\n';
     }
     const std::string probeFile = writeTemp("probes" + std::to_string(c.dim) + ".txt", probes.str());
-    const auto ev = runCli("eval " + scene + " --at " + probeFile);
+    const auto ev = runCli("eval " + scene + " --at " + probeFile + " --threads 1");
     REQUIRE(ev.rc == 0);
     std::istringstream in(ev.out);
     double maxF = 0, maxG = 0, errF = 0, errG = 0;
