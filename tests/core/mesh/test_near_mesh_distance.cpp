@@ -1,0 +1,69 @@
+// distancesToMeshWithin (near_mesh_distance.h): the exact point-triangle distance to the nearest
+// triangle within the reach, the reach beyond it, whatever cells the triangles span.
+
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <random>
+
+#include "core/mesh/near_mesh_distance.h"
+#include "core/mesh/triangle_distance.h"
+
+using namespace hermite;
+
+namespace {
+
+// The 12 triangles of the cube [0, s]³.
+TriMesh cubeMesh(double s) {
+  TriMesh m;
+  m.vertices.resize(3, 8);
+  for (int i = 0; i < 8; ++i) m.vertices.col(i) = s * Vec<3>(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+  m.triangles.resize(3, 12);
+  for (int f = 0; f < 6; ++f) {
+    m.triangles.col(2 * f) = Eigen::Vector3i(q[f][0], q[f][1], q[f][2]);
+    m.triangles.col(2 * f + 1) = Eigen::Vector3i(q[f][0], q[f][2], q[f][3]);
+  }
+  return m;
+}
+
+// The distance to the nearest of all triangles, by brute force.
+double bruteDistance(const TriMesh& m, const Vec<3>& p) {
+  double best = INFINITY;
+  for (int t = 0; t < m.triangleCount(); ++t)
+    best = std::min(best, pointTriangleDistance(p, m.vertices.col(m.triangles(0, t)), m.vertices.col(m.triangles(1, t)),
+                                                m.vertices.col(m.triangles(2, t))));
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("near mesh distance: exact within the reach, the reach beyond it") {
+  const TriMesh cube = cubeMesh(1.0);  // faces much larger than the reach's cells
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.3, 1.3);
+  Points<3> p(3, 400);
+  for (Eigen::Index i = 0; i < p.cols(); ++i) p.col(i) = Vec<3>(u(rng), u(rng), u(rng));
+  for (double reach : {0.05, 0.2}) {
+    CAPTURE(reach);
+    const std::vector<double> d = distancesToMeshWithin(cube, p, reach);
+    int within = 0;
+    for (Eigen::Index i = 0; i < p.cols(); ++i) {
+      const double exact = bruteDistance(cube, p.col(i));
+      if (exact < reach) {
+        ++within;
+        CHECK(d[static_cast<std::size_t>(i)] == doctest::Approx(exact).epsilon(1e-12));
+      } else {
+        CHECK(d[static_cast<std::size_t>(i)] == reach);
+      }
+    }
+    CHECK(within > 20);  // both cases are exercised
+  }
+}
+
+TEST_CASE("near mesh distance: no points or no triangles") {
+  CHECK(distancesToMeshWithin(cubeMesh(1.0), Points<3>(3, 0), 0.1).empty());
+  Points<3> p(3, 1);
+  p.col(0) = Vec<3>(0.5, 0.5, 0.5);
+  CHECK(distancesToMeshWithin(TriMesh{}, p, 0.1) == std::vector<double>{0.1});
+}
