@@ -118,9 +118,10 @@ void appendContourText(const MarchingReport& r, char* line, std::size_t size) {
                   "; refined to %dx%dx%d cells at %d samples on parts thinner than a cell (%d still missed)",
                   r.refinedCells[0], r.refinedCells[1], r.refinedCells[2], r.missedAnchors, r.stillMissed);
   } else if (r.refinement != Refinement::None) {
-    const char* why = r.refinement == Refinement::NoGain     ? " (a refined grid gave no fewer pieces)"
-                      : r.refinement == Refinement::TooLarge ? ", too many to refine the grid at: raise --resolution"
-                                                             : "";
+    const char* why = r.refinement == Refinement::NoGain      ? " (a refined grid gave no fewer pieces)"
+                      : r.refinement == Refinement::NotNearer ? " (a refined grid lay no nearer them)"
+                      : r.refinement == Refinement::TooLarge  ? ", too many to refine the grid at: raise --resolution"
+                                                              : "";
     std::snprintf(line + used, size - used, "; %d samples on parts thinner than a cell lie off the mesh%s",
                   r.missedAnchors, why);
   }

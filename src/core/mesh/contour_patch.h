@@ -3,7 +3,8 @@
 // inside some blocks of a grid's cells (a winding guard about a few strays), the contour of the
 // changed field is the old contour with those blocks' triangles replaced by a pass over the
 // blocks alone. Marching cubes decides every vertex from its grid edge's two values and every face
-// from its four, so on a block's faces, where the field is unchanged, the pass makes exactly the
+// from its four (and, when ambiguous, f at a point of the face they fix: face_decider.h), so on a
+// block's faces, where the field is unchanged, the pass makes exactly the
 // old contour's vertices: the new triangles are joined to the old ones through them (matched by
 // grid edge), and the mesh stays watertight.
 

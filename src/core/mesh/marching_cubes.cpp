@@ -1,5 +1,6 @@
-// Marching cubes with per-face asymptotic decider and per-cube polygon chaining (marching_options.h),
-// streamed through slabs of the grid (marching_slab.h) or, without culling, over the whole grid.
+// Marching cubes with ambiguous faces decided by f (face_decider.h) and per-cube polygon chaining
+// (marching_options.h), streamed through slabs of the grid (marching_slab.h) or, without culling,
+// over the whole grid.
 
 #include "core/mesh/marching_cubes.h"
 
@@ -9,15 +10,18 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <stdexcept>
 #include <vector>
 
 #include "core/mesh/centre_vertices.h"
 #include "core/mesh/cut_tips.h"
+#include "core/mesh/face_decider.h"
 #include "core/mesh/marching_anchors.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_slab.h"
+#include "core/mesh/near_mesh_distance.h"
 #include "core/mesh/open_slivers.h"
 
 namespace hermite {
@@ -75,7 +79,10 @@ struct LayerOutput {
 // counter-clockwise about its outward normal, a crossing is A (inside → outside) or B
 // (outside → inside); each segment runs from a B to an A, which orients the polygon so its fan
 // triangles are counter-clockwise seen from outside (+∇f).
-std::array<int, 24> faceSegments(const std::array<double, 8>& v, int insideMask) {
+// `decided(f)` is face f's decision by f itself (face_decider.h): 1 or 0, or −1 for the
+// asymptotic decider (face f = 2 · normal axis + side, as CubeTables numbers them).
+template <class Decided>
+std::array<int, 24> faceSegments(const std::array<double, 8>& v, int insideMask, const Decided& decided) {
   const CubeTables& T = tables();
   auto in = [&](int c) { return (insideMask >> c) & 1; };
   std::array<int, 24> next;
@@ -92,10 +99,11 @@ std::array<int, 24> faceSegments(const std::array<double, 8>& v, int insideMask)
       if (isA[0]) next[edges[1]] = edges[0];
       else next[edges[0]] = edges[1];
     } else if (n == 4) {
-      // Asymptotic decider: the bilinear interpolant's value at its saddle. The denominator is
-      // non-zero: the diagonal pairs have opposite signs (one pair < 0, the other ≥ 0).
+      // f at the bilinear interpolant's saddle, else the interpolant's own value there (the
+      // asymptotic decider). The denominator is non-zero: the diagonal pairs have opposite signs.
+      const int byF = decided(f);
       const double saddle = (v[fc[0]] * v[fc[2]] - v[fc[1]] * v[fc[3]]) / (v[fc[0]] + v[fc[2]] - v[fc[1]] - v[fc[3]]);
-      const bool outsideConnected = saddle >= 0;  // then each inside corner is cut off alone
+      const bool outsideConnected = byF >= 0 ? byF == 1 : saddle >= 0;  // then each inside corner is cut off alone
       for (int i = 0; i < 4; ++i) {
         const int j = (i + 1) % 4;
         if (outsideConnected && !isA[i]) next[edges[i]] = edges[j];  // B, then the A leaving the inside corner
@@ -145,7 +153,8 @@ void emitPolygon(const detail::MarchingGrid<3>& g, std::int64_t origin, const in
   }
 }
 
-void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutput& out) {
+void marchCube(const detail::MarchingGrid<3>& g, const detail::FaceDecisions& faces, std::int64_t origin,
+               LayerOutput& out) {
   std::array<double, 8> v;
   int insideMask = 0;
   for (int c = 0; c < 8; ++c) {
@@ -155,7 +164,11 @@ void marchCube(const detail::MarchingGrid<3>& g, std::int64_t origin, LayerOutpu
     if (v[c] < 0) insideMask |= 1 << c;
   }
   if (insideMask == 0 || insideMask == 255) return;
-  const std::array<int, 24> next = faceSegments(v, insideMask);
+  const auto decided = [&](int f) {
+    const int a = f / 2, side = f % 2;
+    return faces.lookup(3 * (origin + side * g.stride[a]) + a);
+  };
+  const std::array<int, 24> next = faceSegments(v, insideMask, decided);
   std::array<bool, 24> seen{};
   for (int start = 0; start < 24; ++start) {
     if (next[start] < 0 || seen[start]) continue;
@@ -256,22 +269,24 @@ TriMesh assembleMesh(const ImplicitField<3>& field, const Points<3>& vertices, c
 TriMesh marchDense(const ImplicitField<3>& field, const GridLines<3>& lines, const Vec<3>& h,
                    const MarchingOptions& options, MarchingReport* report, detail::AnchorCells* anchors) {
   detail::MarchingGrid<3> g = detail::sampleGrid<3>(field, lines, h, options, report);
-  if (anchors) {
-    const detail::CullBlock<3> whole{{0, 0, 0}, std::max({g.n[0], g.n[1], g.n[2]})};
-    detail::markSeenAnchors(*anchors, g, detail::signChangingCells(g, {whole}));
-  }
+  const detail::CullBlock<3> whole{{0, 0, 0}, std::max({g.n[0], g.n[1], g.n[2]})};
+  const std::vector<std::int64_t> cells = detail::signChangingCells(g, {whole});
+  if (anchors) detail::markSeenAnchors(*anchors, g, cells);
   detail::placeEdgeVertices<3>(g, field, options, report);
+  const detail::FaceDecisions faces = detail::decideAmbiguousFaces(g, field, cells, options.cancel);
   const int layers = g.n[2];
   std::vector<LayerOutput> out(static_cast<size_t>(layers));
 #pragma omp parallel for schedule(dynamic, 1)
   for (int k = 0; k < layers; ++k)
     for (int j = 0; j < g.n[1]; ++j)
-      for (int i = 0; i < g.n[0]; ++i) marchCube(g, i + g.stride[1] * j + g.stride[2] * k, out[static_cast<size_t>(k)]);
+      for (int i = 0; i < g.n[0]; ++i)
+        marchCube(g, faces, i + g.stride[1] * j + g.stride[2] * k, out[static_cast<size_t>(k)]);
   return assembleMesh(field, g.vertices, g.gradients, out, !g.valid.empty(), options.cancel, report);
 }
 
 // The cubes of the sorted cells, in chunks marched in parallel and kept in order.
-std::vector<LayerOutput> marchCells(const detail::MarchingGrid<3>& g, const std::vector<std::int64_t>& cells) {
+std::vector<LayerOutput> marchCells(const detail::MarchingGrid<3>& g, const detail::FaceDecisions& faces,
+                                    const std::vector<std::int64_t>& cells) {
   constexpr std::size_t kChunk = 2048;
   const std::int64_t chunks = static_cast<std::int64_t>((cells.size() + kChunk - 1) / kChunk);
   std::vector<LayerOutput> out(static_cast<size_t>(chunks));
@@ -279,7 +294,7 @@ std::vector<LayerOutput> marchCells(const detail::MarchingGrid<3>& g, const std:
   for (std::int64_t c = 0; c < chunks; ++c) {
     const std::size_t end = std::min(cells.size(), (static_cast<std::size_t>(c) + 1) * kChunk);
     for (std::size_t i = static_cast<std::size_t>(c) * kChunk; i < end; ++i)
-      marchCube(g, cells[i], out[static_cast<size_t>(c)]);
+      marchCube(g, faces, cells[i], out[static_cast<size_t>(c)]);
   }
   return out;
 }
@@ -355,7 +370,8 @@ void streamSlab(const ImplicitField<3>& field, const GridLines<3>& lines, const 
   st.positions.insert(st.positions.end(), g.vertices.data(), g.vertices.data() + 3 * owned);
   st.gradients.insert(st.gradients.end(), g.gradients.data(), g.gradients.data() + 3 * owned);
   const std::int64_t base = st.havePending ? st.pending.base + st.pending.owned : 0;
-  st.pending = PendingSlab{marchCells(g, cells), std::move(g.edgeKeys), owned, base, topKey};
+  const detail::FaceDecisions faces = detail::decideAmbiguousFaces(g, field, cells, options.cancel);
+  st.pending = PendingSlab{marchCells(g, faces, cells), std::move(g.edgeKeys), owned, base, topKey};
   st.havePending = true;
 }
 
@@ -393,13 +409,14 @@ TriMesh marchOnce(const ImplicitField<3>& field, const GridLines<3>& lines, cons
 }
 
 // The lines with the intervals near the missed anchors' cells split (MarchingOptions::anchors),
-// or none when even halving them would more than double an axis's cells, or the refined grid
-// (its slabs when streamed) would need more than half the available memory.
+// or none when even halving them (with `halving`; otherwise cutting them in kAnchorSplit) would
+// more than double an axis's cells, or the refined grid (its slabs when streamed) would need more
+// than half the available memory.
 std::optional<GridLines<3>> refinedLines(const GridLines<3>& lines, const std::vector<std::array<int, 3>>& missed,
-                                         const MarchingOptions& options) {
+                                         const MarchingOptions& options, bool halving) {
   const std::array<std::vector<char>, 3> near = intervalsNear<3>(lines, missed, kAnchorReach);
   const std::array<int, 3> n = gridCells<3>(lines);
-  for (const int factor : {kAnchorSplit, 2}) {
+  for (const int factor : {kAnchorSplit, halving ? 2 : kAnchorSplit}) {
     std::array<int, 3> m{};
     bool fits = true;
     for (int a = 0; a < 3; ++a) {
@@ -451,10 +468,49 @@ Points<3> columnsOf(const Points<3>& P, const std::vector<int>& which) {
   return out;
 }
 
+// How far each of `points` lies from `mesh`, in cell diagonals d, up to 1.
+std::vector<double> offMesh(const TriMesh& mesh, const Points<3>& points, double d) {
+  std::vector<double> out = distancesToMeshWithin(mesh, points, d);
+  for (double& x : out) x /= d;
+  return out;
+}
+
+// Whether so many missed anchors lie more than half a cell diagonal off the mesh that a thin
+// part is contoured away from its samples (kRefineOffShare).
+bool offItsSamples(const TriMesh& mesh, const Points<3>& missed, Eigen::Index anchors, double d) {
+  const std::vector<double> off = offMesh(mesh, missed, d);
+  const auto far = std::count_if(off.begin(), off.end(), [](double x) { return x > 0.5; });
+  return static_cast<double>(far) >= kRefineOffShare * static_cast<double>(anchors);
+}
+
+// Whether `finer` lies nearer the anchors either grid missed than `mesh` does: the sum of their
+// distances (in cell diagonals, each capped at 1) is at most half of mesh's.
+bool nearerItsSamples(const TriMesh& mesh, const TriMesh& finer, const Points<3>& anchors, std::vector<int> missed,
+                      double d) {
+  std::sort(missed.begin(), missed.end());
+  missed.erase(std::unique(missed.begin(), missed.end()), missed.end());
+  const Points<3> at = columnsOf(anchors, missed);
+  const std::vector<double> a = offMesh(mesh, at, d), b = offMesh(finer, at, d);
+  return 2 * std::accumulate(b.begin(), b.end(), 0.0) <= std::accumulate(a.begin(), a.end(), 0.0);
+}
+
+// Whether the uniform mesh came out in pieces that are not all cut-off tips.
+bool inPieces(const TriMesh& mesh, const Points<3>& missedAt, const Points<3>& anchors, double d) {
+  if (vertexConnectedComponentCount(mesh) <= 1) return false;
+  // Pieces beyond the first that are all tips the grid cut off a thin part, or pockets it kept of
+  // a thin gap (cut_tips.h), are left out after this anyway: a second pass would cost a whole
+  // contour for them, and on the Stanford dragon's fins and cracks did not join or fill them
+  // (docs/maths.md, Contouring: cut-off tips).
+  TriMesh withoutTips = mesh;
+  dropCutTips(withoutTips, missedAt, d, nullptr, &anchors);
+  return vertexConnectedComponentCount(withoutTips) > 1;
+}
+
 // The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
-// that are not all cut-off tips (MarchingOptions::anchors), `usedLines` receiving them; otherwise
-// `mesh` as it is, the report saying why. `stillMissed` receives the anchors the uniform grid
-// misses and, when the refined mesh is returned, those it misses too (some twice).
+// that are not all cut-off tips, or lies off many of them (MarchingOptions::anchors), `usedLines`
+// receiving them; otherwise `mesh` as it is, the report saying why. `stillMissed` receives the
+// anchors the uniform grid misses and, when the refined mesh is returned, those it misses too
+// (some twice).
 TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& contoured, const GridLines<3>& lines,
                          const Vec<3>& h, const detail::AnchorCells& seen, TriMesh mesh, const MarchingOptions& options,
                          MarchingReport* report, std::optional<GridLines<3>>* usedLines, std::vector<int>* stillMissed) {
@@ -465,37 +521,44 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   MarchingReport local;
   MarchingReport& r = report ? *report : local;
   r.missedAnchors = r.stillMissed = static_cast<int>(missed.size());
-  // A thin part the grid steps over splits the surface; a thin rim it truncates (the edge of an
-  // ear) leaves one piece and is not worth a second pass.
   r.refinement = Refinement::OnePiece;
-  if (vertexConnectedComponentCount(mesh) <= 1) return mesh;
-  // Pieces beyond the first that are all tips the grid cut off a thin part, or pockets it kept of
-  // a thin gap (cut_tips.h), are left out after this anyway: a second pass would cost a whole
-  // contour for them, and on the Stanford dragon's fins and cracks did not join or fill them
-  // (docs/maths.md, Contouring: cut-off tips).
-  TriMesh withoutTips = mesh;
-  dropCutTips(withoutTips, columnsOf(*options.anchors, *stillMissed), h.norm(), nullptr, options.anchors);
-  if (vertexConnectedComponentCount(withoutTips) <= 1) return mesh;
+  const Points<3>& anchors = *options.anchors;
+  const Points<3> missedAt = columnsOf(anchors, *stillMissed);
+  // A thin part the grid steps over splits the surface, or stays joined by a ribbon a cell wide
+  // that lies off its samples; a thin rim it truncates (the edge of an ear) leaves one piece with
+  // few samples far off it and is not worth a second pass. A ribbon is resolved only by cutting
+  // its cells in kAnchorSplit: thin parts so spread that only halving fits (sheets across a whole
+  // model, CGAL's boeing) would be contoured again at twice the resolution and no nearer.
+  const bool off = offItsSamples(mesh, missedAt, anchors.cols(), h.norm());
+  const bool pieces = inPieces(mesh, missedAt, anchors, h.norm());
+  if (!pieces && !off) return mesh;
   r.refinement = Refinement::TooLarge;
-  std::optional<GridLines<3>> refined = refinedLines(lines, missed, options);
+  std::optional<GridLines<3>> refined = refinedLines(lines, missed, options, pieces);
   if (!refined) return mesh;
   MarchingReport pass = r;
   std::vector<int> finerMissed;
   TriMesh finer = contourRefined(field, contoured, *refined, h, options, &pass, &finerMissed);
   if (options.review) options.review(finer, *refined);
-  // Fewer pieces or none of it: more pieces on a finer grid are the field's own (a fit that
-  // breaks up), not steps the grid took over a thin part.
+  // Fewer pieces, or as many and nearer the missed samples, or none of it: more pieces on a finer
+  // grid are the field's own (a fit that breaks up), not steps the grid took over a thin part.
   r.refinement = Refinement::NoGain;
   r.evaluateMs = pass.evaluateMs;
   r.evaluatedPoints = pass.evaluatedPoints;
-  if (vertexConnectedComponentCount(finer) >= vertexConnectedComponentCount(mesh)) return mesh;
+  const int before = vertexConnectedComponentCount(mesh), after = vertexConnectedComponentCount(finer);
+  std::vector<int> both = *stillMissed;
+  both.insert(both.end(), finerMissed.begin(), finerMissed.end());
+  if (after > before) return mesh;
+  if (after == before && !(off && nearerItsSamples(mesh, finer, anchors, both, h.norm()))) {
+    if (off) r.refinement = Refinement::NotNearer;
+    return mesh;
+  }
   pass.refinement = Refinement::Refined;
   pass.minStep = minGridStep(*refined);
   r = pass;
   *usedLines = std::move(refined);
   // Either grid's missed anchors mark a thin part: a tip the finer grid still cuts off lies
   // beside the coarse grid's (cut_tips.h).
-  stillMissed->insert(stillMissed->end(), finerMissed.begin(), finerMissed.end());
+  *stillMissed = std::move(both);
   return finer;
 }
 

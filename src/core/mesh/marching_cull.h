@@ -6,7 +6,7 @@
 // value exceeds L·r (L = the field's Lipschitz bound over the block, r its half-diagonal) cannot
 // change sign, so its grid points only need that sign (a stand-in of that sign); otherwise it
 // splits into its 2^Dim children, and a finest block (4 cells) that is not proven needs f at all
-// its points. Exact: every cell with a sign change, and every face the asymptotic decider reads,
+// its points. Exact: every cell with a sign change, and every face the face decider reads,
 // lies in a finest block that is evaluated, so the mesh is the dense one.
 
 #include <algorithm>

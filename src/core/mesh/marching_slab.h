@@ -5,7 +5,7 @@
 // grid's cross-section, not its volume. In a slab the culling octree (marching_cull.h) leaves
 // the finest blocks whose sign it cannot prove; f is evaluated at their points only, and the
 // contour is built from the sign-changing cells among theirs. Every value the mesh reads — the
-// corners of sign-changing cells, the faces the asymptotic decider reads — is a true f, so the
+// corners of sign-changing cells, the faces the face decider reads — is a true f, so the
 // mesh is the dense grid's, vertex for vertex.
 
 #include <algorithm>

@@ -213,6 +213,39 @@ TEST_CASE("marching cubes: polygons fanned around a centre have the centre on f 
   CHECK(offMean > 0);  // the means alone would have been off f = 0
 }
 
+// f = xy + 0.2 − 0.5·exp(−(x² + y²)/0.1): on [−1, 1]³ the faces z = ±1 have their corners (1, 1)
+// and (−1, −1) outside, the other two inside, and the four values' bilinear saddle is +0.2
+// (outside joined) while f there is −0.3: the inside joins along the cube's middle.
+class PinchedSaddle final : public ImplicitField<3> {
+ public:
+  double evaluate(const Vec<3>& x, Vec<3>* g, Mat<3>* H) const override {
+    const double e = 0.5 * std::exp(-(x[0] * x[0] + x[1] * x[1]) / 0.1);
+    if (g) *g = Vec<3>(x[1] + 20 * x[0] * e, x[0] + 20 * x[1] * e, 0);
+    if (H) H->setZero();  // unused here
+    return x[0] * x[1] + 0.2 - e;
+  }
+  double lipschitzBound(const Box<3>&) const override { return 6; }
+};
+
+TEST_CASE("marching cubes: an ambiguous face is decided by f, not by its corners' bilinear interpolant") {
+  const PinchedSaddle field;
+  for (bool cull : {true, false}) {
+    CAPTURE(cull);
+    MarchingOptions options{1};
+    options.cull = cull;
+    const TriMesh mesh = marchingCubes(field, cube(1.0), options);
+    REQUIRE(mesh.triangleCount() > 0);
+    CHECK(checkMesh(mesh).edgeManifold());
+    // Two pieces, each around an outside edge (x = y = ±1), not around the inside edges
+    // (x = −y = ±1) as the bilinear decider joins them: every triangle's centroid has x·y > 0.
+    for (int t = 0; t < mesh.triangleCount(); ++t) {
+      const Vec<3> c = (mesh.vertices.col(mesh.triangles(0, t)) + mesh.vertices.col(mesh.triangles(1, t)) +
+                        mesh.vertices.col(mesh.triangles(2, t))) / 3;
+      CHECK(c[0] * c[1] > 0.1);
+    }
+  }
+}
+
 TEST_CASE("marching cubes: bad arguments are errors") {
   const SphereField sphere;
   CHECK_THROWS_AS(marchingCubes(sphere, cube(1), {0}), InputError);

@@ -14,6 +14,7 @@
 #include "core/base/memory_check.h"
 #include "core/mesh/grid_lines.h"
 #include "core/mesh/marching_cubes.h"
+#include "core/mesh/near_mesh_distance.h"
 #include "core/mesh/tri_mesh.h"
 
 using namespace hermite;
@@ -188,10 +189,41 @@ TEST_CASE("marching cubes: a neck thinner than a cell joins again where anchors 
   }
 }
 
-TEST_CASE("marching cubes: a thin stub that leaves the mesh in one piece is not refined") {
-  // A ball with a rod of radius 0.02 from it to x = 0.6: one piece with a stub the grid steps over.
+TEST_CASE("marching cubes: a thin stub the grid steps over is refined where its samples lie off the mesh") {
+  // A ball with a rod of radius 0.02 from it to x = −0.05: one piece, the stub's samples up to
+  // 0.15 (1.4 cell diagonals) off it.
+  const BallsAndRod field({{Vec<3>(-0.5, 0, 0), 0.3}}, -0.5, -0.05, 0.02);
+  const Points<3> anchors = toPoints({ringSamples(field, spaced(-0.18, -0.05, 14), 0.02)});
+  MarchingOptions options = grid32();
+  const TriMesh plain = marchingCubes(field, kBox, options);
+  REQUIRE(connectedComponentCount(plain) == 1);
+  const std::vector<double> before = distancesToMeshWithin(plain, anchors, 1.0);
+  CHECK(*std::max_element(before.begin(), before.end()) > 0.1);
+  options.anchors = &anchors;
+  MarchingReport r;
+  const TriMesh mesh = marchingCubes(field, kBox, options, &r);
+  CHECK(r.refinement == MarchingReport::Refinement::Refined);
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(check(mesh, r).closedManifold());
+  // The refined grid's cells are a quarter as wide there: the stub's samples lie within one of
+  // their diagonals of the mesh.
+  const std::vector<double> after = distancesToMeshWithin(mesh, anchors, 1.0);
+  CHECK(*std::max_element(after.begin(), after.end()) < 2.0 / 32 / kAnchorSplit * std::sqrt(3.0));
+}
+
+TEST_CASE("marching cubes: a thin stub off its samples that only halving could refine is left as it is") {
+  // The stub runs on to x = 0.6: cut in kAnchorSplit its cells would more than double the x axis.
   const BallsAndRod field({{Vec<3>(-0.5, 0, 0), 0.3}}, -0.5, 0.6, 0.02);
   const Points<3> anchors = toPoints({ringSamples(field, spaced(-0.1, 0.6, 71), 0.02)});
+  const auto [mesh, r] = meshLeftUnrefined(field, anchors, MarchingReport::Refinement::TooLarge);
+  CHECK(connectedComponentCount(mesh) == 1);
+}
+
+TEST_CASE("marching cubes: a thin stub whose samples lie within half a cell diagonal of the mesh is not refined") {
+  // The rod ends 0.03 beyond the ball (radius 0.3 about x = −0.5): its samples are missed but
+  // within 0.054, half a cell diagonal, of the ball's mesh.
+  const BallsAndRod field({{Vec<3>(-0.5, 0, 0), 0.3}}, -0.5, -0.17, 0.02);
+  const Points<3> anchors = toPoints({ringSamples(field, spaced(-0.195, -0.17, 6), 0.02)});
   const auto [mesh, r] = meshLeftUnrefined(field, anchors, MarchingReport::Refinement::OnePiece);
   CHECK(connectedComponentCount(mesh) == 1);
 }
