@@ -10,8 +10,10 @@
 namespace hermite {
 
 // For each column of `points`, the distance to the nearest triangle of `mesh` when it is below
-// `reach` (> 0), else `reach`. Only the triangles within reach of some point are looked at, so
-// the cost is one pass over the triangles plus the points' neighbourhoods.
+// `reach` (> 0), else `reach` (also for a point that is not finite). Triangles are bucketed in
+// cells of edge `reach`, only those near some point; a triangle spanning more than a few dozen
+// cells is measured against every point instead. So the cost is one pass over the triangles plus
+// the points' neighbourhoods (and points × large triangles).
 std::vector<double> distancesToMeshWithin(const TriMesh& mesh, const Points<3>& points, double reach);
 
 }  // namespace hermite

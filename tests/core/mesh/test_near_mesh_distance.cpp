@@ -67,3 +67,19 @@ TEST_CASE("near mesh distance: no points or no triangles") {
   p.col(0) = Vec<3>(0.5, 0.5, 0.5);
   CHECK(distancesToMeshWithin(TriMesh{}, p, 0.1) == std::vector<double>{0.1});
 }
+
+TEST_CASE("near mesh distance: a triangle spanning millions of cells, and points that are not finite") {
+  TriMesh big;
+  big.vertices.resize(3, 3);
+  big.vertices << 0, 1e4, 0, 0, 0, 1e4, 0, 0, 0;  // columns (0,0,0), (1e4,0,0), (0,1e4,0)
+  big.triangles.resize(3, 1);
+  big.triangles.col(0) = Eigen::Vector3i(0, 1, 2);
+  Points<3> p(3, 3);
+  p.col(0) = Vec<3>(5e3, 1e3, 2e-3);
+  p.col(1) = Vec<3>(5e3, 1e3, 0.5);
+  p.col(2) = Vec<3>(NAN, 0, 0);
+  const std::vector<double> d = distancesToMeshWithin(big, p, 1e-2);
+  CHECK(d[0] == doctest::Approx(2e-3).epsilon(1e-9));
+  CHECK(d[1] == 1e-2);
+  CHECK(d[2] == 1e-2);
+}
