@@ -7,7 +7,7 @@
 #include <random>
 
 #include "core/mesh/near_mesh_distance.h"
-#include "core/mesh/triangle_distance.h"
+#include "support/mesh_distance.h"
 
 using namespace hermite;
 
@@ -27,15 +27,6 @@ TriMesh cubeMesh(double s) {
   return m;
 }
 
-// The distance to the nearest of all triangles, by brute force.
-double bruteDistance(const TriMesh& m, const Vec<3>& p) {
-  double best = INFINITY;
-  for (int t = 0; t < m.triangleCount(); ++t)
-    best = std::min(best, pointTriangleDistance(p, m.vertices.col(m.triangles(0, t)), m.vertices.col(m.triangles(1, t)),
-                                                m.vertices.col(m.triangles(2, t))));
-  return best;
-}
-
 }  // namespace
 
 TEST_CASE("near mesh distance: exact within the reach, the reach beyond it") {
@@ -49,7 +40,7 @@ TEST_CASE("near mesh distance: exact within the reach, the reach beyond it") {
     const std::vector<double> d = distancesToMeshWithin(cube, p, reach);
     int within = 0;
     for (Eigen::Index i = 0; i < p.cols(); ++i) {
-      const double exact = bruteDistance(cube, p.col(i));
+      const double exact = testing::bruteMeshDistance(cube, p.col(i));
       if (exact < reach) {
         ++within;
         CHECK(d[static_cast<std::size_t>(i)] == doctest::Approx(exact).epsilon(1e-12));

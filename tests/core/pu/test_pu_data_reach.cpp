@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "core/mesh/marching_cubes.h"
-#include "core/mesh/triangle_distance.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/pu/pu_model.h"
+#include "support/mesh_distance.h"
 #include "support/mesh_samples.h"
 #include "support/test_data.h"
 
@@ -264,15 +264,6 @@ class WithoutMargin final : public ImplicitField<3> {
   const PuModel<3>& pu_;
 };
 
-// Distance from x to the closed triangle mesh m (its faces).
-double meshDistance(const TriMesh& m, const Vec<3>& x) {
-  double d = std::numeric_limits<double>::infinity();
-  for (int t = 0; t < m.triangleCount(); ++t)
-    d = std::min(d, pointTriangleDistance(x, m.vertices.col(m.triangles(0, t)), m.vertices.col(m.triangles(1, t)),
-                                          m.vertices.col(m.triangles(2, t))));
-  return d;
-}
-
 }  // namespace
 
 TEST_CASE("pu data reach: a dense sample whose reach is thinner than a grid cell still meshes closed") {
@@ -337,7 +328,7 @@ TEST_CASE("pu data reach: a wedge with a sharp 45 degree edge gives one closed c
   CHECK(check.closedManifold());
   CHECK(check.eulerCharacteristic == 2);
   double worst = 0;
-  for (int v = 0; v < mesh.vertexCount(); ++v) worst = std::max(worst, meshDistance(wedge, mesh.vertices.col(v)));
+  for (int v = 0; v < mesh.vertexCount(); ++v) worst = std::max(worst, testing::bruteMeshDistance(wedge, mesh.vertices.col(v)));
   const double diagonal = Vec<3>(2, top, 1).norm();
   MESSAGE("wedge: " << mesh.triangleCount() << " triangles, farthest vertex " << 100 * worst / diagonal
                     << " % of the diagonal");
