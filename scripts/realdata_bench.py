@@ -7,6 +7,8 @@ with open3d's screened Poisson at depth 8 on the same oriented points, and repor
               included; Poisson: create_from_point_cloud_poisson)
   comps       edge-connected components of the output
   closed      every edge used by exactly two triangles
+  chi         Euler characteristic V − E + F, with the true mesh's in brackets (duplicate vertices
+              merged first)
   mean, p99   distances of 200 000 points sampled on the true surface to the reconstruction
   max_vert    largest distance of a reconstruction vertex to the true surface
   (distances relative to the true mesh's bounding-box diagonal, in %)
@@ -63,9 +65,12 @@ def sample_oriented(mesh, n, seed):
 
 
 def topology(mesh):
+    """components, closed, Euler characteristic (V − E + F after merging duplicate vertices)."""
     _, counts, _ = mesh.cluster_connected_triangles()
     closed = mesh.is_edge_manifold(allow_boundary_edges=False) and len(mesh.triangles) > 0
-    return len(counts), bool(closed)
+    merged = o3d.geometry.TriangleMesh(mesh)
+    merged.remove_duplicated_vertices()
+    return len(counts), bool(closed), int(merged.euler_poincare_characteristic())
 
 
 def distances(truth, recon, diagonal, seed):
@@ -146,13 +151,14 @@ def main():
     args = ap.parse_args()
 
     rows = []
-    print("| mesh | N | method | time s | comps | closed | mean % | p99 % | max vert % |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| mesh | N | method | time s | comps | closed | χ (truth) | mean % | p99 % | max vert % |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
     for name in args.meshes.split(","):
         path, truth = load_truth(name)
         lo, hi = truth.get_min_bound(), truth.get_max_bound()
         diagonal = float(np.linalg.norm(hi - lo))
         pcd = sample_oriented(truth, args.points, args.seed)
+        truth_euler = topology(truth)[2]
         with tempfile.TemporaryDirectory() as work:
             methods = [("hermite-lab PU", lambda: run_lab(args.lab, pcd, args.resolution, args.threads, work,
                                                                 args.chord_tolerance, args.set))]
@@ -160,7 +166,7 @@ def main():
                 methods.append(("poisson depth 8", lambda: run_poisson(pcd, 8)))
             for label, run in methods:
                 recon, elapsed, extra = run()
-                comps, closed = topology(recon)
+                comps, closed, euler = topology(recon)
                 mean, p99, worst = distances(truth, recon, diagonal, args.seed)
                 row = {"mesh": os.path.basename(path), "points": args.points, "method": label,
                        "resolution": args.resolution if label.startswith("hermite") else None,
@@ -168,10 +174,12 @@ def main():
                        if label.startswith("hermite") else None,
                        "settings": args.set if label.startswith("hermite") else None,
                        "time_s": elapsed, "components": comps, "closed": closed,
+                       "euler": euler, "truth_euler": truth_euler,
                        "mean_pct": mean, "p99_pct": p99, "max_vertex_pct": worst, **extra}
                 rows.append(row)
                 print(f"| {row['mesh']} | {args.points} | {label} | {elapsed:.1f} | {comps} | "
-                      f"{'yes' if closed else 'no'} | {mean:.3f} | {p99:.3f} | {worst:.3f} |", flush=True)
+                      f"{'yes' if closed else 'no'} | {euler} ({truth_euler}) | {mean:.3f} | {p99:.3f} | {worst:.3f} |",
+                      flush=True)
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)
