@@ -8,24 +8,14 @@
 
 #include "core/mesh/near_mesh_distance.h"
 #include "support/mesh_distance.h"
+#include "support/mesh_samples.h"
 
 using namespace hermite;
 
 namespace {
 
 // The 12 triangles of the cube [0, s]³.
-TriMesh cubeMesh(double s) {
-  TriMesh m;
-  m.vertices.resize(3, 8);
-  for (int i = 0; i < 8; ++i) m.vertices.col(i) = s * Vec<3>(i & 1, (i >> 1) & 1, (i >> 2) & 1);
-  const int q[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
-  m.triangles.resize(3, 12);
-  for (int f = 0; f < 6; ++f) {
-    m.triangles.col(2 * f) = Eigen::Vector3i(q[f][0], q[f][1], q[f][2]);
-    m.triangles.col(2 * f + 1) = Eigen::Vector3i(q[f][0], q[f][2], q[f][3]);
-  }
-  return m;
-}
+TriMesh cubeMesh(double s) { return testing::boxMesh(Vec<3>::Zero(), Vec<3>::Constant(s)); }
 
 }  // namespace
 
