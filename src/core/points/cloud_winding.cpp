@@ -152,7 +152,7 @@ double CloudWinding<Dim>::at(const Vec<Dim>& x) const {
       // The dipoles' field about the centre to second order: with r = centre − x and
       // g(y) = y / (4π‖y‖³) (3D; y / (2π‖y‖²) in 2D), Σ aᵢ nᵢ·g(r + δᵢ) ≈ M·g(r) + Σ aᵢ nᵢ·∇g(r) δᵢ,
       // where ∇g(r) = s(r) (I − Dim r rᵀ/‖r‖²), s the dipole scale. The first term alone was
-      // off by 0.1 inside CGAL's cheese (0.150 against the exact 0.057 beside a sharp edge).
+      // off by 0.1 beside CGAL's cheese (0.150 against the direct sum's 0.057 by a sharp edge).
       const double trace = node.spread.trace(), along = dc.dot(node.spread * dc) / d2;
       w += (dc.dot(node.moment) + trace - Dim * along) * dipoleScale<Dim>(d2);
     } else if (node.left < 0 || top + 2 > 128) {

@@ -14,10 +14,10 @@
 // about one spacing off the surface on, and passes ½ on it; within half a spacing it stays
 // between 0.3 and 0.7. A box of samples far from x counts by the expansion of its dipoles about
 // its area-weighted centre, to second order in the samples' offsets from it (Barnes–Hut: a box of
-// radius R at distance d > 3R). Near a sampled surface that is within 0.03 of the direct sum (CGAL's cheese,
-// elephant and Stanford dragon at 200 000 samples, 3 000 points up to 3 spacings off them; the
-// first-order sum beyond 2R was off by up to 0.2, and put 15 % of the cheese's points on the
-// wrong side of the decided bounds 0.15 and 0.85).
+// radius R at distance d > 3R). Near a sampled surface that is within 0.03 of the direct sum
+// (CGAL's cheese, elephant and Stanford dragon at 200 000 samples, 3 000 points up to 3 spacings
+// off them; the first-order sum beyond 2R was off by up to 0.2, and put 15 % of the cheese's
+// points on the wrong side of the decided bounds 0.15 and 0.85).
 
 #include <vector>
 
