@@ -13,7 +13,7 @@
 
 #include "core/base/geometry.h"
 #include "core/mesh/patch_refinement.h"
-#include "core/mesh/triangle_distance.h"
+#include "core/mesh/near_mesh_distance.h"
 
 namespace hermite {
 
@@ -213,76 +213,18 @@ double loopDiameter(const Eigen::Matrix3Xd& V, const BoundaryLoop& loop) {
   return diameter;
 }
 
-// Mesh triangles bucketed in a uniform grid of cubes: a triangle is in every cube its bounding
-// box, grown by `reach`, touches, so the triangles within `reach` of a point are all in the
-// point's own cube. The cube size is at least 1/64 of the region's largest extent.
-class TriangleGrid {
- public:
-  TriangleGrid(const TriMesh& mesh, const Box<3>& region, double reach) : mesh_(mesh), origin_(region.lo) {
-    cell_ = std::max(reach, (region.hi - region.lo).maxCoeff() / 64.0);
-    if (!(cell_ > 0)) cell_ = 1;
-    for (Eigen::Index m = 0; m < mesh.triangles.cols(); ++m) {
-      Vec<3> lo = mesh.vertices.col(mesh.triangles(0, m)), hi = lo;
-      for (int c = 1; c < 3; ++c) {
-        lo = lo.cwiseMin(mesh.vertices.col(mesh.triangles(c, m)));
-        hi = hi.cwiseMax(mesh.vertices.col(mesh.triangles(c, m)));
-      }
-      lo = (lo.array() - reach).matrix().cwiseMax(region.lo);  // queries lie inside the region
-      hi = (hi.array() + reach).matrix().cwiseMin(region.hi);
-      if ((lo.array() > hi.array()).any()) continue;  // farther than `reach` from the region
-      const Eigen::Vector3i a = cellOf(lo), b = cellOf(hi);
-      for (int z = a.z(); z <= b.z(); ++z)
-        for (int y = a.y(); y <= b.y(); ++y)
-          for (int x = a.x(); x <= b.x(); ++x) cells_[key({x, y, z})].push_back(int(m));
-    }
-  }
-
-  // The distance from p to the nearest triangle of its cube, at most `cap`.
-  double distance(const Vec<3>& p, double cap) const {
-    const auto it = cells_.find(key(cellOf(p)));
-    if (it == cells_.end()) return cap;
-    const Eigen::Matrix3Xd& V = mesh_.vertices;
-    double d = cap;
-    for (int m : it->second)
-      d = std::min(d, pointTriangleDistance(p, V.col(mesh_.triangles(0, m)), V.col(mesh_.triangles(1, m)),
-                                            V.col(mesh_.triangles(2, m))));
-    return d;
-  }
-
- private:
-  Eigen::Vector3i cellOf(const Vec<3>& p) const {
-    const Vec<3> c = ((p - origin_) / cell_).array().floor();
-    return c.cwiseMax(-1e6).cwiseMin(1e6).cast<int>();
-  }
-  static std::int64_t key(const Eigen::Vector3i& c) {
-    return (std::int64_t(c.x()) + (1 << 20)) | ((std::int64_t(c.y()) + (1 << 20)) << 21) |
-           ((std::int64_t(c.z()) + (1 << 20)) << 42);
-  }
-
-  const TriMesh& mesh_;
-  Vec<3> origin_;
-  double cell_ = 1;
-  std::unordered_map<std::int64_t, std::vector<int>> cells_;
-};
-
 // The 90th percentile over `triangles` of the distance from each one's centroid to the mesh's
 // triangles, capped at `cap`: near zero when the triangulation lies on the mesh itself (the rim
 // of an open sheet filled by a second copy of the sheet). A triangulation without inner vertices
 // has most of its triangles along the rim, where even a real wedge is thin, hence a high
 // percentile rather than the median.
 double gapPercentileToMesh(const TriMesh& mesh, const Eigen::Matrix3Xi& triangles, double cap) {
-  Box<3> box{Vec<3>::Constant(std::numeric_limits<double>::infinity()), Vec<3>::Constant(-std::numeric_limits<double>::infinity())};
-  for (Eigen::Index t = 0; t < triangles.cols(); ++t)
-    for (int c = 0; c < 3; ++c) {
-      box.lo = box.lo.cwiseMin(mesh.vertices.col(triangles(c, t)));
-      box.hi = box.hi.cwiseMax(mesh.vertices.col(triangles(c, t)));
-    }
   if (triangles.cols() == 0) return 0;
-  const TriangleGrid grid(mesh, box, cap);
   const Eigen::Matrix3Xd& V = mesh.vertices;
-  std::vector<double> gaps;
+  Points<3> centroids(3, triangles.cols());
   for (Eigen::Index t = 0; t < triangles.cols(); ++t)
-    gaps.push_back(grid.distance((V.col(triangles(0, t)) + V.col(triangles(1, t)) + V.col(triangles(2, t))) / 3.0, cap));
+    centroids.col(t) = (V.col(triangles(0, t)) + V.col(triangles(1, t)) + V.col(triangles(2, t))) / 3.0;
+  std::vector<double> gaps = distancesToMeshWithin(mesh, centroids, cap);
   const std::size_t k = gaps.size() * 9 / 10;
   std::nth_element(gaps.begin(), gaps.begin() + std::ptrdiff_t(k), gaps.end());
   return gaps[k];

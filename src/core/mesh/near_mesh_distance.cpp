@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <utility>
 
 #include "core/mesh/triangle_distance.h"
@@ -12,106 +13,91 @@ namespace hermite {
 
 namespace {
 
-// Cells of edge `reach` keyed by their integer coordinates, 21 bits each (offset so that
-// negative coordinates stay positive).
-struct CellKeys {
-  Vec<3> origin;
-  double edge = 1;
-  std::array<std::int64_t, 3> of(const Vec<3>& p) const {
-    std::array<std::int64_t, 3> c;
-    // Clamped so that the cast stays defined; cells that far apart wrap in key() and only cost
-    // distance tests, which are exact.
-    constexpr double kFar = 1e15;
+constexpr int kRegionCells = 64;         // cubes along the region's longest side, at most
+constexpr std::int64_t kMaxCubes = 512;  // a triangle filling more cubes is tested at every point
+
+// The triangles of a mesh bucketed in a uniform grid of cubes over `region` (the points' box): a
+// triangle is in every cube that its bounding box, grown by `reach` and clipped to the region,
+// touches, so the triangles within `reach` of a point of the region are all in the point's own
+// cube. Cubes are at least 1/kRegionCells of the region's longest side, so the grid stays small
+// however small the reach; a triangle that would fill more than kMaxCubes cubes is listed apart.
+class TriangleBuckets {
+ public:
+  TriangleBuckets(const TriMesh& mesh, const Box<3>& region, double reach) : origin_(region.lo) {
+    cube_ = std::max(reach, region.extent().maxCoeff() / kRegionCells);
+    if (!(cube_ > 0)) cube_ = 1;  // one point and no reach: any cube holds it
+    for (int k = 0; k < 3; ++k) n_[k] = static_cast<int>(std::floor(region.extent()[k] / cube_)) + 1;
+    for (int t = 0; t < mesh.triangleCount(); ++t) {
+      Vec<3> lo = mesh.vertices.col(mesh.triangles(0, t)), hi = lo;
+      for (int c = 1; c < 3; ++c) {
+        lo = lo.cwiseMin(mesh.vertices.col(mesh.triangles(c, t)));
+        hi = hi.cwiseMax(mesh.vertices.col(mesh.triangles(c, t)));
+      }
+      lo = (lo.array() - reach).matrix().cwiseMax(region.lo);
+      hi = (hi.array() + reach).matrix().cwiseMin(region.hi);
+      if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) continue;  // beyond reach
+      const std::array<int, 3> a = cubeOf(lo), b = cubeOf(hi);
+      if (std::int64_t(b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1) > kMaxCubes) {
+        large_.push_back(t);
+        continue;
+      }
+      for (int z = a[2]; z <= b[2]; ++z)
+        for (int y = a[1]; y <= b[1]; ++y)
+          for (int x = a[0]; x <= b[0]; ++x) byCube_.emplace_back(key({x, y, z}), t);
+    }
+    std::sort(byCube_.begin(), byCube_.end());
+  }
+
+  // Calls visit(t) for each triangle that may lie within reach of p (a point of the region).
+  template <class Visit>
+  void near(const Vec<3>& p, Visit&& visit) const {
+    for (int t : large_) visit(t);
+    const std::int64_t k = key(cubeOf(p));
+    for (auto it = std::lower_bound(byCube_.begin(), byCube_.end(), std::make_pair(k, -1));
+         it != byCube_.end() && it->first == k; ++it)
+      visit(it->second);
+  }
+
+ private:
+  std::array<int, 3> cubeOf(const Vec<3>& p) const {
+    std::array<int, 3> c;
     for (int k = 0; k < 3; ++k)
-      c[k] = static_cast<std::int64_t>(std::clamp(std::floor((p[k] - origin[k]) / edge), -kFar, kFar));
+      c[k] = std::clamp(static_cast<int>(std::floor((p[k] - origin_[k]) / cube_)), 0, n_[k] - 1);
     return c;
   }
-  static std::int64_t key(std::int64_t x, std::int64_t y, std::int64_t z) {
-    constexpr std::int64_t kOffset = std::int64_t(1) << 20, kMask = (std::int64_t(1) << 21) - 1;
-    return ((x + kOffset) & kMask) | (((y + kOffset) & kMask) << 21) | (((z + kOffset) & kMask) << 42);
+  std::int64_t key(const std::array<int, 3>& c) const {
+    return c[0] + std::int64_t(n_[0]) * (c[1] + std::int64_t(n_[1]) * c[2]);
   }
+
+  Vec<3> origin_;
+  double cube_ = 1;
+  std::array<int, 3> n_{};                            // cubes per axis
+  std::vector<std::pair<std::int64_t, int>> byCube_;  // (cube key, triangle), sorted
+  std::vector<int> large_;
 };
-
-// The keys of the cells within one cell of each point's own, sorted and unique.
-std::vector<std::int64_t> neighbourhoodKeys(const CellKeys& cells, const Points<3>& points) {
-  std::vector<std::int64_t> keys;
-  keys.reserve(static_cast<std::size_t>(points.cols()) * 27);
-  for (Eigen::Index i = 0; i < points.cols(); ++i) {
-    if (!points.col(i).allFinite()) continue;
-    const std::array<std::int64_t, 3> c = cells.of(points.col(i));
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) keys.push_back(CellKeys::key(c[0] + dx, c[1] + dy, c[2] + dz));
-  }
-  std::sort(keys.begin(), keys.end());
-  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-  return keys;
-}
-
-// Triangles whose bounding box spans more cells than this are measured against every point.
-constexpr std::int64_t kMaxBucketCells = 64;
-
-// The triangles bucketed by cell: (cell key, triangle) for every cell of a triangle's bounding box
-// that lies in `wanted`, sorted; the triangles spanning more than kMaxBucketCells cells (or
-// not finite) in `large`.
-struct Buckets {
-  std::vector<std::pair<std::int64_t, int>> byCell;
-  std::vector<int> large;
-};
-
-Buckets bucketTriangles(const TriMesh& mesh, const CellKeys& cells, const std::vector<std::int64_t>& wanted) {
-  Buckets out;
-  for (int t = 0; t < mesh.triangleCount(); ++t) {
-    Vec<3> lo = mesh.vertices.col(mesh.triangles(0, t)), hi = lo;
-    for (int k = 1; k < 3; ++k) {
-      lo = lo.cwiseMin(mesh.vertices.col(mesh.triangles(k, t)));
-      hi = hi.cwiseMax(mesh.vertices.col(mesh.triangles(k, t)));
-    }
-    const Vec<3> span = (hi - lo) / cells.edge;
-    if (!span.allFinite() || !lo.allFinite() || (span.array() + 2).prod() > double(kMaxBucketCells)) {
-      out.large.push_back(t);
-      continue;
-    }
-    const std::array<std::int64_t, 3> a = cells.of(lo), b = cells.of(hi);
-    for (std::int64_t z = a[2]; z <= b[2]; ++z)
-      for (std::int64_t y = a[1]; y <= b[1]; ++y)
-        for (std::int64_t x = a[0]; x <= b[0]; ++x) {
-          const std::int64_t key = CellKeys::key(x, y, z);
-          if (std::binary_search(wanted.begin(), wanted.end(), key)) out.byCell.emplace_back(key, t);
-        }
-  }
-  std::sort(out.byCell.begin(), out.byCell.end());
-  return out;
-}
 
 }  // namespace
 
 std::vector<double> distancesToMeshWithin(const TriMesh& mesh, const Points<3>& points, double reach) {
   std::vector<double> out(static_cast<std::size_t>(points.cols()), reach);
-  if (points.cols() == 0 || mesh.triangleCount() == 0) return out;
-  Vec<3> origin = Vec<3>::Zero();
-  for (Eigen::Index i = 0; i < points.cols(); ++i)
-    if (points.col(i).allFinite()) origin = points.col(i);
-  const CellKeys cells{origin, reach};
-  const Buckets buckets = bucketTriangles(mesh, cells, neighbourhoodKeys(cells, points));
-  const std::vector<std::pair<std::int64_t, int>>& byCell = buckets.byCell;
+  Box<3> region{Vec<3>::Constant(std::numeric_limits<double>::infinity()),
+                Vec<3>::Constant(-std::numeric_limits<double>::infinity())};
+  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+    if (!points.col(i).allFinite()) continue;
+    region.lo = region.lo.cwiseMin(points.col(i));
+    region.hi = region.hi.cwiseMax(points.col(i));
+  }
+  if (!(region.lo.array() <= region.hi.array()).all() || mesh.triangleCount() == 0) return out;
+  const TriangleBuckets buckets(mesh, region, reach);
   const auto vertex = [&](int t, int k) -> Vec<3> { return mesh.vertices.col(mesh.triangles(k, t)); };
-  const auto distance = [&](const Vec<3>& p, int t) {
-    return pointTriangleDistance(p, vertex(t, 0), vertex(t, 1), vertex(t, 2));
-  };
   for (Eigen::Index i = 0; i < points.cols(); ++i) {
     const Vec<3> p = points.col(i);
     if (!p.allFinite()) continue;
-    const std::array<std::int64_t, 3> c = cells.of(p);
     double& best = out[static_cast<std::size_t>(i)];
-    for (int t : buckets.large) best = std::min(best, distance(p, t));  // a NaN distance leaves best
-    for (int dz = -1; dz <= 1; ++dz)
-      for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-          const std::int64_t key = CellKeys::key(c[0] + dx, c[1] + dy, c[2] + dz);
-          auto it = std::lower_bound(byCell.begin(), byCell.end(), std::make_pair(key, -1));
-          for (; it != byCell.end() && it->first == key; ++it) best = std::min(best, distance(p, it->second));
-        }
+    // A NaN distance (a triangle that is not finite) leaves best as it is.
+    buckets.near(p, [&](int t) {
+      best = std::min(best, pointTriangleDistance(p, vertex(t, 0), vertex(t, 1), vertex(t, 2)));
+    });
   }
   return out;
 }

@@ -10,10 +10,9 @@
 namespace hermite {
 
 // For each column of `points`, the distance to the nearest triangle of `mesh` when it is below
-// `reach` (> 0), else `reach` (also for a point that is not finite). Triangles are bucketed in
-// cells of edge `reach`, only those near some point; a triangle spanning more than a few dozen
-// cells is measured against every point instead. So the cost is one pass over the triangles plus
-// the points' neighbourhoods (and points × large triangles).
+// `reach` (> 0), else `reach` (also for a point that is not finite). The triangles near the
+// points' box are bucketed in a grid of at most 64 cubes along its longest side; a point reads its
+// own cube. So the cost is one pass over the triangles plus the points' cubes.
 std::vector<double> distancesToMeshWithin(const TriMesh& mesh, const Points<3>& points, double reach);
 
 }  // namespace hermite
