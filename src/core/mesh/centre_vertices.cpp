@@ -20,7 +20,7 @@ struct CentreLine {
   Vec<3> x, d;  // the polygon's mean, unit direction
   double t0 = 0, t1 = 0;
   double a = 0, b = 0, fa = 0, fb = 0;  // bracket: f(a) and f(b) differ in sign (f ≥ 0 is outside)
-  int lastMoved = 0;                    // Illinois: which end moved last (−1 a, +1 b)
+  signed char lastMoved = 0;            // Illinois: which end moved last (−1 a, +1 b)
   bool found = false;
   double guess = 0;                     // the bracket's linear root: how far the root is from x
   Vec<3> at(double t) const { return x + t * d; }
@@ -78,15 +78,6 @@ void findBrackets(const ImplicitField<3>& field, std::vector<CentreLine>& lines,
     if (std::isfinite(f0[i])) nearestSignChange(lines[i], f0[i], fs.data() + 2 * kLineSamples * i);
 }
 
-// One Illinois step of the line's bracket with the value f at t = (the last false position).
-void updateBracket(CentreLine& line, double t, double f) {
-  const int moved = (f < 0) == (line.fa < 0) ? -1 : 1;
-  if (moved < 0) line.a = t, line.fa = f;
-  else line.b = t, line.fb = f;
-  if (moved == line.lastMoved) (moved < 0 ? line.fb : line.fa) *= 0.5;
-  line.lastMoved = moved;
-}
-
 double falsePosition(const CentreLine& line) {
   const double t = line.a + (line.b - line.a) * line.fa / (line.fa - line.fb);
   return std::isfinite(t) ? std::clamp(t, std::min(line.a, line.b), std::max(line.a, line.b)) : line.a;
@@ -113,7 +104,7 @@ std::vector<double> solveBrackets(const ImplicitField<3>& field, std::vector<Cen
       CentreLine& line = lines[active[k]];
       const double fk = f[static_cast<Eigen::Index>(k)];
       if (fk == 0 || !std::isfinite(fk)) continue;
-      updateBracket(line, t[active[k]], fk);
+      detail::illinoisUpdate(line.a, line.fa, line.b, line.fb, line.lastMoved, t[active[k]], fk);
       if (std::abs(line.b - line.a) > kRootWidth * (line.t1 - line.t0)) next.push_back(active[k]);
       else t[active[k]] = std::abs(line.fa) <= std::abs(line.fb) ? line.a : line.b;
     }

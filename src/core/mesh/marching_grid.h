@@ -15,6 +15,7 @@
 #include "core/base/ms_since.h"
 #include "core/base/parallel_sort.h"
 #include "core/mesh/grid_lines.h"
+#include "core/mesh/illinois_bracket.h"
 #include "core/mesh/marching_cull.h"
 #include "core/mesh/marching_memory.h"
 #include "core/mesh/marching_options.h"
@@ -365,15 +366,9 @@ double refineEdgeVertices(MarchingGrid<Dim>& g, const ImplicitField<Dim>& field,
       if (step >= options.newtonSteps && (std::abs(f[v]) <= kEdgeFinish * std::abs(slope) ||
                                           tHi[v] - tLo[v] <= kEdgeBracket || t[v] == tau || t[v] == 1 - tau))
         continue;  // close enough, or f jumps in a tiny bracket, or the root is within τ of an end
-      // The end at t = 0 is the one whose sign is values[from]: keep the bracket on the sign change.
-      const bool startInside = g.values[from[v]] < 0;
-      // Illinois: when the same end moves twice running, the other end's value is halved, which
+      // Keep the bracket on the sign change (the end at t = 0 has values[from]'s sign); Illinois
       // keeps false position superlinear on the near-tangent edges where Newton overshoots.
-      const int moved = (f[v] < 0) == startInside ? -1 : 1;
-      if (moved < 0) tLo[v] = t[v], fLo[v] = f[v];
-      else tHi[v] = t[v], fHi[v] = f[v];
-      if (moved == lastMoved[v]) (moved < 0 ? fHi[v] : fLo[v]) *= 0.5;
-      lastMoved[v] = static_cast<signed char>(moved);
+      illinoisUpdate(tLo[v], fLo[v], tHi[v], fHi[v], lastMoved[v], t[v], f[v]);
       double tn = t[v] - f[v] / slope;
       // Outside the bracket: false position on it instead (never worse than the bracket).
       if (!std::isfinite(tn) || tn <= tLo[v] || tn >= tHi[v])
