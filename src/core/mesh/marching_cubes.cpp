@@ -494,9 +494,9 @@ bool nearerItsSamples(const TriMesh& mesh, const TriMesh& finer, const Points<3>
   return 2 * std::accumulate(b.begin(), b.end(), 0.0) <= std::accumulate(a.begin(), a.end(), 0.0);
 }
 
-// Whether the uniform mesh came out in pieces that are not all cut-off tips.
-bool inPieces(const TriMesh& mesh, const Points<3>& missedAt, const Points<3>& anchors, double d) {
-  if (vertexConnectedComponentCount(mesh) <= 1) return false;
+// Whether the uniform mesh (`count` pieces) came out in pieces that are not all cut-off tips.
+bool inPieces(const TriMesh& mesh, int count, const Points<3>& missedAt, const Points<3>& anchors, double d) {
+  if (count <= 1) return false;
   // Pieces beyond the first that are all tips the grid cut off a thin part, or pockets it kept of
   // a thin gap (cut_tips.h), are left out after this anyway: a second pass would cost a whole
   // contour for them, and on the Stanford dragon's fins and cracks did not join or fill them
@@ -529,8 +529,9 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   // few samples far off it and is not worth a second pass. A ribbon is resolved only by cutting
   // its cells in kAnchorSplit: thin parts so spread that only halving fits (sheets across a whole
   // model, CGAL's boeing) would be contoured again at twice the resolution and no nearer.
+  const int before = vertexConnectedComponentCount(mesh);
   const bool off = offItsSamples(mesh, missedAt, anchors.cols(), h.norm());
-  const bool pieces = inPieces(mesh, missedAt, anchors, h.norm());
+  const bool pieces = inPieces(mesh, before, missedAt, anchors, h.norm());
   if (!pieces && !off) return mesh;
   r.refinement = Refinement::TooLarge;
   std::optional<GridLines<3>> refined = refinedLines(lines, missed, options, pieces);
@@ -544,10 +545,10 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   r.refinement = Refinement::NoGain;
   r.evaluateMs = pass.evaluateMs;
   r.evaluatedPoints = pass.evaluatedPoints;
-  const int before = vertexConnectedComponentCount(mesh), after = vertexConnectedComponentCount(finer);
+  const int after = vertexConnectedComponentCount(finer);
+  if (after > before) return mesh;
   std::vector<int> both = *stillMissed;
   both.insert(both.end(), finerMissed.begin(), finerMissed.end());
-  if (after > before) return mesh;
   if (after == before && !(off && nearerItsSamples(mesh, finer, anchors, both, h.norm()))) {
     if (off) r.refinement = Refinement::NotNearer;
     return mesh;
