@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "core/mesh/near_mesh_distance.h"
+
 namespace hermite {
 
 namespace {
@@ -82,6 +84,23 @@ bool within(const TriMesh& mesh, const std::vector<int>& piece, const std::vecto
   return false;
 }
 
+// Per piece of c: whether it goes (cut_tips.h): a candidate with a missed sample in its reach,
+// or a pocket with samples off the mesh beside it. `gaps` (optional) counts the pockets that go.
+std::vector<char> piecesToDrop(const TriMesh& mesh, const TipCandidates& c, const Points<3>& missed, double d,
+                               const Points<3>* samples, int* gaps) {
+  const bool pockets = samples && samples->cols() > 0;
+  std::vector<char> drop(static_cast<size_t>(c.count), 0);
+  for (size_t k = 0; k < c.pieces.size(); ++k) {
+    char& go = drop[static_cast<size_t>(c.pieces[k])];
+    for (Eigen::Index m = 0; m < missed.cols() && !go; ++m) go = c.reach[k].contains(missed.col(m));
+    if (c.gap[k]) {
+      go = go || (pockets && samplesOffMesh(mesh, *samples, c.reach[k], d));
+      if (go && gaps) ++*gaps;
+    }
+  }
+  return drop;
+}
+
 }  // namespace
 
 TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
@@ -116,21 +135,33 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   return c;
 }
 
+std::vector<int> samplesOnPockets(const TriMesh& mesh, const Points<3>& missed, double cellDiagonal,
+                                  const Points<3>& samples) {
+  const TipCandidates c = tipCandidates(mesh, cellDiagonal);
+  std::vector<char> pocket = piecesToDrop(mesh, c, missed, cellDiagonal, &samples, nullptr);
+  for (size_t k = 0; k < c.pieces.size(); ++k) pocket[static_cast<size_t>(c.pieces[k])] &= c.gap[k];
+  if (std::find(pocket.begin(), pocket.end(), 1) == pocket.end()) return {};
+  TriMesh walls;
+  walls.vertices = mesh.vertices;
+  std::vector<int> kept;
+  for (int t = 0; t < mesh.triangleCount(); ++t)
+    if (pocket[static_cast<size_t>(c.piece[static_cast<size_t>(t)])]) kept.push_back(t);
+  walls.triangles.resize(3, static_cast<Eigen::Index>(kept.size()));
+  for (size_t k = 0; k < kept.size(); ++k)
+    walls.triangles.col(static_cast<Eigen::Index>(k)) = mesh.triangles.col(kept[k]);
+  const double reach = 0.5 * cellDiagonal;
+  const std::vector<double> d = distancesToMeshWithin(walls, samples, reach);
+  std::vector<int> on;
+  for (size_t i = 0; i < d.size(); ++i)
+    if (d[i] < reach) on.push_back(static_cast<int>(i));
+  return on;
+}
+
 int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal, int* gaps, const Points<3>* samples) {
   if (gaps) *gaps = 0;
-  const bool pockets = samples && samples->cols() > 0;
-  if (missed.cols() == 0 && !pockets) return 0;
+  if (missed.cols() == 0 && !(samples && samples->cols() > 0)) return 0;
   const TipCandidates c = tipCandidates(mesh, cellDiagonal);
-  std::vector<char> drop(static_cast<size_t>(c.count), 0);
-  for (size_t k = 0; k < c.pieces.size(); ++k) {
-    char& d = drop[static_cast<size_t>(c.pieces[k])];
-    for (Eigen::Index m = 0; m < missed.cols() && !d; ++m) d = c.reach[k].contains(missed.col(m));
-    if (c.gap[k]) {
-      d = d || (pockets && samplesOffMesh(mesh, *samples, c.reach[k], cellDiagonal));
-      if (d && gaps) ++*gaps;
-    }
-  }
-  return dropComponents(mesh, c.piece, drop);
+  return dropComponents(mesh, c.piece, piecesToDrop(mesh, c, missed, cellDiagonal, samples, gaps));
 }
 
 }  // namespace hermite

@@ -51,6 +51,13 @@ struct TipCandidates {
 };
 TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal);
 
+// The samples (their columns) within half a cell diagonal of the pockets dropCutTips would
+// leave out (same arguments): the walls of a gap the grid closed at its mouth, which leave the
+// mesh with their pocket. The refined pass (marching_cubes.cpp) counts them as missed. A true
+// cavity, with its samples on it and none off the mesh beside it, has none.
+std::vector<int> samplesOnPockets(const TriMesh& mesh, const Points<3>& missed, double cellDiagonal,
+                                  const Points<3>& samples);
+
 // Removes the cut-off tips and pockets (as above) and the vertices no triangle uses; `missed`
 // are the positions of the missed samples, `cellDiagonal` the uniform grid cell's, `samples`
 // all of them (none: only a missed sample is a pocket's evidence). Returns how many pieces were

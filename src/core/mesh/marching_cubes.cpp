@@ -500,7 +500,8 @@ bool inPieces(const TriMesh& mesh, int count, const Points<3>& missedAt, const P
   // Pieces beyond the first that are all tips the grid cut off a thin part, or pockets it kept of
   // a thin gap (cut_tips.h), are left out after this anyway: a second pass would cost a whole
   // contour for them, and on the Stanford dragon's fins and cracks did not join or fill them
-  // (docs/maths.md, Contouring: cut-off tips).
+  // (docs/maths.md, Contouring: cut-off tips). A pocket with many samples on its walls is the
+  // caller's (samplesOnPockets).
   TriMesh withoutTips = mesh;
   dropCutTips(withoutTips, missedAt, d, nullptr, &anchors);
   return vertexConnectedComponentCount(withoutTips) > 1;
@@ -516,22 +517,29 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
                          MarchingReport* report, std::optional<GridLines<3>>* usedLines, std::vector<int>* stillMissed) {
   using Refinement = MarchingReport::Refinement;
   *stillMissed = detail::missedAnchors(seen, *options.anchors, field, h.norm());
-  const std::vector<std::array<int, 3>> missed = detail::anchorCellsOf(seen, *stillMissed);
+  const Points<3>& anchors = *options.anchors;
+  const Points<3> missedAt = columnsOf(anchors, *stillMissed);
+  const int before = vertexConnectedComponentCount(mesh);
+  // Many samples on pockets of a thin gap (cut_tips.h) are missed too: the pocket leaves the mesh
+  // after this, and a finer grid can open the gap's mouth and join its walls to the surface.
+  const std::vector<int> onPockets =
+      before > 1 ? samplesOnPockets(mesh, missedAt, h.norm(), anchors) : std::vector<int>{};
+  const bool pocketed = static_cast<double>(onPockets.size()) >= kRefineOffShare * static_cast<double>(anchors.cols());
+  std::vector<int> refineAt = *stillMissed;
+  if (pocketed) refineAt.insert(refineAt.end(), onPockets.begin(), onPockets.end());
+  const std::vector<std::array<int, 3>> missed = detail::anchorCellsOf(seen, refineAt);
   if (missed.empty()) return mesh;
   MarchingReport local;
   MarchingReport& r = report ? *report : local;
   r.missedAnchors = r.stillMissed = static_cast<int>(missed.size());
   r.refinement = Refinement::OnePiece;
-  const Points<3>& anchors = *options.anchors;
-  const Points<3> missedAt = columnsOf(anchors, *stillMissed);
   // A thin part the grid steps over splits the surface, or stays joined by a ribbon a cell wide
   // that lies off its samples; a thin rim it truncates (the edge of an ear) leaves one piece with
   // few samples far off it and is not worth a second pass. A ribbon is resolved only by cutting
   // its cells in kAnchorSplit: thin parts so spread that only halving fits (sheets across a whole
   // model, CGAL's boeing) would be contoured again at twice the resolution and no nearer.
-  const int before = vertexConnectedComponentCount(mesh);
   const bool off = offItsSamples(mesh, missedAt, anchors.cols(), h.norm());
-  const bool pieces = inPieces(mesh, before, missedAt, anchors, h.norm());
+  const bool pieces = pocketed || inPieces(mesh, before, missedAt, anchors, h.norm());
   if (!pieces && !off) return mesh;
   r.refinement = Refinement::TooLarge;
   std::optional<GridLines<3>> refined = refinedLines(lines, missed, options, pieces);

@@ -13,6 +13,7 @@
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/tri_mesh.h"
 #include "core/shapes/mesh_shapes.h"
+#include "support/mesh_distance.h"
 #include "support/mesh_test_shapes.h"
 
 using namespace hermite;
@@ -201,6 +202,21 @@ TEST_CASE("cut tips: a pocket of the outside with samples off the mesh beside it
   }
 }
 
+TEST_CASE("cut tips: the samples on a pocket that goes are those within half a cell diagonal of it") {
+  // The crack's two samples off the mesh, and three on or near the pocket (radius 0.05): at it,
+  // 0.03 off it (within 0.05, half the cell diagonal 0.1) and 0.08 off it.
+  const Points<3> samples = pointsAt({Vec<3>(0.25, 0, 0.01), Vec<3>(0.25, 0, -0.01), Vec<3>(0, 0, 0.05),
+                                      Vec<3>(0.08, 0, 0), Vec<3>(0, -0.13, 0)});
+  const TriMesh mesh = sphereAndPocket();
+  CHECK(samplesOnPockets(mesh, Points<3>(3, 0), 0.1, samples) == std::vector<int>{2, 3});
+  // Without the crack's samples the pocket is a cavity that stays, and no sample is on a pocket
+  // that goes; nor on a small solid piece, which is no pocket.
+  CHECK(samplesOnPockets(mesh, Points<3>(3, 0), 0.1, samples.rightCols(3)).empty());
+  CHECK(samplesOnPockets(sphereAndPocket(false), Points<3>(3, 0), 0.1, samples).empty());
+  // A missed sample beside it makes it go too.
+  CHECK(samplesOnPockets(mesh, pointsAt({Vec<3>(0.1, 0, 0)}), 0.1, samples.rightCols(3)) == std::vector<int>{0, 1});
+}
+
 namespace {
 
 // The signed distance (to first order) to a ball of radius 0.8 with a slot 0.01 wide cut into it
@@ -235,16 +251,25 @@ class SlottedBall : public ImplicitField<3> {
   bool slot_;
 };
 
-// Points on the slot's two walls between the bubble and the ball's surface, off the bubble.
-Points<3> slotWallSamples() {
+// Points on the slot's two walls between the bubble and the ball's surface, at least `from` from
+// the centre (off the bubble).
+Points<3> slotWallSamples(double from = 0.09) {
   std::vector<Vec<3>> at;
   for (int i = 0; i < 12; ++i)
     for (int j = -3; j <= 3; ++j)
       for (double side : {-0.005, 0.005}) {
         const Vec<3> q(0.1 + 0.05 * i, 0.05 * j, kSlot + side);
-        if (q.norm() < 0.78 && q.norm() > 0.09) at.push_back(q);
+        if (q.norm() < 0.78 && q.norm() > from) at.push_back(q);
       }
   return pointsAt(at);
+}
+
+// The largest distance from `points` to the mesh's triangles.
+double farthestFrom(const TriMesh& mesh, const Points<3>& points) {
+  double worst = 0;
+  for (Eigen::Index i = 0; i < points.cols(); ++i)
+    worst = std::max(worst, testing::bruteMeshDistance(mesh, points.col(i)));
+  return worst;
 }
 
 }  // namespace
@@ -256,7 +281,9 @@ TEST_CASE("marching cubes: the pocket a grid keeps of a slot thinner than a cell
   const SlottedBall slotted(true);
   const TriMesh plain = marchingCubes(slotted, box, options);
   REQUIRE(connectedComponentCount(plain) == 2);  // the ball, and the bubble inside it
-  const Points<3> walls = slotWallSamples();
+  // Samples on the slot's walls, none within half a cell diagonal of the bubble: it has no
+  // samples of its own, so it goes without a refined pass.
+  const Points<3> walls = slotWallSamples(0.2);
   REQUIRE(walls.cols() > 100);
   options.anchors = &walls;
   MarchingReport r;
@@ -268,7 +295,7 @@ TEST_CASE("marching cubes: the pocket a grid keeps of a slot thinner than a cell
   CHECK(checkMesh(mesh).closedManifold());
   CHECK(mesh.vertices.colwise().norm().minCoeff() > 0.5);
 
-  // A cavity with no slot: its own samples are on the mesh, so it stays.
+  // A cavity with no slot: its own samples are on the mesh, so it stays, without a refined pass.
   const SlottedBall cavity(false);
   Points<3> onCavity(3, 6);
   for (int a = 0; a < 3; ++a) {
@@ -279,4 +306,27 @@ TEST_CASE("marching cubes: the pocket a grid keeps of a slot thinner than a cell
   MarchingReport rc;
   CHECK(connectedComponentCount(marchingCubes(cavity, box, options, &rc)) == 2);
   CHECK(rc.droppedGaps == 0);
+  CHECK(rc.refinedCells[0] == 0);
+}
+
+TEST_CASE("marching cubes: a pocket with samples on its walls is joined to the surface by a refined grid") {
+  // The slot's samples reach the bubble: those on the pocket would leave the mesh with it, so the
+  // grid is refined about them, which opens the slot along its length (its z interval is cut in
+  // kAnchorSplit everywhere) and joins the bubble to the ball's surface.
+  const Box<3> box{Vec<3>::Constant(-1.0), Vec<3>::Constant(1.0)};
+  MarchingOptions options;
+  options.resolution = 32;
+  const Points<3> walls = slotWallSamples();
+  options.anchors = &walls;
+  MarchingReport r;
+  const TriMesh mesh = marchingCubes(SlottedBall(true), box, options, &r);
+  CHECK(r.refinement == MarchingReport::Refinement::Refined);
+  CHECK(r.refinedCells[2] > 32);
+  CHECK(r.droppedGaps == 0);
+  CHECK(connectedComponentCount(mesh) == 1);
+  CHECK(checkMesh(mesh).closedManifold());
+  CHECK(mesh.vertices.colwise().norm().minCoeff() < 0.08);  // the bubble's wall is kept
+  // Every wall sample lies on the mesh, to within a refined step across the slot (0.0156; the
+  // walls are planes the refined grid's cells cross, so the mesh is on them).
+  CHECK(farthestFrom(mesh, walls) < 2.0 / 32 / kAnchorSplit);
 }
