@@ -23,7 +23,9 @@ command's default applies (0.02 cells since issue 17's timing work). --set KEY=V
 of the scene the bench writes (fit.partition.max_points_per_box 20, ...), as `mesh --set` does.
 Meshes are looked up in /work/cgaldata/data/meshes (CGAL's data set; Debian's libcgal-demo ships
 it as data.tar.gz) unless a path is given. Needs python3 with numpy and open3d (Debian:
-python3-open3d); never a dependency of the product or its tests.
+python3-open3d); never a dependency of the product or its tests. A method that fails gets a
+"failed: why" row (and a "failed" key in the JSON); the others go on, and the script exits 1
+at the end, listing the failures.
 """
 import argparse
 import json
@@ -73,14 +75,25 @@ def topology(mesh):
     return len(counts), bool(closed), int(merged.euler_poincare_characteristic())
 
 
+def with_area(mesh):
+    """The mesh's triangles of nonzero area, as a tensor mesh for a RaycastingScene: open3d's
+    distance query aborts the interpreter on a zero-area triangle (an Eigen assertion; screened
+    Poisson's mesh of CGAL's man has 4). Such a triangle adds no point to the surface."""
+    v = np.asarray(mesh.vertices)
+    t = np.asarray(mesh.triangles)
+    area = np.linalg.norm(np.cross(v[t[:, 1]] - v[t[:, 0]], v[t[:, 2]] - v[t[:, 0]]), axis=1)
+    kept = o3d.geometry.TriangleMesh(mesh.vertices, o3d.utility.Vector3iVector(t[area > 0]))
+    return o3d.t.geometry.TriangleMesh.from_legacy(kept)
+
+
 def distances(truth, recon, diagonal, seed):
     """mean and 99th percentile of truth samples → recon, max of recon vertices → truth (% of diagonal)."""
     if len(recon.triangles) == 0:
         return float("inf"), float("inf"), float("inf")
     truth_scene = o3d.t.geometry.RaycastingScene()
-    truth_scene.add_triangles(o3d.t.geometry.TriangleMesh.from_legacy(truth))
+    truth_scene.add_triangles(with_area(truth))
     recon_scene = o3d.t.geometry.RaycastingScene()
-    recon_scene.add_triangles(o3d.t.geometry.TriangleMesh.from_legacy(recon))
+    recon_scene.add_triangles(with_area(recon))
     o3d.utility.random.seed(seed + 1)
     probe = np.asarray(truth.sample_points_uniformly(number_of_points=200000).points, dtype=np.float32)
     d_in = recon_scene.compute_distance(o3d.core.Tensor(probe)).numpy()
@@ -88,6 +101,10 @@ def distances(truth, recon, diagonal, seed):
     d_out = truth_scene.compute_distance(o3d.core.Tensor(verts)).numpy()
     scale = 100.0 / diagonal
     return float(d_in.mean() * scale), float(np.percentile(d_in, 99) * scale), float(d_out.max() * scale)
+
+
+class MethodFailed(Exception):
+    """A reconstruction that did not finish: its row says why, and the bench goes on."""
 
 
 def run_lab(lab, pcd, resolution, threads, workdir, chord_tolerance=None, settings=()):
@@ -116,7 +133,7 @@ def run_lab(lab, pcd, resolution, threads, workdir, chord_tolerance=None, settin
     proc = subprocess.run(cmd, capture_output=True, text=True)
     elapsed = time.perf_counter() - t0
     if proc.returncode != 0:
-        sys.exit(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
+        raise MethodFailed(f"{' '.join(cmd)} failed ({proc.returncode}): {proc.stderr.strip()}")
     line = proc.stdout.strip().splitlines()[-1] if proc.stdout.strip() else ""
     mesh_ms = re.search(r"; ([0-9.]+) ms \(field ([0-9.]+) ms\)", line)
     recon = o3d.io.read_triangle_mesh(out)
@@ -150,7 +167,7 @@ def main():
     ap.add_argument("--json", help="also write the rows as JSON here")
     args = ap.parse_args()
 
-    rows = []
+    rows, failures = [], []
     print("| mesh | N | method | time s | comps | closed | χ (truth) | mean % | p99 % | max vert % |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     for name in args.meshes.split(","):
@@ -165,7 +182,14 @@ def main():
             if not args.no_poisson:
                 methods.append(("poisson depth 8", lambda: run_poisson(pcd, 8)))
             for label, run in methods:
-                recon, elapsed, extra = run()
+                try:
+                    recon, elapsed, extra = run()
+                except MethodFailed as e:
+                    failures.append(f"{os.path.basename(path)}, {label}: {e}")
+                    rows.append({"mesh": os.path.basename(path), "points": args.points, "method": label,
+                                 "failed": str(e)})
+                    print(f"| {os.path.basename(path)} | {args.points} | {label} | failed: {e} |", flush=True)
+                    continue
                 comps, closed, euler = topology(recon)
                 mean, p99, worst = distances(truth, recon, diagonal, args.seed)
                 row = {"mesh": os.path.basename(path), "points": args.points, "method": label,
@@ -183,6 +207,8 @@ def main():
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)
+    if failures:
+        sys.exit("failed:\n  " + "\n  ".join(failures))
 
 
 if __name__ == "__main__":
