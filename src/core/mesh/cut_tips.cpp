@@ -84,23 +84,6 @@ bool within(const TriMesh& mesh, const std::vector<int>& piece, const std::vecto
   return false;
 }
 
-// Per piece of c: whether it goes (cut_tips.h): a candidate with a missed sample in its reach,
-// or a pocket with samples off the mesh beside it. `gaps` (optional) counts the pockets that go.
-std::vector<char> piecesToDrop(const TriMesh& mesh, const TipCandidates& c, const Points<3>& missed, double d,
-                               const Points<3>* samples, int* gaps) {
-  const bool pockets = samples && samples->cols() > 0;
-  std::vector<char> drop(static_cast<size_t>(c.count), 0);
-  for (size_t k = 0; k < c.pieces.size(); ++k) {
-    char& go = drop[static_cast<size_t>(c.pieces[k])];
-    for (Eigen::Index m = 0; m < missed.cols() && !go; ++m) go = c.reach[k].contains(missed.col(m));
-    if (c.gap[k]) {
-      go = go || (pockets && samplesOffMesh(mesh, *samples, c.reach[k], d));
-      if (go && gaps) ++*gaps;
-    }
-  }
-  return drop;
-}
-
 }  // namespace
 
 TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
@@ -135,11 +118,26 @@ TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal) {
   return c;
 }
 
-std::vector<int> samplesOnPockets(const TriMesh& mesh, const Points<3>& missed, double cellDiagonal,
-                                  const Points<3>& samples) {
-  const TipCandidates c = tipCandidates(mesh, cellDiagonal);
-  std::vector<char> pocket = piecesToDrop(mesh, c, missed, cellDiagonal, &samples, nullptr);
-  for (size_t k = 0; k < c.pieces.size(); ++k) pocket[static_cast<size_t>(c.pieces[k])] &= c.gap[k];
+std::vector<char> cutTipsToDrop(const TriMesh& mesh, const TipCandidates& c, const Points<3>& missed,
+                                double cellDiagonal, const Points<3>* samples, int* gaps) {
+  const bool pockets = samples && samples->cols() > 0;
+  std::vector<char> drop(static_cast<size_t>(c.count), 0);
+  for (size_t k = 0; k < c.pieces.size(); ++k) {
+    char& go = drop[static_cast<size_t>(c.pieces[k])];
+    for (Eigen::Index m = 0; m < missed.cols() && !go; ++m) go = c.reach[k].contains(missed.col(m));
+    if (c.gap[k]) {
+      go = go || (pockets && samplesOffMesh(mesh, *samples, c.reach[k], cellDiagonal));
+      if (go && gaps) ++*gaps;
+    }
+  }
+  return drop;
+}
+
+std::vector<int> samplesOnPockets(const TriMesh& mesh, const TipCandidates& c, const std::vector<char>& drop,
+                                  double cellDiagonal, const Points<3>& samples) {
+  std::vector<char> pocket(static_cast<size_t>(c.count), 0);
+  for (size_t k = 0; k < c.pieces.size(); ++k)
+    pocket[static_cast<size_t>(c.pieces[k])] = c.gap[k] && drop[static_cast<size_t>(c.pieces[k])];
   if (std::find(pocket.begin(), pocket.end(), 1) == pocket.end()) return {};
   TriMesh walls;
   walls.vertices = mesh.vertices;
@@ -161,7 +159,7 @@ int dropCutTips(TriMesh& mesh, const Points<3>& missed, double cellDiagonal, int
   if (gaps) *gaps = 0;
   if (missed.cols() == 0 && !(samples && samples->cols() > 0)) return 0;
   const TipCandidates c = tipCandidates(mesh, cellDiagonal);
-  return dropComponents(mesh, c.piece, piecesToDrop(mesh, c, missed, cellDiagonal, samples, gaps));
+  return dropComponents(mesh, c.piece, cutTipsToDrop(mesh, c, missed, cellDiagonal, samples, gaps));
 }
 
 }  // namespace hermite

@@ -51,12 +51,17 @@ struct TipCandidates {
 };
 TipCandidates tipCandidates(const TriMesh& mesh, double cellDiagonal);
 
-// The samples (their columns) within half a cell diagonal of the pockets dropCutTips would
-// leave out (same arguments): the walls of a gap the grid closed at its mouth, which leave the
+// Per piece of `c` (tipCandidates(mesh, cellDiagonal)): whether dropCutTips leaves it out, with
+// the same `missed` and `samples`; `gaps` (optional) counts the pockets among them.
+std::vector<char> cutTipsToDrop(const TriMesh& mesh, const TipCandidates& c, const Points<3>& missed,
+                                double cellDiagonal, const Points<3>* samples, int* gaps = nullptr);
+
+// The samples (their columns) within half a cell diagonal of the pockets among the pieces `drop`
+// leaves out (cutTipsToDrop): the walls of a gap the grid closed at its mouth, which leave the
 // mesh with their pocket. The refined pass (marching_cubes.cpp) counts them as missed. A true
 // cavity, with its samples on it and none off the mesh beside it, has none.
-std::vector<int> samplesOnPockets(const TriMesh& mesh, const Points<3>& missed, double cellDiagonal,
-                                  const Points<3>& samples);
+std::vector<int> samplesOnPockets(const TriMesh& mesh, const TipCandidates& c, const std::vector<char>& drop,
+                                  double cellDiagonal, const Points<3>& samples);
 
 // Removes the cut-off tips and pockets (as above) and the vertices no triangle uses; `missed`
 // are the positions of the missed samples, `cellDiagonal` the uniform grid cell's, `samples`

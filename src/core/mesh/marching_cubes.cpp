@@ -494,17 +494,16 @@ bool nearerItsSamples(const TriMesh& mesh, const TriMesh& finer, const Points<3>
   return 2 * std::accumulate(b.begin(), b.end(), 0.0) <= std::accumulate(a.begin(), a.end(), 0.0);
 }
 
-// Whether the uniform mesh (`count` pieces) came out in pieces that are not all cut-off tips.
-bool inPieces(const TriMesh& mesh, int count, const Points<3>& missedAt, const Points<3>& anchors, double d) {
-  if (count <= 1) return false;
-  // Pieces beyond the first that are all tips the grid cut off a thin part, or pockets it kept of
-  // a thin gap (cut_tips.h), are left out after this anyway: a second pass would cost a whole
-  // contour for them, and on the Stanford dragon's fins and cracks did not join or fill them
-  // (docs/maths.md, Contouring: cut-off tips). A pocket with many samples on its walls is the
-  // caller's (samplesOnPockets).
-  TriMesh withoutTips = mesh;
-  dropCutTips(withoutTips, missedAt, d, nullptr, &anchors);
-  return vertexConnectedComponentCount(withoutTips) > 1;
+// The anchors the refined pass cuts the cells of: those the uniform grid `missed` and, when they
+// are at least kRefineOffShare of all, those on the pockets among the pieces `cut` leaves out
+// (samplesOnPockets; `pocketed` says so): a pocket leaves the mesh with its samples, and a finer
+// grid can open the gap's mouth and join its walls to the surface.
+std::vector<int> anchorsToRefine(const TriMesh& mesh, const TipCandidates& tips, const std::vector<char>& cut,
+                                 std::vector<int> missed, const Points<3>& anchors, double d, bool* pocketed) {
+  const std::vector<int> onPockets = samplesOnPockets(mesh, tips, cut, d, anchors);
+  *pocketed = static_cast<double>(onPockets.size()) >= kRefineOffShare * static_cast<double>(anchors.cols());
+  if (*pocketed) missed.insert(missed.end(), onPockets.begin(), onPockets.end());
+  return missed;
 }
 
 // The mesh again on refined lines when the uniform pass missed anchors and came out in pieces
@@ -519,15 +518,14 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   *stillMissed = detail::missedAnchors(seen, *options.anchors, field, h.norm());
   const Points<3>& anchors = *options.anchors;
   const Points<3> missedAt = columnsOf(anchors, *stillMissed);
-  const int before = vertexConnectedComponentCount(mesh);
-  // Many samples on pockets of a thin gap (cut_tips.h) are missed too: the pocket leaves the mesh
-  // after this, and a finer grid can open the gap's mouth and join its walls to the surface.
-  const std::vector<int> onPockets =
-      before > 1 ? samplesOnPockets(mesh, missedAt, h.norm(), anchors) : std::vector<int>{};
-  const bool pocketed = static_cast<double>(onPockets.size()) >= kRefineOffShare * static_cast<double>(anchors.cols());
-  std::vector<int> refineAt = *stillMissed;
-  if (pocketed) refineAt.insert(refineAt.end(), onPockets.begin(), onPockets.end());
-  const std::vector<std::array<int, 3>> missed = detail::anchorCellsOf(seen, refineAt);
+  // The uniform mesh's pieces, and those that are tips the grid cut off a thin part or pockets it
+  // kept of a thin gap (cut_tips.h): left out after this anyway.
+  const TipCandidates tips = tipCandidates(mesh, h.norm());
+  const int before = tips.count;
+  const std::vector<char> cut = cutTipsToDrop(mesh, tips, missedAt, h.norm(), &anchors);
+  bool pocketed = false;
+  const std::vector<std::array<int, 3>> missed =
+      detail::anchorCellsOf(seen, anchorsToRefine(mesh, tips, cut, *stillMissed, anchors, h.norm(), &pocketed));
   if (missed.empty()) return mesh;
   MarchingReport local;
   MarchingReport& r = report ? *report : local;
@@ -538,8 +536,11 @@ TriMesh refineForAnchors(const ImplicitField<3>& field, const ImplicitField<3>& 
   // few samples far off it and is not worth a second pass. A ribbon is resolved only by cutting
   // its cells in kAnchorSplit: thin parts so spread that only halving fits (sheets across a whole
   // model, CGAL's boeing) would be contoured again at twice the resolution and no nearer.
+  // Pieces beyond the first that are all such tips or pockets do not call for it: a second pass
+  // would cost a whole contour for them, and on the Stanford dragon's fins and cracks did not join
+  // or fill them (docs/maths.md, Contouring: cut-off tips) — unless many samples lie on a pocket.
   const bool off = offItsSamples(mesh, missedAt, anchors.cols(), h.norm());
-  const bool pieces = pocketed || inPieces(mesh, before, missedAt, anchors, h.norm());
+  const bool pieces = pocketed || before - std::count(cut.begin(), cut.end(), char(1)) > 1;
   if (!pieces && !off) return mesh;
   r.refinement = Refinement::TooLarge;
   std::optional<GridLines<3>> refined = refinedLines(lines, missed, options, pieces);

@@ -202,19 +202,29 @@ TEST_CASE("cut tips: a pocket of the outside with samples off the mesh beside it
   }
 }
 
+namespace {
+
+// samplesOnPockets as the refined pass calls it: the candidates and what dropCutTips would leave out.
+std::vector<int> onPockets(const TriMesh& mesh, const Points<3>& missed, double d, const Points<3>& samples) {
+  const TipCandidates c = tipCandidates(mesh, d);
+  return samplesOnPockets(mesh, c, cutTipsToDrop(mesh, c, missed, d, &samples), d, samples);
+}
+
+}  // namespace
+
 TEST_CASE("cut tips: the samples on a pocket that goes are those within half a cell diagonal of it") {
   // The crack's two samples off the mesh, and three on or near the pocket (radius 0.05): at it,
   // 0.03 off it (within 0.05, half the cell diagonal 0.1) and 0.08 off it.
   const Points<3> samples = pointsAt({Vec<3>(0.25, 0, 0.01), Vec<3>(0.25, 0, -0.01), Vec<3>(0, 0, 0.05),
                                       Vec<3>(0.08, 0, 0), Vec<3>(0, -0.13, 0)});
   const TriMesh mesh = sphereAndPocket();
-  CHECK(samplesOnPockets(mesh, Points<3>(3, 0), 0.1, samples) == std::vector<int>{2, 3});
+  CHECK(onPockets(mesh, Points<3>(3, 0), 0.1, samples) == std::vector<int>{2, 3});
   // Without the crack's samples the pocket is a cavity that stays, and no sample is on a pocket
   // that goes; nor on a small solid piece, which is no pocket.
-  CHECK(samplesOnPockets(mesh, Points<3>(3, 0), 0.1, samples.rightCols(3)).empty());
-  CHECK(samplesOnPockets(sphereAndPocket(false), Points<3>(3, 0), 0.1, samples).empty());
+  CHECK(onPockets(mesh, Points<3>(3, 0), 0.1, samples.rightCols(3)).empty());
+  CHECK(onPockets(sphereAndPocket(false), Points<3>(3, 0), 0.1, samples).empty());
   // A missed sample beside it makes it go too.
-  CHECK(samplesOnPockets(mesh, pointsAt({Vec<3>(0.1, 0, 0)}), 0.1, samples.rightCols(3)) == std::vector<int>{0, 1});
+  CHECK(onPockets(mesh, pointsAt({Vec<3>(0.1, 0, 0)}), 0.1, samples.rightCols(3)) == std::vector<int>{0, 1});
 }
 
 namespace {
