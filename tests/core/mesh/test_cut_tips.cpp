@@ -274,14 +274,6 @@ Points<3> slotWallSamples(double from = 0.09) {
   return pointsAt(at);
 }
 
-// The largest distance from `points` to the mesh's triangles.
-double farthestFrom(const TriMesh& mesh, const Points<3>& points) {
-  double worst = 0;
-  for (Eigen::Index i = 0; i < points.cols(); ++i)
-    worst = std::max(worst, testing::bruteMeshDistance(mesh, points.col(i)));
-  return worst;
-}
-
 }  // namespace
 
 TEST_CASE("marching cubes: the pocket a grid keeps of a slot thinner than a cell is left out beside the slot's samples") {
@@ -338,5 +330,5 @@ TEST_CASE("marching cubes: a pocket with samples on its walls is joined to the s
   CHECK(mesh.vertices.colwise().norm().minCoeff() < 0.08);  // the bubble's wall is kept
   // Every wall sample lies on the mesh, to within a refined step across the slot (0.0156; the
   // walls are planes the refined grid's cells cross, so the mesh is on them).
-  CHECK(farthestFrom(mesh, walls) < 2.0 / 32 / kAnchorSplit);
+  CHECK(testing::farthestFromMesh(mesh, walls) < 2.0 / 32 / kAnchorSplit);
 }

@@ -327,8 +327,7 @@ TEST_CASE("pu data reach: a wedge with a sharp 45 degree edge gives one closed c
   CHECK(check.components == 1);
   CHECK(check.closedManifold());
   CHECK(check.eulerCharacteristic == 2);
-  double worst = 0;
-  for (int v = 0; v < mesh.vertexCount(); ++v) worst = std::max(worst, testing::bruteMeshDistance(wedge, mesh.vertices.col(v)));
+  const double worst = testing::farthestFromMesh(wedge, mesh.vertices);
   const double diagonal = Vec<3>(2, top, 1).norm();
   MESSAGE("wedge: " << mesh.triangleCount() << " triangles, farthest vertex " << 100 * worst / diagonal
                     << " % of the diagonal");
