@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <optional>
 #include <string>
 
 #include "app/commands/commands.h"
@@ -201,6 +202,13 @@ void exportZeroSet3d(const SceneFit<3>& f3, const Box<3>& bounds, MarchingOption
     ChordRefinementOptions co;
     co.cancel = options.cancel;
     co.tolerance = chordTolerance * bounds.extent().maxCoeff() / options.resolution;  // cells → world units
+    // New vertices where the review would see strays leave their edges whole, unless it found too
+    // many strays to trust the winding number (stray_pockets.h).
+    std::optional<StrayTest> strays;
+    if (StrayTest::appliesTo(f3.field(), f3.data) && !stray.tooMany) {
+      strays.emplace(f3.data, bounds, surfaceArea(mesh));
+      co.rejects = [&strays](const Vec<3>& x) { return (*strays)(x); };
+    }
     mesh = refineChords(mesh, field, co, &chords);
   }
   saveMesh(output, mesh);

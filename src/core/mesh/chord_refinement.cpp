@@ -101,6 +101,22 @@ std::vector<char> projectOntoZeroSet(const ImplicitField<3>& field, Points<3>& X
   return ok;
 }
 
+// Leaves whole (ok = 0) the edges whose projected vertex X.col(k) `rejects`.
+void rejectStrays(const Points<3>& X, const std::function<bool(const Vec<3>&)>& rejects, std::vector<char>& ok,
+                  ChordRefinementReport& report) {
+  const Eigen::Index n = X.cols();
+  std::vector<char> rejected(static_cast<std::size_t>(n), 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Eigen::Index k = 0; k < n; ++k)
+    rejected[static_cast<std::size_t>(k)] = ok[static_cast<std::size_t>(k)] && rejects(X.col(k));
+  for (Eigen::Index k = 0; k < n; ++k)
+    if (rejected[static_cast<std::size_t>(k)]) {
+      ok[static_cast<std::size_t>(k)] = 0;
+      ++report.rejectedEdges;
+      ++report.unsplitEdges;
+    }
+}
+
 // Appends the triangles of triangle (a, b, c) (counter-clockwise) with new vertices m[k] on its
 // edge from corner k to k + 1 (−1: not split).
 void splitTriangle(const std::array<int, 3>& v, const std::array<int, 3>& m, const Eigen::Matrix3Xd& X,
@@ -228,7 +244,8 @@ TriMesh refineChords(const TriMesh& mesh, const ImplicitField<3>& field, const C
   const EdgeTable edges = buildEdges(mesh);
   const std::vector<int> candidates = candidateEdges(mesh, edges, options.tolerance);
   ChordStarts starts = chordStarts(mesh, edges, candidates);
-  const std::vector<char> ok = projectOntoZeroSet(field, starts.X, starts.N, starts.chordMid, starts.reach, options, r);
+  std::vector<char> ok = projectOntoZeroSet(field, starts.X, starts.N, starts.chordMid, starts.reach, options, r);
+  if (options.rejects) rejectStrays(starts.X, options.rejects, ok, r);
   TriMesh out = splitEdges(mesh, edges, candidates, starts, ok);
   r.splitEdges = out.vertexCount() - mesh.vertexCount();
   r.ms = msSince(t0);

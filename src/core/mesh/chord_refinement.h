@@ -13,9 +13,13 @@
 // (there the estimate means nothing). The new vertex starts at the sagitta's prediction
 // (p₀ + p₁)/2 + s·n̄ (n̄ the normalised n₀ + n₁) and is projected onto f = 0 by Newton steps
 // along ∇f, x ← x − f ∇f/‖∇f‖²; an edge whose projection fails (no data, a vanishing gradient, a
-// step beyond half the edge from the chord's midpoint, not converged) stays whole. A triangle with 1, 2 or 3 split edges becomes 2, 3 or 4 triangles of the same
-// orientation; both triangles of an edge see the same split, so a closed manifold mesh stays
-// closed and manifold.
+// step beyond half the edge from the chord's midpoint, not converged) stays whole, and so does an
+// edge whose projected vertex `rejects` (a zero set that strayed from the samples between the grid's
+// vertices: stray_pockets.h, StrayTest). A triangle with 1, 2 or 3 split edges becomes 2, 3 or 4
+// triangles of the same orientation; both triangles of an edge see the same split, so a closed
+// manifold mesh stays closed and manifold.
+
+#include <functional>
 
 #include "core/base/cancel_token.h"
 #include "core/base/implicit_field.h"
@@ -27,11 +31,15 @@ struct ChordRefinementOptions {
   double tolerance = 0.0;  // > 0, world units: edges whose estimated stray exceeds it are split
   int newtonSteps = 3;     // projection steps onto f = 0 per new vertex
   const CancelToken* cancel = nullptr;  // polled between batches of evaluations; throws Cancelled
+  // When set, a projected vertex it returns true for leaves its edge whole; called from several
+  // threads at once.
+  std::function<bool(const Vec<3>&)> rejects;
 };
 
 struct ChordRefinementReport {
   int splitEdges = 0;      // new vertices
-  int unsplitEdges = 0;    // edges chosen for a split whose projection failed: left whole
+  int unsplitEdges = 0;    // edges chosen for a split whose projection failed or was rejected: left whole
+  int rejectedEdges = 0;   // of those, the ones `rejects` left whole
   double maxAbsF = 0;      // max |f| over the projected new vertices
   double ms = 0;           // wall clock
 };

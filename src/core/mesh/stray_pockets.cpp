@@ -377,10 +377,25 @@ class StrayContour {
 
 }  // namespace
 
+StrayTest::StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double area)
+    : samples_(samples),
+      spacing_(std::sqrt(area / std::max(1, samples.size()))),
+      bySpacing_(samples.points, box.lo, spacing_ > 0 ? spacing_ : box.extent().maxCoeff()) {}
+
+bool StrayTest::appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>& samples) {
+  return !field.everywhereValid() && samples.size() >= kGuardMinSamples;
+}
+
+bool StrayTest::operator()(const Vec<3>& x) const {
+  thread_local std::vector<int> near;
+  return spacing_ > 0 && offTheirPlanes(samples_, bySpacing_, spacing_, x, near) &&
+         decided(roughWinding(samples_, spacing_, x));
+}
+
 TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,
                              const HermiteSamples<3>& samples, MarchingReport* report, StrayReport* stray,
                              std::unique_ptr<ImplicitField<3>>* guarded) {
-  if (field.everywhereValid() || samples.size() < kGuardMinSamples) return marchingCubes(field, box, options, report);
+  if (!StrayTest::appliesTo(field, samples)) return marchingCubes(field, box, options, report);
   StrayReport local;
   StrayReport& out = stray ? *stray : local;
   StrayContour contours(samples, box, options);

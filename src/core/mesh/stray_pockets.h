@@ -39,6 +39,7 @@
 
 #include "core/base/implicit_field.h"
 #include "core/mesh/marching_cubes.h"
+#include "core/mesh/occupied_cells.h"
 #include "core/points/hermite_samples.h"
 
 namespace hermite {
@@ -55,6 +56,25 @@ struct StrayReport {
   int rounds = 0;         // contours again with the guard
   bool tooMany = false;   // more strays than kMaxStrayShare of the vertices: no guard
   int droppedPieces = 0;  // pieces left out for their winding number
+};
+
+// Step 2's plane test for points put on the zero set after the review (chord refinement's new
+// vertices, between the grid's): x is a stray when no sample lies within 1.2 spacings √(A / N) of
+// it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
+// tangent planes on average, and the samples' rough winding number at x — every sample standing
+// for the area A / N — is decided. Only for a field and samples contourWithoutStrays reviews
+// (appliesTo). Safe to call from several threads at once.
+class StrayTest {
+ public:
+  // `samples` must outlive the test; `box` is the contour's.
+  StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double area);
+  static bool appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>& samples);
+  bool operator()(const Vec<3>& x) const;
+
+ private:
+  const HermiteSamples<3>& samples_;
+  double spacing_;
+  OccupiedCells bySpacing_;  // the samples in cells of one spacing
 };
 
 // marchingCubes(field, box, options, report), then the steps above with the fit's samples.

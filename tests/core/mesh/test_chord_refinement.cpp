@@ -96,3 +96,25 @@ TEST_CASE("chord refinement: off (tolerance 0) or without normals the mesh is un
   CHECK(bare.triangles == mesh.triangles);
   CHECK(report.splitEdges == 0);
 }
+
+TEST_CASE("chord refinement: an edge whose new vertex `rejects` stays whole, and the mesh stays closed") {
+  const SphereField sphere;
+  const TriMesh mesh = marchingCubes(sphere, cube(1.3), {16, 6});
+  ChordRefinementOptions options;
+  options.tolerance = 0.02 * 2.6 / 16;
+  ChordRefinementReport all, some;
+  const TriMesh full = refineChords(mesh, sphere, options, &all);
+  options.rejects = [](const Vec<3>& x) { return x.z() > 0.5; };
+  const TriMesh refined = refineChords(mesh, sphere, options, &some);
+  CHECK(some.rejectedEdges > 0);
+  CHECK(some.unsplitEdges == all.unsplitEdges + some.rejectedEdges);
+  CHECK(some.splitEdges == all.splitEdges - some.rejectedEdges);
+  const MeshCheck c = checkMesh(refined);
+  CHECK(c.closedManifold());
+  CHECK(c.eulerCharacteristic == 2);
+  CHECK(countFlippedTriangles(refined, refined.normals) == 0);
+  int above = 0;
+  for (int v = mesh.vertexCount(); v < refined.vertexCount(); ++v) above += refined.vertices(2, v) > 0.5;
+  CHECK(above == 0);
+  CHECK(full.vertexCount() == refined.vertexCount() + some.rejectedEdges);
+}

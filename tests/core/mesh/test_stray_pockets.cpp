@@ -269,3 +269,28 @@ TEST_CASE("stray pockets: a dent nearer the samples than the occupancy test sees
   CHECK(checkMesh(mesh).closedManifold());
   CHECK(maxOffSphere(mesh) < 0.5 * maxOffSphere(plain));
 }
+
+TEST_CASE("stray pockets: the plane test for vertices added after the review") {
+  // 6000 samples of the unit sphere: spacing √(4π / 6000) ≈ 0.046.
+  const HermiteSamples<3> samples = sphereSamples();
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const StrayTest stray(samples, kBox, 4 * M_PI);
+  BallWithExtras ball;
+  CHECK(StrayTest::appliesTo(ball, samples));
+  ball.claimsNoData = false;
+  CHECK_FALSE(StrayTest::appliesTo(ball, samples));
+  int flagged[4] = {};
+  for (int i = 0; i < 40; ++i) {
+    // Directions between the samples' own (a golden-angle spiral of another count).
+    const double z = 1 - 2 * (i + 0.5) / 40, phi = 2.399963 * i;
+    const Vec<3> u(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
+    flagged[0] += stray(u);                          // on the surface
+    flagged[1] += stray((1 + 0.3 * spacing) * u);    // within the samples' reach
+    flagged[2] += stray((1 + 2.0 * spacing) * u);    // a blob outside: winding number about 0
+    flagged[3] += stray((1 - 2.0 * spacing) * u);    // a dent inside: about 1
+  }
+  CHECK(flagged[0] == 0);
+  CHECK(flagged[1] == 0);
+  CHECK(flagged[2] == 40);
+  CHECK(flagged[3] == 40);
+}
