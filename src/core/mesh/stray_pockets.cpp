@@ -103,9 +103,8 @@ std::vector<Eigen::Index> offPlaneVertices(const TriMesh& mesh, const HermiteSam
   for (Eigen::Index v = 0; v < n; ++v)
     if (off[static_cast<std::size_t>(v)]) out.push_back(v);
   if (out.size() > kRoughWindingLimit) return out;  // the samples' winding number is cheaper for so many
-  out.erase(std::remove_if(out.begin(), out.end(),
-                           [&](Eigen::Index v) { return !decided(roughWinding(samples, spacing, mesh.vertices.col(v))); }),
-            out.end());
+  const auto undecided = [&](Eigen::Index v) { return !decided(roughWinding(samples, spacing, mesh.vertices.col(v))); };
+  out.erase(std::remove_if(out.begin(), out.end(), undecided), out.end());
   return out;
 }
 

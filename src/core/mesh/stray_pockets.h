@@ -16,10 +16,10 @@
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)), or with none within 1.2 spacings and half a spacing or more off the
 //     tangent planes of the samples within 2.5 on average, whose winding number is decided
-//     (above kWindingInside or below kWindingOutside) are strays: a pocket joined to the surface. Only those outside the guard
-//     region so far count, with f on the other side of a decided winding number along their
-//     own grid edge or at a corner of the cell-sized cube about them (else a guard would change
-//     nothing).
+//     (above kWindingInside or below kWindingOutside) are strays: a pocket joined to the
+//     surface. Only those outside the guard region so far count, with f on the other side of a
+//     decided winding number along their own grid edge or at a corner of the cell-sized cube
+//     about them (else a guard would change nothing).
 //  3. after the rounds below, pieces that could be tips a grid cut off a part thinner than a
 //     cell (cut_tips.h: small, within a cell diagonal of the largest) whose mean winding number
 //     is below kTipWinding (and not below kWindingOutside) are left out: a true surface has
