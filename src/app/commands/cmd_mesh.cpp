@@ -206,8 +206,8 @@ void exportZeroSet3d(const SceneFit<3>& f3, const Box<3>& bounds, MarchingOption
     // many strays to trust the winding number (stray_pockets.h).
     std::optional<StrayTest> strays;
     if (StrayTest::appliesTo(f3.field(), f3.data) && !stray.tooMany) {
-      strays.emplace(f3.data, bounds, surfaceArea(mesh));
-      co.rejects = [&strays](const Vec<3>& x) { return (*strays)(x); };
+      strays.emplace(f3.data, bounds, surfaceArea(mesh), options.cancel);
+      co.rejects = [&strays](const Points<3>& X) { return (*strays)(X); };
     }
     mesh = refineChords(mesh, field, co, &chords);
   }

@@ -101,17 +101,18 @@ std::vector<char> projectOntoZeroSet(const ImplicitField<3>& field, Points<3>& X
   return ok;
 }
 
-// Leaves whole (ok = 0) the edges whose projected vertex X.col(k) `rejects`.
-void rejectStrays(const Points<3>& X, const std::function<bool(const Vec<3>&)>& rejects, std::vector<char>& ok,
-                  ChordRefinementReport& report) {
-  const Eigen::Index n = X.cols();
-  std::vector<char> rejected(static_cast<std::size_t>(n), 0);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Eigen::Index k = 0; k < n; ++k)
-    rejected[static_cast<std::size_t>(k)] = ok[static_cast<std::size_t>(k)] && rejects(X.col(k));
-  for (Eigen::Index k = 0; k < n; ++k)
-    if (rejected[static_cast<std::size_t>(k)]) {
-      ok[static_cast<std::size_t>(k)] = 0;
+// Leaves whole (ok = 0) the edges whose projected vertex (a column of X) `rejects`.
+void rejectStrays(const Points<3>& X, const std::function<std::vector<char>(const Points<3>&)>& rejects,
+                  std::vector<char>& ok, ChordRefinementReport& report) {
+  std::vector<Eigen::Index> projected;
+  for (std::size_t k = 0; k < ok.size(); ++k)
+    if (ok[k]) projected.push_back(static_cast<Eigen::Index>(k));
+  Points<3> P(3, static_cast<Eigen::Index>(projected.size()));
+  for (std::size_t i = 0; i < projected.size(); ++i) P.col(static_cast<Eigen::Index>(i)) = X.col(projected[i]);
+  const std::vector<char> rejected = rejects(P);
+  for (std::size_t i = 0; i < projected.size(); ++i)
+    if (rejected[i]) {
+      ok[static_cast<std::size_t>(projected[i])] = 0;
       ++report.rejectedEdges;
       ++report.unsplitEdges;
     }

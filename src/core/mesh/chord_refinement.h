@@ -20,6 +20,7 @@
 // manifold mesh stays closed and manifold.
 
 #include <functional>
+#include <vector>
 
 #include "core/base/cancel_token.h"
 #include "core/base/implicit_field.h"
@@ -31,9 +32,9 @@ struct ChordRefinementOptions {
   double tolerance = 0.0;  // > 0, world units: edges whose estimated stray exceeds it are split
   int newtonSteps = 3;     // projection steps onto f = 0 per new vertex
   const CancelToken* cancel = nullptr;  // polled between batches of evaluations; throws Cancelled
-  // When set, a projected vertex it returns true for leaves its edge whole; called from several
-  // threads at once.
-  std::function<bool(const Vec<3>&)> rejects;
+  // When set: per column of its argument (the projected new vertices, 3 × C), whether that
+  // vertex's edge stays whole.
+  std::function<std::vector<char>(const Points<3>&)> rejects;
 };
 
 struct ChordRefinementReport {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -29,6 +30,11 @@ constexpr int kPieceProbes = 64;         // vertices of a piece whose winding nu
 constexpr double kNearFar = 1.2;
 constexpr double kPlaneReach = 2.5;
 constexpr double kPlaneFar = 0.5;
+// With no sample within kAloneFar spacings a vertex is far whatever the planes: beyond the tip of
+// a part thinner than the sampling the samples of its two sides put it on average near their
+// planes. A vertex of a uniformly sampled surface is that far from every sample with probability
+// about e^(−π·1.5²) ≈ 0.001, and its winding number is about ½ there, so it is no stray.
+constexpr double kAloneFar = 1.5;
 constexpr std::size_t kRoughWindingLimit = 64;
 // Pieces with more than this share of the mesh's triangles stay whatever their winding number: a
 // stray pocket is small, and a large piece off ½ means samples whose normals disagree (an
@@ -68,42 +74,47 @@ double roughWinding(const HermiteSamples<3>& samples, double spacing, const Vec<
   return spacing * spacing * sum / (4 * M_PI);
 }
 
-// Whether x, with no sample within kNearFar spacings, lies on average kPlaneFar spacings or more
-// off the tangent planes of the samples within kPlaneReach spacings: a surface that strayed
-// between the samples (a cap past the tip of a thin fin, a dent into the solid), not one passing
-// between them, which stays within a fraction of a spacing of their planes.
+// Whether x, with no sample within kNearFar spacings, has none within kAloneFar either or lies on
+// average kPlaneFar spacings or more off the tangent planes of the samples within kPlaneReach
+// spacings: a surface that strayed between the samples (a cap past the tip of a thin fin, a dent
+// into the solid), not one passing between them, which stays within a fraction of a spacing of
+// their planes.
 bool offTheirPlanes(const HermiteSamples<3>& samples, const OccupiedCells& bySpacing, double spacing, const Vec<3>& x,
                     std::vector<int>& near) {
   bySpacing.samplesWithin(x, kNearFar * spacing, near, 1);
   if (!near.empty()) return false;
   bySpacing.samplesWithin(x, kPlaneReach * spacing, near);
   if (near.empty()) return false;  // no plane to measure against: left to the occupancy test
-  double sum = 0;
-  for (int i : near) sum += samples.normals.col(i).dot(x - samples.points.col(i));
-  return std::abs(sum / static_cast<double>(near.size())) >= kPlaneFar * spacing;
+  double sum = 0, nearest2 = std::numeric_limits<double>::infinity();
+  for (int i : near) {
+    sum += samples.normals.col(i).dot(x - samples.points.col(i));
+    nearest2 = std::min(nearest2, (x - samples.points.col(i)).squaredNorm());
+  }
+  const double meanOffset = std::abs(sum / static_cast<double>(near.size()));
+  return nearest2 >= kAloneFar * kAloneFar * spacing * spacing || meanOffset >= kPlaneFar * spacing;
 }
 
-// The vertices that are off their samples' planes (offTheirPlanes, in parallel) and whose rough
-// winding number is decided (the occupancy's far vertices are not among them); all of them,
+// The columns of X that are off their samples' planes (offTheirPlanes, in parallel) and whose
+// rough winding number is decided (the occupancy's far vertices are not among them); all of them,
 // unfiltered, when they are more than kRoughWindingLimit: then the samples' winding number, built
 // once, is cheaper than a sum over the samples each (CGAL's boeing, whose wings are thinner than
 // the sampling, has thousands).
-std::vector<Eigen::Index> offPlaneVertices(const TriMesh& mesh, const HermiteSamples<3>& samples,
+std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamples<3>& samples,
                                            const OccupiedCells& bySpacing, double spacing) {
-  const Eigen::Index n = mesh.vertices.cols();
+  const Eigen::Index n = X.cols();
   std::vector<char> off(static_cast<std::size_t>(n), 0);
 #pragma omp parallel
   {
     std::vector<int> near;
 #pragma omp for schedule(static)
     for (Eigen::Index v = 0; v < n; ++v)
-      off[static_cast<std::size_t>(v)] = offTheirPlanes(samples, bySpacing, spacing, mesh.vertices.col(v), near);
+      off[static_cast<std::size_t>(v)] = offTheirPlanes(samples, bySpacing, spacing, X.col(v), near);
   }
   std::vector<Eigen::Index> out;
   for (Eigen::Index v = 0; v < n; ++v)
     if (off[static_cast<std::size_t>(v)]) out.push_back(v);
   if (out.size() > kRoughWindingLimit) return out;  // the samples' winding number is cheaper for so many
-  const auto undecided = [&](Eigen::Index v) { return !decided(roughWinding(samples, spacing, mesh.vertices.col(v))); };
+  const auto undecided = [&](Eigen::Index v) { return !decided(roughWinding(samples, spacing, X.col(v))); };
   out.erase(std::remove_if(out.begin(), out.end(), undecided), out.end());
   return out;
 }
@@ -116,7 +127,7 @@ std::vector<Eigen::Index> offPlaneVertices(const TriMesh& mesh, const HermiteSam
 template <class WindingOf>
 std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& samples, const OccupiedCells& occupied,
                                   const OccupiedCells& bySpacing, double spacing, WindingOf&& windingOf) {
-  std::vector<Eigen::Index> far = offPlaneVertices(mesh, samples, bySpacing, spacing);
+  std::vector<Eigen::Index> far = offPlaneVertices(mesh.vertices, samples, bySpacing, spacing);
   for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
     if (occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
   if (far.empty()) return {};
@@ -376,19 +387,29 @@ class StrayContour {
 
 }  // namespace
 
-StrayTest::StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double area)
+StrayTest::StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double area, const CancelToken* cancel)
     : samples_(samples),
       spacing_(std::sqrt(area / std::max(1, samples.size()))),
-      bySpacing_(samples.points, box.lo, spacing_ > 0 ? spacing_ : box.extent().maxCoeff()) {}
+      bySpacing_(samples.points, box.lo, spacing_ > 0 ? spacing_ : box.extent().maxCoeff()),
+      cancel_(cancel) {}
 
 bool StrayTest::appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>& samples) {
   return !field.everywhereValid() && samples.size() >= kGuardMinSamples;
 }
 
-bool StrayTest::operator()(const Vec<3>& x) const {
-  thread_local std::vector<int> near;
-  return spacing_ > 0 && offTheirPlanes(samples_, bySpacing_, spacing_, x, near) &&
-         decided(roughWinding(samples_, spacing_, x));
+std::vector<char> StrayTest::operator()(const Points<3>& X) const {
+  std::vector<char> out(static_cast<std::size_t>(X.cols()), 0);
+  if (!(spacing_ > 0)) return out;
+  const std::vector<Eigen::Index> off = offPlaneVertices(X, samples_, bySpacing_, spacing_);
+  if (off.size() <= kRoughWindingLimit) {  // filtered by the rough winding number already
+    for (Eigen::Index v : off) out[static_cast<std::size_t>(v)] = 1;
+    return out;
+  }
+  Points<3> Y(3, static_cast<Eigen::Index>(off.size()));
+  for (std::size_t i = 0; i < off.size(); ++i) Y.col(static_cast<Eigen::Index>(i)) = X.col(off[i]);
+  const std::vector<double> w = CloudWinding<3>(samples_.points, samples_.normals, cancel_).at(Y);
+  for (std::size_t i = 0; i < off.size(); ++i) out[static_cast<std::size_t>(off[i])] = decided(w[i]);
+  return out;
 }
 
 TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, const MarchingOptions& options,

@@ -15,7 +15,8 @@
 //  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)), or with none within 1.2 spacings and half a spacing or more off the
-//     tangent planes of the samples within 2.5 on average, whose winding number is decided
+//     tangent planes of the samples within 2.5 on average, or with none within 1.5 spacings,
+//     whose winding number is decided
 //     (above kWindingInside or below kWindingOutside) are strays: a pocket joined to the
 //     surface. Only those outside the guard region so far count, with f on the other side of a
 //     decided winding number along their own grid edge or at a corner of the cell-sized cube
@@ -36,6 +37,7 @@
 // the winding number needs a densely sampled surface.
 
 #include <memory>
+#include <vector>
 
 #include "core/base/implicit_field.h"
 #include "core/mesh/marching_cubes.h"
@@ -61,20 +63,23 @@ struct StrayReport {
 // Step 2's plane test for points put on the zero set after the review (chord refinement's new
 // vertices, between the grid's): x is a stray when no sample lies within 1.2 spacings √(A / N) of
 // it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
-// tangent planes on average, and the samples' rough winding number at x — every sample standing
-// for the area A / N — is decided. Only for a field and samples contourWithoutStrays reviews
-// (appliesTo). Safe to call from several threads at once.
+// tangent planes on average or none lies within 1.5, and the samples' winding number at x is
+// decided — summed directly, every sample standing for A / N, for up to 64 such points; the
+// samples' winding number when there are more. Only for a field and samples contourWithoutStrays reviews (appliesTo).
 class StrayTest {
  public:
-  // `samples` must outlive the test; `box` is the contour's.
-  StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double area);
+  // `samples` must outlive the test; `box` is the contour's; `cancel` is polled while the winding
+  // number is built.
+  StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double area, const CancelToken* cancel = nullptr);
   static bool appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>& samples);
-  bool operator()(const Vec<3>& x) const;
+  // Per column of X, whether it is a stray.
+  std::vector<char> operator()(const Points<3>& X) const;
 
  private:
   const HermiteSamples<3>& samples_;
   double spacing_;
   OccupiedCells bySpacing_;  // the samples in cells of one spacing
+  const CancelToken* cancel_;
 };
 
 // marchingCubes(field, box, options, report), then the steps above with the fit's samples.

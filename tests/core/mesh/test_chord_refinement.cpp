@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/mesh/chord_refinement.h"
 #include "core/mesh/marching_cubes.h"
@@ -104,7 +105,11 @@ TEST_CASE("chord refinement: an edge whose new vertex `rejects` stays whole, and
   options.tolerance = 0.02 * 2.6 / 16;
   ChordRefinementReport all, some;
   const TriMesh full = refineChords(mesh, sphere, options, &all);
-  options.rejects = [](const Vec<3>& x) { return x.z() > 0.5; };
+  options.rejects = [](const Points<3>& X) {
+    std::vector<char> out(static_cast<std::size_t>(X.cols()));
+    for (Eigen::Index k = 0; k < X.cols(); ++k) out[static_cast<std::size_t>(k)] = X(2, k) > 0.5;
+    return out;
+  };
   const TriMesh refined = refineChords(mesh, sphere, options, &some);
   CHECK(some.rejectedEdges > 0);
   CHECK(some.unsplitEdges == all.unsplitEdges + some.rejectedEdges);

@@ -279,18 +279,52 @@ TEST_CASE("stray pockets: the plane test for vertices added after the review") {
   CHECK(StrayTest::appliesTo(ball, samples));
   ball.claimsNoData = false;
   CHECK_FALSE(StrayTest::appliesTo(ball, samples));
-  int flagged[4] = {};
+  // 40 directions between the samples' own (a golden-angle spiral of another count), each at 4
+  // distances: on the surface, within the samples' reach, a blob outside (winding number about
+  // 0), a dent inside (about 1).
+  const double offsets[4] = {0.0, 0.3 * spacing, 2.0 * spacing, -2.0 * spacing};
+  Points<3> X(3, 160);
   for (int i = 0; i < 40; ++i) {
-    // Directions between the samples' own (a golden-angle spiral of another count).
     const double z = 1 - 2 * (i + 0.5) / 40, phi = 2.399963 * i;
     const Vec<3> u(std::sqrt(1 - z * z) * std::cos(phi), std::sqrt(1 - z * z) * std::sin(phi), z);
-    flagged[0] += stray(u);                          // on the surface
-    flagged[1] += stray((1 + 0.3 * spacing) * u);    // within the samples' reach
-    flagged[2] += stray((1 + 2.0 * spacing) * u);    // a blob outside: winding number about 0
-    flagged[3] += stray((1 - 2.0 * spacing) * u);    // a dent inside: about 1
+    for (int k = 0; k < 4; ++k) X.col(4 * i + k) = (1 + offsets[k]) * u;
   }
+  // 80 strays: more than the 64 the direct sum serves, so the samples' winding number decides.
+  const std::vector<char> strays = stray(X);
+  int flagged[4] = {};
+  for (int i = 0; i < 160; ++i) flagged[i % 4] += strays[static_cast<std::size_t>(i)];
+  // The first 20 directions alone: 40 strays, decided by the direct sum.
+  const std::vector<char> fewer = stray(X.leftCols(80));
+  CHECK(std::equal(fewer.begin(), fewer.end(), strays.begin()));
   CHECK(flagged[0] == 0);
   CHECK(flagged[1] == 0);
   CHECK(flagged[2] == 40);
   CHECK(flagged[3] == 40);
+}
+
+TEST_CASE("stray pockets: a cap beyond the tip of a part thinner than the sampling is a stray") {
+  // Two sheets 0.2 spacings apart (z = ±0.1 h, normals ±z) on a square grid of spacing h ending
+  // at x = −h/2: a plate thinner than the sampling. Beyond its tip, in its mid-plane, the samples
+  // of both sides put a point 0.1 h behind their planes on average, so only its distance tells.
+  const double h = 0.01;
+  const int rows = 40;
+  HermiteSamples<3> samples;
+  samples.points.resize(3, 2 * rows * rows);
+  samples.normals.resize(3, 2 * rows * rows);
+  for (int i = 0, k = 0; i < rows; ++i)
+    for (int j = 0; j < rows; ++j)
+      for (const double side : {1.0, -1.0}) {
+        samples.points.col(k) = Vec<3>(-(i + 0.5) * h, (j - rows / 2) * h, 0.1 * h * side);
+        samples.normals.col(k++) = Vec<3>(0, 0, side);
+      }
+  const Box<3> box{Vec<3>(-0.5, -0.3, -0.1), Vec<3>(0.1, 0.3, 0.1)};
+  const StrayTest stray(samples, box, 2 * (rows * h) * (rows * h));
+  Points<3> X(3, 3);
+  X.col(0) = Vec<3>(1.1 * h, 0.3 * h, 0);  // 1.6 h from the nearest sample, winding number about 0
+  X.col(1) = Vec<3>(0.5 * h, 0.3 * h, 0);  // 1.0 h: within the samples' reach
+  X.col(2) = Vec<3>(-3 * h, 0.3 * h, 0);   // in the plate
+  const std::vector<char> s = stray(X);
+  CHECK(s[0] == 1);
+  CHECK(s[1] == 0);
+  CHECK(s[2] == 0);
 }
