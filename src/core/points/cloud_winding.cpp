@@ -20,9 +20,11 @@ template <int Dim>
 constexpr int kAreaNeighbours = Dim == 3 ? 12 : 4;
 
 // dₖ of every sample (k = kAreaNeighbours nearest other samples), capped at twice the median; a
-// lone sample (N = 1) gets 1.
+// lone sample (N = 1) gets 1. The samples are asked in `order` (the winding tree's: neighbours
+// next to each other, so the k-d tree's nodes a query reads stay in cache for the next), which
+// changes nothing in the result.
 template <int Dim>
-std::vector<double> capturedSpacings(const Points<Dim>& P, const CancelToken* cancel) {
+std::vector<double> capturedSpacings(const Points<Dim>& P, const std::vector<int>& order, const CancelToken* cancel) {
   const int n = static_cast<int>(P.cols());
   const int k = std::min(kAreaNeighbours<Dim>, n - 1);
   std::vector<double> d(static_cast<std::size_t>(n), 1.0);
@@ -34,8 +36,9 @@ std::vector<double> capturedSpacings(const Points<Dim>& P, const CancelToken* ca
     std::vector<std::uint32_t> idx(static_cast<std::size_t>(k + 1));
     std::vector<double> d2(static_cast<std::size_t>(k + 1));
 #pragma omp for schedule(dynamic, 1024)
-    for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) {
       if (cancel && cancel->cancelled()) continue;
+      const int i = order[static_cast<std::size_t>(j)];
       const Vec<Dim> p = P.col(i);
       const std::size_t found = tree.knnSearch(p.data(), static_cast<std::size_t>(k + 1), idx.data(), d2.data());
       d[static_cast<std::size_t>(i)] = std::sqrt(d2[found - 1]);  // the first is the sample itself
@@ -65,8 +68,8 @@ template <int Dim>
 CloudWinding<Dim>::CloudWinding(const Points<Dim>& points, const Points<Dim>& normals, const CancelToken* cancel) {
   const int n = static_cast<int>(points.cols());
   if (n < 1 || normals.cols() != n) throw InputError("winding number: needs samples with one normal each");
-  const std::vector<double> d = capturedSpacings<Dim>(points, cancel);
   const std::vector<int> order = buildTree(points);
+  const std::vector<double> d = capturedSpacings<Dim>(points, order, cancel);
   constexpr double k = kAreaNeighbours<Dim>;
   constexpr double kPi = 3.14159265358979323846;
   points_.resize(Dim, n);
@@ -83,7 +86,9 @@ CloudWinding<Dim>::CloudWinding(const Points<Dim>& points, const Points<Dim>& no
     area_[static_cast<std::size_t>(j)] = a;
     soft2_[static_cast<std::size_t>(j)] = 0.25 * h * h;
   }
-  for (Node& node : nodes_) summarise(node);
+  const int nodes = static_cast<int>(nodes_.size());
+#pragma omp parallel for schedule(dynamic, 64)
+  for (int t = 0; t < nodes; ++t) summarise(nodes_[static_cast<std::size_t>(t)]);
 }
 
 template <int Dim>
@@ -94,27 +99,43 @@ std::vector<int> CloudWinding<Dim>::buildTree(const Points<Dim>& points) {
   nodes_.assign(1, Node{});
   nodes_[0].end = n;
   // Breadth first: each node of more than kLeafSamples samples splits at the median along the
-  // longest axis of its samples' bounding box; its children are appended.
-  for (std::size_t t = 0; t < nodes_.size(); ++t) {
-    const int b = nodes_[t].begin, e = nodes_[t].end;
-    if (e - b <= kLeafSamples) continue;
-    Vec<Dim> lo = points.col(order[static_cast<std::size_t>(b)]), hi = lo;
-    for (int j = b; j < e; ++j) {
-      lo = lo.cwiseMin(points.col(order[static_cast<std::size_t>(j)]));
-      hi = hi.cwiseMax(points.col(order[static_cast<std::size_t>(j)]));
+  // longest axis of its samples' bounding box; its children are appended. The nodes of a level
+  // split in parallel (disjoint ranges of `order`), their children are appended in node order.
+  std::vector<char> split;
+  for (std::size_t first = 0; first < nodes_.size();) {
+    const int last = static_cast<int>(nodes_.size());
+    split.assign(static_cast<std::size_t>(last) - first, 0);
+#pragma omp parallel for schedule(dynamic, 16)
+    for (int t = static_cast<int>(first); t < last; ++t)
+      split[static_cast<std::size_t>(t) - first] = splitAtMedian(points, nodes_[static_cast<std::size_t>(t)], order);
+    for (int t = static_cast<int>(first); t < last; ++t) {
+      if (!split[static_cast<std::size_t>(t) - first]) continue;
+      const int b = nodes_[static_cast<std::size_t>(t)].begin, e = nodes_[static_cast<std::size_t>(t)].end;
+      nodes_[static_cast<std::size_t>(t)].left = static_cast<int>(nodes_.size());
+      Node l, r;
+      l.begin = b, l.end = b + (e - b) / 2, r.begin = b + (e - b) / 2, r.end = e;
+      nodes_.push_back(l);
+      nodes_.push_back(r);
     }
-    Eigen::Index axis = 0;
-    (hi - lo).maxCoeff(&axis);
-    const int mid = b + (e - b) / 2;
-    std::nth_element(order.begin() + b, order.begin() + mid, order.begin() + e,
-                     [&](int u, int v) { return points(axis, u) < points(axis, v); });
-    nodes_[t].left = static_cast<int>(nodes_.size());
-    Node l, r;
-    l.begin = b, l.end = mid, r.begin = mid, r.end = e;
-    nodes_.push_back(l);
-    nodes_.push_back(r);
+    first = static_cast<std::size_t>(last);
   }
   return order;
+}
+
+template <int Dim>
+bool CloudWinding<Dim>::splitAtMedian(const Points<Dim>& points, const Node& node, std::vector<int>& order) {
+  const int b = node.begin, e = node.end;
+  if (e - b <= kLeafSamples) return false;
+  Vec<Dim> lo = points.col(order[static_cast<std::size_t>(b)]), hi = lo;
+  for (int j = b; j < e; ++j) {
+    lo = lo.cwiseMin(points.col(order[static_cast<std::size_t>(j)]));
+    hi = hi.cwiseMax(points.col(order[static_cast<std::size_t>(j)]));
+  }
+  Eigen::Index axis = 0;
+  (hi - lo).maxCoeff(&axis);
+  std::nth_element(order.begin() + b, order.begin() + b + (e - b) / 2, order.begin() + e,
+                   [&](int u, int v) { return points(axis, u) < points(axis, v); });
+  return true;
 }
 
 template <int Dim>

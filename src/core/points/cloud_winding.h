@@ -52,6 +52,9 @@ class CloudWinding {
   };
   // Builds nodes_ over the columns of `points`; returns the tree order (sample index per slot).
   std::vector<int> buildTree(const Points<Dim>& points);
+  // Orders node's range of `order` about its median along the longest axis of its samples' box;
+  // false (nothing changed) for a leaf of at most kLeafSamples samples.
+  static bool splitAtMedian(const Points<Dim>& points, const Node& node, std::vector<int>& order);
   void summarise(Node& node) const;
   // Σ over the samples begin … end − 1 (tree order) of their softened dipoles at x.
   double directSum(const Vec<Dim>& x, int begin, int end) const;
