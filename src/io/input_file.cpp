@@ -62,7 +62,9 @@ void requireWithinCap(const std::string& path, std::string_view what, std::uint6
 // Everything left in `fd`, expected to be `expected` bytes; a file that grows meanwhile is read
 // on, up to the cap.
 std::string readAll(int fd, std::size_t expected, const std::string& path, std::string_view what) {
-  std::string bytes(expected, '\0');
+  // One byte more than expected: the read that finds the end needs room, and growing the buffer
+  // for it would copy the whole file once more.
+  std::string bytes(expected + 1, '\0');
   std::size_t filled = 0;
   for (;;) {
     if (filled == bytes.size()) {

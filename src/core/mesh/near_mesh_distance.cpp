@@ -7,6 +7,7 @@
 #include <limits>
 #include <utility>
 
+#include "core/base/parallel_sort.h"
 #include "core/mesh/triangle_distance.h"
 
 namespace hermite {
@@ -45,7 +46,7 @@ class TriangleBuckets {
         for (int y = a[1]; y <= b[1]; ++y)
           for (int x = a[0]; x <= b[0]; ++x) byCube_.emplace_back(key({x, y, z}), t);
     }
-    std::sort(byCube_.begin(), byCube_.end());
+    parallelSort(byCube_.begin(), byCube_.end());  // (key, triangle) pairs are distinct: any sort gives this order
   }
 
   // Calls visit(t) for each triangle that may lie within reach of p (a point of the region).
