@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
-#include <optional>
+#include <memory>
 #include <string>
 
 #include "app/commands/commands.h"
@@ -202,13 +202,10 @@ void exportZeroSet3d(const SceneFit<3>& f3, const Box<3>& bounds, MarchingOption
     ChordRefinementOptions co;
     co.cancel = options.cancel;
     co.tolerance = chordTolerance * bounds.extent().maxCoeff() / options.resolution;  // cells → world units
-    // New vertices where the review would see strays leave their edges whole, unless it found too
-    // many strays to trust the winding number (stray_pockets.h).
-    std::optional<StrayTest> strays;
-    if (StrayTest::appliesTo(f3.field(), f3.data) && !stray.tooMany) {
-      strays.emplace(f3.data, bounds, surfaceArea(mesh), options.cancel);
-      co.rejects = [&strays](const Points<3>& X) { return (*strays)(X); };
-    }
+    // New vertices where the review would see strays leave their edges whole (stray.planes is
+    // null where no review ran or it found too many strays to trust the winding number).
+    if (const std::shared_ptr<const StrayTest> planes = stray.planes)
+      co.rejects = [planes](const Points<3>& X) { return (*planes)(X); };
     mesh = refineChords(mesh, field, co, &chords);
   }
   saveMesh(output, mesh);

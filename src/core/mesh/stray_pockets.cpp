@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -114,8 +115,14 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
   for (Eigen::Index v = 0; v < n; ++v)
     if (off[static_cast<std::size_t>(v)]) out.push_back(v);
   if (out.size() > kRoughWindingLimit) return out;  // the samples' winding number is cheaper for so many
-  const auto undecided = [&](Eigen::Index v) { return !decided(roughWinding(samples, spacing, X.col(v))); };
-  out.erase(std::remove_if(out.begin(), out.end(), undecided), out.end());
+  const int count = static_cast<int>(out.size());
+  std::vector<char> keep(out.size(), 0);  // a sum over every sample each: one point per thread
+#pragma omp parallel for schedule(dynamic, 1)
+  for (int i = 0; i < count; ++i) keep[static_cast<std::size_t>(i)] = decided(roughWinding(samples, spacing, X.col(out[i])));
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < out.size(); ++i)
+    if (keep[i]) out[kept++] = out[i];
+  out.resize(kept);
   return out;
 }
 
@@ -128,8 +135,12 @@ template <class WindingOf>
 std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& samples, const OccupiedCells& occupied,
                                   const OccupiedCells& bySpacing, double spacing, WindingOf&& windingOf) {
   std::vector<Eigen::Index> far = offPlaneVertices(mesh.vertices, samples, bySpacing, spacing);
-  for (Eigen::Index v = 0; v < mesh.vertices.cols(); ++v)
-    if (occupied.farFromSamples(mesh.vertices.col(v))) far.push_back(v);
+  const Eigen::Index n = mesh.vertices.cols();
+  std::vector<char> alone(static_cast<std::size_t>(n), 0);
+#pragma omp parallel for schedule(static)
+  for (Eigen::Index v = 0; v < n; ++v) alone[static_cast<std::size_t>(v)] = occupied.farFromSamples(mesh.vertices.col(v));
+  for (Eigen::Index v = 0; v < n; ++v)
+    if (alone[static_cast<std::size_t>(v)]) far.push_back(v);
   if (far.empty()) return {};
   std::sort(far.begin(), far.end());
   far.erase(std::unique(far.begin(), far.end()), far.end());
@@ -241,6 +252,7 @@ class StrayContour {
     return mesh;
   }
   const std::vector<Vec<3>>& strays() const { return kept_.strays; }
+  const std::shared_ptr<const StrayTest>& planes() const { return planes_; }
   // dropWindingTips on the final contour.
   int dropTips(TriMesh& mesh) {
     if (vertexConnectedComponentCount(mesh) <= 1) return 0;
@@ -285,16 +297,15 @@ class StrayContour {
   // Leaves out stray pieces and finds the strays of a contour on `lines`.
   void review(TriMesh& mesh, const GridLines<3>& lines) {
     if (!occupied_) {
-      spacing_ = std::sqrt(surfaceArea(mesh) / static_cast<double>(samples_.size()));
-      occupied_.emplace(samples_.points, box_.lo, occupancyCell());
       // Cells of one spacing for offTheirPlanes: its balls then touch at most 4³ and 6³ cells
       // whatever the grid (the occupancy cells shrink with it).
-      bySpacing_.emplace(samples_.points, box_.lo, spacing_ > 0 ? spacing_ : cell_);
+      planes_ = std::make_shared<const StrayTest>(samples_, box_, surfaceArea(mesh), options_.cancel);
+      occupied_.emplace(samples_.points, box_.lo, occupancyCell());
     }
     Review r;
     const auto windingOf = [&]() -> const CloudWinding<3>& { return *winding(); };
     if (vertexConnectedComponentCount(mesh) > 1) r.dropped = dropStrayPieces(mesh, windingOf);
-    r.strays = strayVertices(mesh, samples_, *occupied_, *bySpacing_, spacing_, windingOf);
+    r.strays = strayVertices(mesh, samples_, *occupied_, planes_->cells(), planes_->spacing(), windingOf);
     // Only strays a guard can still act on: new, and with f on the wrong side near them.
     const auto spent = [&](const Vec<3>& p) { return region_.contains(p) || !overruledNear(p, lines); };
     r.strays.erase(std::remove_if(r.strays.begin(), r.strays.end(), spent), r.strays.end());
@@ -325,7 +336,8 @@ class StrayContour {
 
   // Half the grid's cell, at most kOccupancySpacing · √(A / N) for the contour's area A.
   double occupancyCell() const {
-    return spacing_ > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing_) : 0.5 * cell_;
+    const double spacing = planes_->spacing();
+    return spacing > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing) : 0.5 * cell_;
   }
 
   // Whether f is on the other side of a decided winding number along p's grid edge (a quarter,
@@ -371,8 +383,7 @@ class StrayContour {
   Box<3> box_;
   MarchingOptions options_;
   std::optional<OccupiedCells> occupied_;  // built at the first review, from its contour's area
-  double spacing_ = 0;                     // √(A / N) for that contour's area A
-  std::optional<OccupiedCells> bySpacing_;  // the samples in cells of one spacing, built with it
+  std::shared_ptr<const StrayTest> planes_;  // its plane test, built with it (spacing √(A / N))
   double cell_;  // the contour grid's cell size (its longest axis's)
   Vec<3> h_;     // the uniform grid's cell
   GridLines<3> lines_;  // those of the last contour (refined ones when it was refined)
@@ -430,6 +441,7 @@ TriMesh contourWithoutStrays(const ImplicitField<3>& field, const Box<3>& box, c
   }
   const int tips = contours.dropTips(mesh);
   if (report) report->droppedTips += tips;
+  if (!out.tooMany) out.planes = contours.planes();
   return mesh;
 }
 

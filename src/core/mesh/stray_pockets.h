@@ -53,13 +53,6 @@ inline constexpr double kMaxStrayShare = 0.01;
 inline constexpr double kPieceInside = 0.6;
 inline constexpr double kTipWinding = 0.45;
 
-struct StrayReport {
-  int strayVertices = 0;  // strays of the first contour
-  int rounds = 0;         // contours again with the guard
-  bool tooMany = false;   // more strays than kMaxStrayShare of the vertices: no guard
-  int droppedPieces = 0;  // pieces left out for their winding number
-};
-
 // Step 2's plane test for points put on the zero set after the review (chord refinement's new
 // vertices, between the grid's): x is a stray when no sample lies within 1.2 spacings √(A / N) of
 // it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
@@ -74,12 +67,24 @@ class StrayTest {
   static bool appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>& samples);
   // Per column of X, whether it is a stray.
   std::vector<char> operator()(const Points<3>& X) const;
+  double spacing() const { return spacing_; }
+  const OccupiedCells& cells() const { return bySpacing_; }  // the samples in cells of one spacing
 
  private:
   const HermiteSamples<3>& samples_;
   double spacing_;
   OccupiedCells bySpacing_;  // the samples in cells of one spacing
   const CancelToken* cancel_;
+};
+
+struct StrayReport {
+  int strayVertices = 0;  // strays of the first contour
+  int rounds = 0;         // contours again with the guard
+  bool tooMany = false;   // more strays than kMaxStrayShare of the vertices: no guard
+  int droppedPieces = 0;  // pieces left out for their winding number
+  // The review's plane test, for points put on the zero set after it (chord refinement); null
+  // when no review ran or its strays were too many to trust the winding number.
+  std::shared_ptr<const StrayTest> planes;
 };
 
 // marchingCubes(field, box, options, report), then the steps above with the fit's samples.
