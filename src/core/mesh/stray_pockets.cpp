@@ -118,7 +118,8 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
   const int count = static_cast<int>(out.size());
   std::vector<char> keep(out.size(), 0);  // a sum over every sample each: one point per thread
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < count; ++i) keep[static_cast<std::size_t>(i)] = decided(roughWinding(samples, spacing, X.col(out[i])));
+  for (int i = 0; i < count; ++i)
+    keep[static_cast<std::size_t>(i)] = decided(roughWinding(samples, spacing, X.col(out[static_cast<std::size_t>(i)])));
   std::size_t kept = 0;
   for (std::size_t i = 0; i < out.size(); ++i)
     if (keep[i]) out[kept++] = out[i];
@@ -138,7 +139,8 @@ std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& 
   const Eigen::Index n = mesh.vertices.cols();
   std::vector<char> alone(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(static)
-  for (Eigen::Index v = 0; v < n; ++v) alone[static_cast<std::size_t>(v)] = occupied.farFromSamples(mesh.vertices.col(v));
+  for (Eigen::Index v = 0; v < n; ++v)
+    alone[static_cast<std::size_t>(v)] = occupied.farFromSamples(mesh.vertices.col(v));
   for (Eigen::Index v = 0; v < n; ++v)
     if (alone[static_cast<std::size_t>(v)]) far.push_back(v);
   if (far.empty()) return {};
