@@ -118,8 +118,10 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
   const int count = static_cast<int>(out.size());
   std::vector<char> keep(out.size(), 0);  // a sum over every sample each: one point per thread
 #pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < count; ++i)
-    keep[static_cast<std::size_t>(i)] = decided(roughWinding(samples, spacing, X.col(out[static_cast<std::size_t>(i)])));
+  for (int i = 0; i < count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    keep[k] = decided(roughWinding(samples, spacing, X.col(out[k])));
+  }
   std::size_t kept = 0;
   for (std::size_t i = 0; i < out.size(); ++i)
     if (keep[i]) out[kept++] = out[i];
