@@ -16,11 +16,10 @@
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)), or with none within 1.2 spacings and half a spacing or more off the
 //     tangent planes of the samples within 2.5 on average, or with none within 1.5 spacings,
-//     whose winding number is decided
-//     (above kWindingInside or below kWindingOutside) are strays: a pocket joined to the
-//     surface. Only those outside the guard region so far count, with f on the other side of a
-//     decided winding number along their own grid edge or at a corner of the cell-sized cube
-//     about them (else a guard would change nothing).
+//     whose winding number is decided (above kWindingInside or below kWindingOutside) are
+//     strays: a pocket joined to the surface. Only those outside the guard region so far count,
+//     with f on the other side of a decided winding number along their own grid edge or at a
+//     corner of the cell-sized cube about them (else a guard would change nothing).
 //  3. after the rounds below, pieces that could be tips a grid cut off a part thinner than a
 //     cell (cut_tips.h: small, within a cell diagonal of the largest) whose mean winding number
 //     is below kTipWinding (and not below kWindingOutside) are left out: a true surface has
@@ -58,7 +57,8 @@ inline constexpr double kTipWinding = 0.45;
 // it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
 // tangent planes on average or none lies within 1.5, and the samples' winding number at x is
 // decided — summed directly, every sample standing for A / N, for up to 64 such points; the
-// samples' winding number when there are more. Only for a field and samples contourWithoutStrays reviews (appliesTo).
+// samples' winding number when there are more. Only for a field and samples contourWithoutStrays
+// reviews (appliesTo).
 class StrayTest {
  public:
   // `samples` must outlive the test; `box` is the contour's; `cancel` is polled while the winding
@@ -83,7 +83,8 @@ struct StrayReport {
   bool tooMany = false;   // more strays than kMaxStrayShare of the vertices: no guard
   int droppedPieces = 0;  // pieces left out for their winding number
   // The review's plane test, for points put on the zero set after it (chord refinement); null
-  // when no review ran or its strays were too many to trust the winding number.
+  // when no review ran or its strays were too many to trust the winding number. It reads the
+  // samples given to contourWithoutStrays: use it while they live.
   std::shared_ptr<const StrayTest> planes;
 };
 
