@@ -491,6 +491,8 @@ PuReport summariseFits(const PuTree<Dim>& tree, const std::vector<typename PuMod
   r.warnings = polynomialOrderWarnings(local.kernel, local.polynomial);
   std::map<std::string, int> solvers;
   for (int i = 0; i < leafCount; ++i) r.fittedBoxes += leaves[i].blended ? 1 : 0;
+  int* same = nullptr;  // the count of the last solver name: neighbouring boxes mostly share it
+  const std::string* last = nullptr;
   for (int i = 0; i < leafCount; ++i) {
     r.maxBoxSamples = std::max(r.maxBoxSamples, tree.leafSampleCount(i));
     if (!leaves[i].blended) continue;
@@ -499,7 +501,11 @@ PuReport summariseFits(const PuTree<Dim>& tree, const std::vector<typename PuMod
     if (leaves[i].factor > options.overlap) ++r.grownSupports;
     r.unknowns += reports[i].nUnknowns;
     r.maxConditionEstimate = std::max(r.maxConditionEstimate, reports[i].conditionEstimate);
-    ++solvers[reports[i].solver];
+    if (!last || *last != reports[i].solver) {
+      last = &reports[i].solver;
+      same = &solvers[*last];
+    }
+    ++*same;
   }
   int best = -1;
   for (const auto& [name, count] : solvers)
@@ -1033,6 +1039,10 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
     report->treeMs = treeMs;
     report->fitMs = msSince(t0);
   }
+  // Freed on both threads: one local report per box, each with a solver name on the heap.
+  const int boxes = static_cast<int>(reports.size());
+#pragma omp parallel for schedule(static)
+  for (int i = 0; i < boxes; ++i) reports[static_cast<std::size_t>(i)] = FitReport{};
   return PuModel<Dim>(std::move(tree), std::move(leaves), options, frame, std::move(dataReach));
 }
 
