@@ -211,7 +211,7 @@ void exportZeroSet3d(const SceneFit<3>& f3, const Box<3>& bounds, MarchingOption
   saveMesh(output, mesh);
   // Degenerate: far smaller than the triangles a vertex 10⁻³ of an edge from a grid point makes.
   const double tiny = std::min(1e-9 * report.minStep * report.minStep, 1e-12 * bounds.extent().squaredNorm());
-  const MeshCheck c = checkMesh(mesh, tiny);
+  const MeshCheck c = checkMesh(mesh, tiny, false);  // the summary names no piece count
   // A degenerate field's flat regions are "no data": what is left is not closed over them.
   const bool degenerate = f3.degenerateField && f3.degenerateField->degenerate;
   std::snprintf(line, size,

@@ -272,7 +272,7 @@ Eigen::Matrix3Xd vertexNormals(const TriMesh& mesh, NormalWeighting weighting) {
   return N;
 }
 
-MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea) {
+MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea, bool countComponents) {
   MeshCheck c;
   if (degenerateArea < 0) {
     const double diag = mesh.vertexCount() > 0
@@ -305,7 +305,7 @@ MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea) {
     if (directed[i] == directed[i - 1]) ++c.inconsistentEdges;
   const int V = static_cast<int>(std::count(referenced.begin(), referenced.end(), 1));
   c.eulerCharacteristic = V - c.edgeCount + mesh.triangleCount();
-  c.components = connectedComponentCount(mesh);
+  if (countComponents) c.components = connectedComponentCount(mesh);
   return c;
 }
 
