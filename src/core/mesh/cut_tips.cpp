@@ -135,18 +135,12 @@ std::vector<char> cutTipsToDrop(const TriMesh& mesh, const TipCandidates& c, con
 
 std::vector<int> samplesOnPockets(const TriMesh& mesh, const TipCandidates& c, const std::vector<char>& drop,
                                   double cellDiagonal, const Points<3>& samples) {
-  std::vector<char> pocket(static_cast<size_t>(c.count), 0);
+  std::vector<char> notPocket(static_cast<size_t>(c.count), 1);  // the pieces to leave out of `walls`
   for (size_t k = 0; k < c.pieces.size(); ++k)
-    pocket[static_cast<size_t>(c.pieces[k])] = c.gap[k] && drop[static_cast<size_t>(c.pieces[k])];
-  if (std::find(pocket.begin(), pocket.end(), 1) == pocket.end()) return {};
-  TriMesh walls;
-  walls.vertices = mesh.vertices;
-  std::vector<int> kept;
-  for (int t = 0; t < mesh.triangleCount(); ++t)
-    if (pocket[static_cast<size_t>(c.piece[static_cast<size_t>(t)])]) kept.push_back(t);
-  walls.triangles.resize(3, static_cast<Eigen::Index>(kept.size()));
-  for (size_t k = 0; k < kept.size(); ++k)
-    walls.triangles.col(static_cast<Eigen::Index>(k)) = mesh.triangles.col(kept[k]);
+    if (c.gap[k] && drop[static_cast<size_t>(c.pieces[k])]) notPocket[static_cast<size_t>(c.pieces[k])] = 0;
+  if (std::find(notPocket.begin(), notPocket.end(), 0) == notPocket.end()) return {};
+  TriMesh walls = mesh;
+  dropComponents(walls, c.piece, notPocket);
   const double reach = 0.5 * cellDiagonal;
   const std::vector<double> d = distancesToMeshWithin(walls, samples, reach);
   std::vector<int> on;
