@@ -287,11 +287,8 @@ class StrayContour {
   }
 
  private:
-  const std::shared_ptr<const CloudWinding<3>>& winding() {
-    if (!winding_)
-      winding_ = std::make_shared<const CloudWinding<3>>(samples_.points, samples_.normals, options_.cancel);
-    return winding_;
-  }
+  // The samples' winding number, the plane test's (built by the first review, before any use).
+  const std::shared_ptr<const CloudWinding<3>>& winding() const { return planes_->winding(); }
   // The field under review, and its grid form: the values marching cubes contours.
   void setField(const ImplicitField<3>& field) {
     field_ = &field;
@@ -394,7 +391,6 @@ class StrayContour {
   GuardRegion region_;
   const ImplicitField<3>* field_ = nullptr;  // the field of the contour under review
   std::unique_ptr<ImplicitField<3>> grid_;    // its grid form (null: the field itself)
-  std::shared_ptr<const CloudWinding<3>> winding_;
   std::vector<Box<3>> dropped_;  // the stray pieces left out of the contour kept, by their boxes
   std::vector<Review> reviews_;  // per contour of the last marchingCubes: the uniform one, then a refined one
   Review kept_;                  // the one of the contour it returned
@@ -407,6 +403,11 @@ StrayTest::StrayTest(const HermiteSamples<3>& samples, const Box<3>& box, double
       spacing_(std::sqrt(area / std::max(1, samples.size()))),
       bySpacing_(samples.points, box.lo, spacing_ > 0 ? spacing_ : box.extent().maxCoeff()),
       cancel_(cancel) {}
+
+const std::shared_ptr<const CloudWinding<3>>& StrayTest::winding() const {
+  if (!winding_) winding_ = std::make_shared<const CloudWinding<3>>(samples_.points, samples_.normals, cancel_);
+  return winding_;
+}
 
 bool StrayTest::appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>& samples) {
   return !field.everywhereValid() && samples.size() >= kGuardMinSamples;
@@ -422,7 +423,7 @@ std::vector<char> StrayTest::operator()(const Points<3>& X) const {
   }
   Points<3> Y(3, static_cast<Eigen::Index>(off.size()));
   for (std::size_t i = 0; i < off.size(); ++i) Y.col(static_cast<Eigen::Index>(i)) = X.col(off[i]);
-  const std::vector<double> w = CloudWinding<3>(samples_.points, samples_.normals, cancel_).at(Y);
+  const std::vector<double> w = winding()->at(Y);
   for (std::size_t i = 0; i < off.size(); ++i) out[static_cast<std::size_t>(off[i])] = decided(w[i]);
   return out;
 }

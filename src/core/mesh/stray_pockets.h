@@ -41,6 +41,7 @@
 #include "core/base/implicit_field.h"
 #include "core/mesh/marching_cubes.h"
 #include "core/mesh/occupied_cells.h"
+#include "core/points/cloud_winding.h"
 #include "core/points/hermite_samples.h"
 
 namespace hermite {
@@ -69,12 +70,16 @@ class StrayTest {
   std::vector<char> operator()(const Points<3>& X) const;
   double spacing() const { return spacing_; }
   const OccupiedCells& cells() const { return bySpacing_; }  // the samples in cells of one spacing
+  // The samples' winding number, built on first use and kept (the review's and this test's; one
+  // caller at a time).
+  const std::shared_ptr<const CloudWinding<3>>& winding() const;
 
  private:
   const HermiteSamples<3>& samples_;
   double spacing_;
   OccupiedCells bySpacing_;  // the samples in cells of one spacing
   const CancelToken* cancel_;
+  mutable std::shared_ptr<const CloudWinding<3>> winding_;
 };
 
 struct StrayReport {
