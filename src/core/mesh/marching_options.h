@@ -77,7 +77,7 @@ inline constexpr int kAnchorSplit = 4;  // parts each of them is cut into
 // 200 000 samples, 256³: 188 such of 340 missed; 99th percentile of the distances 0.23 % of the
 // diagonal in one piece, 0.08 % refined), where a truncated rim (femur: 73 of 275, spool: 0 of
 // 73) leaves them within a cell. The same share of samples on the pockets of thin gaps runs it
-// too (the femur: 1 079 on two pockets of a crack near one end, with 275 missed).
+// too (CGAL's femur: a crack near one end; docs/performance.md, stop 43).
 inline constexpr double kRefineOffShare = 5e-4;
 
 // What the contouring measured.
