@@ -77,7 +77,8 @@ inline constexpr int kAnchorSplit = 4;  // parts each of them is cut into
 // 200 000 samples, 256³: 188 such of 340 missed; 99th percentile of the distances 0.23 % of the
 // diagonal in one piece, 0.08 % refined), where a truncated rim (femur: 73 of 275, spool: 0 of
 // 73) leaves them within a cell. The same share of samples on the pockets of thin gaps runs it
-// too (CGAL's femur: a crack near one end; docs/performance.md, stop 43).
+// too (CGAL's femur, a crack near one end: docs/performance.md, "Pockets with samples on their
+// walls run the refined pass").
 inline constexpr double kRefineOffShare = 5e-4;
 
 // What the contouring measured.
