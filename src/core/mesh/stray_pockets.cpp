@@ -341,7 +341,7 @@ class StrayContour {
     return spacing > 0 ? std::min(0.5 * cell_, kOccupancySpacing * spacing) : 0.5 * cell_;
   }
 
-  // Whether f is on the other side of a decided winding number along p's grid edge (a quarter,
+  // Whether f is on the other side of the guard's winding number along p's grid edge (a quarter,
   // half, three quarters of the way to each end, and the ends) or at a corner of the cell-sized
   // cube about p: otherwise a guard there overrules nothing (a stray on a true surface whose
   // winding number is off ½, as beside a sharp concave edge). Along the edge, f is what the
@@ -352,7 +352,7 @@ class StrayContour {
   bool overruledNear(const Vec<3>& p, const GridLines<3>& lines) {
     const auto disagree = [&](const ImplicitField<3>& field, const Vec<3>& c) {
       const double f = field.evaluate(c), w = winding()->at(c);
-      return (w > kWindingInside && f > 0) || (w < kWindingOutside && f < 0);
+      return (w > kGuardInside && f > 0) || (w < kWindingOutside && f < 0);
     };
     const ImplicitField<3>& contoured = grid_ ? *grid_ : *field_;
     const GridEdge e = gridEdgeOf(lines, p);

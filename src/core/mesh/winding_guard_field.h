@@ -1,8 +1,8 @@
 #pragma once
 // A field whose sign the samples' winding number overrules inside a guard region (docs/maths.md,
-// "Stray pockets"). Inside the region, where w(x) is decided — above kWindingInside (inside the
-// sampled surface) or below kWindingOutside (outside) — and f has the other sign, f, ∇f and the
-// Hessian change sign; elsewhere the field is the inner one. The region is a union of balls
+// "Stray pockets"). Inside the region, where w(x) is above kGuardInside (inside the sampled
+// surface) or below kWindingOutside (outside) and f has the other sign, f, ∇f and the Hessian
+// change sign; elsewhere the field is the inner one. The region is a union of balls
 // around points where a contour strayed from the data; the Lipschitz bound is infinite over
 // boxes that meet it, so the marching cubes' octree evaluates f at every grid point there.
 
@@ -16,8 +16,15 @@
 
 namespace hermite {
 
+// A winding number above kWindingInside or below kWindingOutside is decided: a vertex there that
+// strayed from the samples is a stray (stray_pockets.h).
 inline constexpr double kWindingInside = 0.85;
 inline constexpr double kWindingOutside = 0.15;
+// Where a guard overrules f on the solid's side: lower than kWindingInside, so that a repaired
+// dent ends nearer the sampled surface than the level that confirms a stray (below randomly
+// placed samples w can stay under 0.85 more than a spacing deep; docs/maths.md, "Stray
+// pockets"), yet well above the ½ that w has on the surface.
+inline constexpr double kGuardInside = 0.75;
 
 // A union of balls of one radius, with a hash of cells of that size for the tests.
 class GuardRegion {

@@ -328,3 +328,21 @@ TEST_CASE("stray pockets: a cap beyond the tip of a part thinner than the sampli
   CHECK(s[1] == 0);
   CHECK(s[2] == 0);
 }
+
+TEST_CASE("stray pockets: a dent's repair ends within a spacing of the samples") {
+  // A crater 2.5 sample spacings deep (spacing √(4π/N) ≈ 0.046) on a grid of about a spacing:
+  // the guard fills it up to where the samples' winding number passes kGuardInside.
+  BallWithExtras f;
+  const HermiteSamples<3> samples = sphereSamples();
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const double r = 0.3;
+  f.voids = {{Vec<3>(0, 0, 1 + r - 2.5 * spacing), r}};
+  const TriMesh plain = marchingCubes(f, kBox, grid(64));
+  REQUIRE(maxOffSphere(plain) > 2 * spacing);
+  StrayReport stray;
+  const TriMesh mesh = contourWithoutStrays(f, kBox, grid(64), samples, nullptr, &stray, nullptr);
+  // Repaired up to kWindingInside instead of kGuardInside the floor stays 0.51 spacings deep.
+  CHECK(maxOffSphere(mesh) < 0.4 * spacing);
+  CHECK(stray.rounds >= 1);
+  CHECK(checkMesh(mesh).closedManifold());
+}
