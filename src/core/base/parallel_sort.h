@@ -3,8 +3,8 @@
 // least kParallelSortMinPart elements), each sorted on its own thread, then merged pairwise in
 // parallel through one buffer. With a strict total order (no two elements equivalent) the
 // result equals std::sort's element for element; callers rely on that (their keys carry a
-// tie-breaking index or are unique). Used for the serial stretches of `mesh` (docs/performance.md,
-// "Serial stretches of mesh"): one sort of 200 000–600 000 keys took 20–60 ms on one core.
+// tie-breaking index or are unique). For orders a comparator defines; integer keys sort faster
+// by their digits (radix_sort.h).
 
 #include <algorithm>
 #include <cstddef>

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/base/ms_since.h"
-#include "core/base/parallel_sort.h"
+#include "core/base/radix_sort.h"
 #include "core/mesh/marching_grid.h"
 
 namespace hermite {
@@ -31,7 +31,7 @@ EdgeTable buildEdges(const TriMesh& mesh) {
   for (int t = 0; t < T; ++t)
     for (int k = 0; k < 3; ++k)
       keyed[3 * std::size_t(t) + k] = {edgeKey(mesh.triangles(k, t), mesh.triangles((k + 1) % 3, t)), 3 * t + k};
-  parallelSort(keyed.begin(), keyed.end());  // (edge, corner): a strict total order
+  radixSort(keyed);  // (edge, corner): a strict total order
   EdgeTable table;
   table.ofCorner.resize(keyed.size());
   for (std::size_t i = 0; i < keyed.size(); ++i) {

@@ -13,7 +13,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/ms_since.h"
-#include "core/base/parallel_sort.h"
+#include "core/base/radix_sort.h"
 #include "core/mesh/grid_lines.h"
 #include "core/mesh/illinois_bracket.h"
 #include "core/mesh/marching_cull.h"
@@ -101,7 +101,7 @@ std::vector<Eigen::Index> spatialOrder(const Points<Dim>& X) {
     }
     keys[static_cast<size_t>(i)] = {key, i};
   }
-  parallelSort(keys.begin(), keys.end());  // (key, column): a strict total order
+  radixSort(keys);  // (key, column): a strict total order
   for (Eigen::Index i = 0; i < n; ++i) order[static_cast<size_t>(i)] = keys[static_cast<size_t>(i)].second;
   return order;
 }

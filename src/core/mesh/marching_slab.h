@@ -104,7 +104,7 @@ inline std::vector<std::int64_t> signChangingCells(const MarchingGrid<3>& g, con
   }
   std::vector<std::int64_t> cells;
   for (const auto& v : perBlock) cells.insert(cells.end(), v.begin(), v.end());
-  parallelSort(cells.begin(), cells.end());
+  radixSort(cells);
   return cells;
 }
 
@@ -147,7 +147,7 @@ inline void slabEdges(MarchingGrid<3>& g, const std::vector<std::int64_t>& cells
         if (g.inside(q) != g.inside(r) && g.isValid(q) && g.isValid(r)) g.edgeKeys.push_back(q * 3 + a);
       }
     }
-  parallelSort(g.edgeKeys.begin(), g.edgeKeys.end());
+  radixSort(g.edgeKeys);
   g.edgeKeys.erase(std::unique(g.edgeKeys.begin(), g.edgeKeys.end()), g.edgeKeys.end());
 }
 

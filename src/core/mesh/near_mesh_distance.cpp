@@ -7,7 +7,7 @@
 #include <limits>
 #include <utility>
 
-#include "core/base/parallel_sort.h"
+#include "core/base/radix_sort.h"
 #include "core/mesh/triangle_distance.h"
 
 namespace hermite {
@@ -46,7 +46,7 @@ class TriangleBuckets {
         for (int y = a[1]; y <= b[1]; ++y)
           for (int x = a[0]; x <= b[0]; ++x) byCube_.emplace_back(key({x, y, z}), t);
     }
-    parallelSort(byCube_.begin(), byCube_.end());  // (key, triangle) pairs are distinct: any sort gives this order
+    radixSort(byCube_);  // (key, triangle) pairs are distinct: any sort gives this order
   }
 
   // Calls visit(t) for each triangle that may lie within reach of p (a point of the region).

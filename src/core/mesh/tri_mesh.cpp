@@ -7,7 +7,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/base/parallel_sort.h"
+#include "core/base/radix_sort.h"
 #include "core/points/lexicographic_order.h"
 
 namespace hermite {
@@ -27,7 +27,7 @@ std::vector<std::pair<std::uint64_t, int>> undirectedEdgeCounts(const TriMesh& m
   keys.reserve(3 * static_cast<size_t>(mesh.triangleCount()));
   for (int t = 0; t < mesh.triangleCount(); ++t)
     for (int k = 0; k < 3; ++k) keys.push_back(edgeKey(mesh.triangles(k, t), mesh.triangles((k + 1) % 3, t)));
-  parallelSort(keys.begin(), keys.end());
+  radixSort(keys);
   std::vector<std::pair<std::uint64_t, int>> out;
   for (size_t i = 0; i < keys.size();) {
     size_t j = i;
@@ -124,7 +124,7 @@ std::vector<int> triangleComponents(const TriMesh& mesh, int* count, std::vector
   edgeTri.reserve(3 * static_cast<size_t>(T));
   for (int t = 0; t < T; ++t)
     for (int k = 0; k < 3; ++k) edgeTri.emplace_back(edgeKey(mesh.triangles(k, t), mesh.triangles((k + 1) % 3, t)), t);
-  parallelSort(edgeTri.begin(), edgeTri.end());  // (edge, triangle): a strict total order
+  radixSort(edgeTri);  // (edge, triangle): a strict total order
   std::vector<int> parent(static_cast<size_t>(T));
   std::iota(parent.begin(), parent.end(), 0);
   for (size_t i = 1; i < edgeTri.size(); ++i)
@@ -300,7 +300,7 @@ MeshCheck checkMesh(const TriMesh& mesh, double degenerateArea, bool countCompon
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2] || !(0.5 * area2 > degenerateArea))
       ++c.degenerateTriangles;
   }
-  parallelSort(directed.begin(), directed.end());
+  radixSort(directed);
   for (size_t i = 1; i < directed.size(); ++i)
     if (directed[i] == directed[i - 1]) ++c.inconsistentEdges;
   const int V = static_cast<int>(std::count(referenced.begin(), referenced.end(), 1));

@@ -10,7 +10,7 @@
 
 #include "core/base/errors.h"
 #include "core/base/format_number.h"
-#include "core/base/parallel_sort.h"
+#include "core/base/radix_sort.h"
 #include "core/points/flat_cell_map.h"
 #include "core/points/lexicographic_order.h"
 
@@ -68,7 +68,7 @@ double spacingCellSize(const Points<Dim>& points, const Vec<Dim>& lo, const Vec<
   for (int attempt = 0;; ++attempt) {
 #pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) keys[i] = keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell));
-    parallelSort(keys.begin(), keys.end());
+    radixSort(keys);
     const double occupied = double(std::unique(keys.begin(), keys.end()) - keys.begin());
     if (4 * occupied >= double(n) || cell <= minCell || attempt >= 40) break;
     double factor = 0.5;
@@ -95,7 +95,7 @@ class CellIndex {
     std::vector<std::pair<CellKey, Eigen::Index>> byCell(static_cast<std::size_t>(n));
 #pragma omp parallel for schedule(static)
     for (Eigen::Index i = 0; i < n; ++i) byCell[i] = {keyOf<Dim>(cellOf<Dim>(points.col(i), lo, cell)), i};
-    parallelSort(byCell.begin(), byCell.end());  // (key, index): a strict total order
+    radixSort(byCell);  // (key, index): a strict total order
 #pragma omp parallel for schedule(static)
     for (Eigen::Index s = 0; s < n; ++s) sorted_.col(s) = points.col(byCell[s].second);
     Eigen::Index occupied = 0;
