@@ -5,9 +5,8 @@
 // 11-bit digit of a key (the pair's second, then its first); a digit every element shares is
 // skipped, so small keys (mesh edges, grid cells, triangle indices) take few passes. A pass on
 // more than one thread splits the range into contiguous parts, counts each part's digits, and
-// places every part after the parts before it, so it stays stable. The key sorts of `mesh`
-// (docs/performance.md, "Sorting keys by their digits") took a tenth of its time with
-// parallelSort.
+// places every part after the parts before it, so it stays stable. Used for the key sorts of
+// `mesh` (docs/performance.md, "Sorting keys by their digits").
 
 #include <algorithm>
 #include <array>
@@ -18,7 +17,6 @@
 #include <vector>
 
 #include <omp.h>
-
 
 namespace hermite {
 
@@ -60,9 +58,7 @@ using RadixCounts = std::array<std::size_t, kRadixBuckets>;
 template <class T>
 std::vector<std::pair<int, int>> radixPasses(const T* v, std::size_t n) {
   constexpr int K = RadixKeys<T>::kCount;
-  std::array<std::uint64_t, K> all, any;
-  all.fill(~std::uint64_t(0));
-  any.fill(0);
+  std::array<std::uint64_t, K> all{}, any{};  // per key: the AND and the OR of every element's
   for (int k = 0; k < K; ++k) {
     std::uint64_t a = ~std::uint64_t(0), o = 0;
 #pragma omp parallel for reduction(& : a) reduction(| : o)
