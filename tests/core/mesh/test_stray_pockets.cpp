@@ -329,7 +329,7 @@ TEST_CASE("stray pockets: a cap beyond the tip of a part thinner than the sampli
   CHECK(s[2] == 0);
 }
 
-TEST_CASE("stray pockets: a dent's repair ends within a spacing of the samples") {
+TEST_CASE("stray pockets: a repaired dent ends within 0.4 spacings of the sampled surface") {
   // A crater 2.5 sample spacings deep (spacing √(4π/N) ≈ 0.046) on a grid of about a spacing:
   // the guard fills it up to where the samples' winding number passes kGuardInside.
   BallWithExtras f;
