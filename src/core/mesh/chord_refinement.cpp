@@ -107,9 +107,7 @@ void rejectStrays(const Points<3>& X, const std::function<std::vector<char>(cons
   std::vector<Eigen::Index> projected;
   for (std::size_t k = 0; k < ok.size(); ++k)
     if (ok[k]) projected.push_back(static_cast<Eigen::Index>(k));
-  Points<3> P(3, static_cast<Eigen::Index>(projected.size()));
-  for (std::size_t i = 0; i < projected.size(); ++i) P.col(static_cast<Eigen::Index>(i)) = X.col(projected[i]);
-  const std::vector<char> rejected = rejects(P);
+  const std::vector<char> rejected = rejects(X(Eigen::all, projected));
   for (std::size_t i = 0; i < projected.size(); ++i)
     if (rejected[i]) {
       ok[static_cast<std::size_t>(projected[i])] = 0;

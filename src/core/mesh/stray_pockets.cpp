@@ -129,6 +129,14 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
   return out;
 }
 
+// Per entry of `which`, whether the winding number at that column of X is decided.
+std::vector<char> decidedAt(const CloudWinding<3>& winding, const Points<3>& X, const std::vector<Eigen::Index>& which) {
+  const std::vector<double> w = winding.at(Points<3>(X(Eigen::all, which)));
+  std::vector<char> out(w.size());
+  for (std::size_t i = 0; i < w.size(); ++i) out[i] = decided(w[i]);
+  return out;
+}
+
 // The vertices of the mesh's largest piece far from the samples whose winding number is decided:
 // a pocket joined to the surface (a piece of its own is the piece rule's). Far means the
 // occupancy's test, or off the samples' planes (offPlaneVertices; `bySpacing` holds the samples
@@ -152,12 +160,10 @@ std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& 
   far.erase(std::remove_if(far.begin(), far.end(), [&](Eigen::Index v) { return !main[static_cast<std::size_t>(v)]; }),
             far.end());
   if (far.empty()) return {};
-  Points<3> X(3, static_cast<Eigen::Index>(far.size()));
-  for (std::size_t i = 0; i < far.size(); ++i) X.col(static_cast<Eigen::Index>(i)) = mesh.vertices.col(far[i]);
-  const std::vector<double> w = windingOf().at(X);
+  const std::vector<char> stray = decidedAt(windingOf(), mesh.vertices, far);
   std::vector<Vec<3>> strays;
   for (std::size_t i = 0; i < far.size(); ++i)
-    if (decided(w[i])) strays.push_back(X.col(static_cast<Eigen::Index>(i)));
+    if (stray[i]) strays.push_back(mesh.vertices.col(far[i]));
   return strays;
 }
 
@@ -421,10 +427,8 @@ std::vector<char> StrayTest::operator()(const Points<3>& X) const {
     for (Eigen::Index v : off) out[static_cast<std::size_t>(v)] = 1;
     return out;
   }
-  Points<3> Y(3, static_cast<Eigen::Index>(off.size()));
-  for (std::size_t i = 0; i < off.size(); ++i) Y.col(static_cast<Eigen::Index>(i)) = X.col(off[i]);
-  const std::vector<double> w = winding()->at(Y);
-  for (std::size_t i = 0; i < off.size(); ++i) out[static_cast<std::size_t>(off[i])] = decided(w[i]);
+  const std::vector<char> stray = decidedAt(*winding(), X, off);
+  for (std::size_t i = 0; i < off.size(); ++i) out[static_cast<std::size_t>(off[i])] = stray[i];
   return out;
 }
 
