@@ -58,7 +58,7 @@ using RadixCounts = std::array<std::size_t, kRadixBuckets>;
 template <class T>
 std::vector<std::pair<int, int>> radixPasses(const T* v, std::size_t n) {
   constexpr int K = RadixKeys<T>::kCount;
-  std::array<std::uint64_t, K> all{}, any{};  // per key: the AND and the OR of every element's
+  std::array<std::uint64_t, K> differ{};  // per key: the bits on which some two elements differ
   for (int k = 0; k < K; ++k) {
     std::uint64_t a = ~std::uint64_t(0), o = 0;
 #pragma omp parallel for reduction(& : a) reduction(| : o)
@@ -67,13 +67,12 @@ std::vector<std::pair<int, int>> radixPasses(const T* v, std::size_t n) {
       a &= key;
       o |= key;
     }
-    all[std::size_t(k)] = a;
-    any[std::size_t(k)] = o;
+    differ[std::size_t(k)] = a ^ o;
   }
   std::vector<std::pair<int, int>> passes;
   for (int k = K - 1; k >= 0; --k)
     for (int shift = 0; shift < 64; shift += kRadixBits)
-      if (((all[std::size_t(k)] ^ any[std::size_t(k)]) >> shift) & (kRadixBuckets - 1)) passes.emplace_back(k, shift);
+      if ((differ[std::size_t(k)] >> shift) & (kRadixBuckets - 1)) passes.emplace_back(k, shift);
   return passes;
 }
 
