@@ -49,7 +49,7 @@ bool overlap(const Box<3>& a, const Box<3>& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
 }
 
-bool decided(double w) { return w > kWindingInside || w < kWindingOutside; }
+bool decided(double w) { return w > kGuardInside || w < kGuardOutside; }
 
 // 1 for the vertices of the mesh's largest piece, else 0.
 std::vector<char> largestPieceVertices(const TriMesh& mesh) {
@@ -187,7 +187,7 @@ std::vector<double> meanWindings(const TriMesh& mesh, const std::vector<int>& pi
 
 // Leaves out the components other than the largest, of at most kPieceShare of the triangles,
 // whose vertices' mean winding number (over up to kPieceProbes of them) is above kPieceInside
-// or below kWindingOutside. Returns their bounding boxes. `windingOf()` gives the winding
+// or below kPieceOutside. Returns their bounding boxes. `windingOf()` gives the winding
 // number; it is called only when there is such a small piece (a mesh of two large true pieces
 // never builds it).
 template <class WindingOf>
@@ -206,7 +206,7 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
   for (int c = 0; c < pieces.count(); ++c)
     drop[static_cast<std::size_t>(c)] = drop[static_cast<std::size_t>(c)] &&
                                         (mean[static_cast<std::size_t>(c)] > kPieceInside ||
-                                         mean[static_cast<std::size_t>(c)] < kWindingOutside);
+                                         mean[static_cast<std::size_t>(c)] < kPieceOutside);
   const std::vector<Box<3>> boxes = componentBoxes(mesh, comp, pieces.count());
   dropComponents(mesh, comp, drop);
   std::vector<Box<3>> out;
@@ -217,7 +217,7 @@ std::vector<Box<3>> dropStrayPieces(TriMesh& mesh, WindingOf&& windingOf) {
 
 // Leaves out the pieces that could be tips the grid cut off a thin part (cut_tips.h; not the
 // pockets of a gap, whose winding number is above ½) whose mean winding number is at least
-// kWindingOutside (else dropStrayPieces did) and below kTipWinding.
+// kPieceOutside (else dropStrayPieces did) and below kTipWinding.
 // Returns how many. `windingOf()` gives the winding number; it is called only when there are
 // candidates.
 template <class WindingOf>
@@ -229,7 +229,7 @@ int dropWindingTips(TriMesh& mesh, WindingOf&& windingOf, double cellDiagonal) {
   const std::vector<double> mean = meanWindings(mesh, c.piece, drop, windingOf());
   for (std::size_t k = 0; k < c.pieces.size(); ++k) {
     const std::size_t p = static_cast<std::size_t>(c.pieces[k]);
-    drop[p] = !c.gap[k] && mean[p] >= kWindingOutside && mean[p] < kTipWinding;
+    drop[p] = !c.gap[k] && mean[p] >= kPieceOutside && mean[p] < kTipWinding;
   }
   return dropComponents(mesh, c.piece, drop);
 }
@@ -358,7 +358,7 @@ class StrayContour {
   bool overruledNear(const Vec<3>& p, const GridLines<3>& lines) {
     const auto disagree = [&](const ImplicitField<3>& field, const Vec<3>& c) {
       const double f = field.evaluate(c), w = winding()->at(c);
-      return (w > kGuardInside && f > 0) || (w < kWindingOutside && f < 0);
+      return (w > kGuardInside && f > 0) || (w < kGuardOutside && f < 0);
     };
     const ImplicitField<3>& contoured = grid_ ? *grid_ : *field_;
     const GridEdge e = gridEdgeOf(lines, p);

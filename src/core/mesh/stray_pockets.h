@@ -8,7 +8,7 @@
 // 0 outside, ½ only near the sampled surface. So each contour marching cubes makes is reviewed
 // before the anchors count its pieces:
 //  1. pieces other than the largest, of at most 5 % of the triangles, whose vertices' mean
-//     winding number is above kPieceInside (a void in the solid) or below kWindingOutside (a
+//     winding number is above kPieceInside (a void in the solid) or below kPieceOutside (a
 //     blob outside) are left out. A true piece of the surface has about ½ on it; the tip of a
 //     part thinner than a few spacings that the grid cut off has less (0.27–0.41 on the dino's
 //     claws), so the bound on that side is the stray's;
@@ -16,13 +16,13 @@
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)), or with none within 1.2 spacings and half a spacing or more off the
 //     tangent planes of the samples within 2.5 on average, or with none within 1.5 spacings,
-//     whose winding number is decided (above kWindingInside or below kWindingOutside) are
+//     whose winding number is decided (above kGuardInside or below kGuardOutside) are
 //     strays: a pocket joined to the surface. Only those outside the guard region so far count,
 //     with f on the other side of a decided winding number along their own grid edge or at a
 //     corner of the cell-sized cube about them (else a guard would change nothing).
 //  3. after the rounds below, pieces that could be tips a grid cut off a part thinner than a
 //     cell (cut_tips.h: small, within a cell diagonal of the largest) whose mean winding number
-//     is below kTipWinding (and not below kWindingOutside) are left out: a true surface has
+//     is below kTipWinding (and not below kPieceOutside) are left out: a true surface has
 //     about ½, the tip of a thin part less (the dino's claws 0.27–0.41, the Stanford dragon's
 //     fin tips 0.34–0.35). They count in MarchingReport::droppedTips.
 // Then, if the contour kept has strays, f's sign is overruled by the winding number within
@@ -51,6 +51,7 @@ inline constexpr double kGuardCells = 3.0;
 inline constexpr int kGuardRounds = 2;
 inline constexpr double kMaxStrayShare = 0.01;
 inline constexpr double kPieceInside = 0.6;
+inline constexpr double kPieceOutside = 0.15;
 inline constexpr double kTipWinding = 0.45;
 
 // Step 2's plane test for points put on the zero set after the review (chord refinement's new

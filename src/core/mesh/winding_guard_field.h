@@ -1,7 +1,7 @@
 #pragma once
 // A field whose sign the samples' winding number overrules inside a guard region (docs/maths.md,
 // "Stray pockets"). Inside the region, where w(x) is above kGuardInside (inside the sampled
-// surface) or below kWindingOutside (outside) and f has the other sign, f, ∇f and the Hessian
+// surface) or below kGuardOutside (outside) and f has the other sign, f, ∇f and the Hessian
 // change sign; elsewhere the field is the inner one. The region is a union of balls
 // around points where a contour strayed from the data; the Lipschitz bound is infinite over
 // boxes that meet it, so the marching cubes' octree evaluates f at every grid point there.
@@ -16,15 +16,13 @@
 
 namespace hermite {
 
-// A winding number above kWindingInside or below kWindingOutside is decided: a vertex there that
-// strayed from the samples is a stray (stray_pockets.h).
-inline constexpr double kWindingInside = 0.85;
-inline constexpr double kWindingOutside = 0.15;
-// Where a guard overrules f on the solid's side: lower than kWindingInside, so that a repaired
-// dent ends nearer the sampled surface than the level that confirms a stray (below randomly
-// placed samples w can stay under 0.85 more than a spacing deep; docs/maths.md, "Stray
-// pockets"), yet well above the ½ that w has on the surface.
+// A winding number above kGuardInside or below kGuardOutside is decided: a vertex there that
+// strayed from the samples is a stray (stray_pockets.h), and a guard overrules f there. Well off
+// the ½ that w has on the surface, yet near enough to it that a repaired dent or bulge ends
+// within about a spacing of the samples: below (above) randomly placed samples w can stay under
+// 0.85 (over 0.15) more than a spacing deep (docs/maths.md, "Stray pockets").
 inline constexpr double kGuardInside = 0.75;
+inline constexpr double kGuardOutside = 0.25;
 
 // A union of balls of one radius, with a hash of cells of that size for the tests.
 class GuardRegion {

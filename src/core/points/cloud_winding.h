@@ -17,7 +17,7 @@
 // radius R at distance d > 3R). Near a sampled surface that is within 0.03 of the direct sum
 // (CGAL's cheese, elephant and Stanford dragon at 200 000 samples, 3 000 points up to 3 spacings
 // off them; the first-order sum beyond 2R was off by up to 0.2, and put 15 % of the cheese's
-// points on the wrong side of the decided bounds 0.15 and 0.85).
+// points on the wrong side of 0.15 or 0.85).
 
 #include <vector>
 

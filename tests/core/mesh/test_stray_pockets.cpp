@@ -218,7 +218,7 @@ TEST_CASE("stray pockets: a small piece beside the surface with a thin part's wi
   REQUIRE(connectedComponentCount(plain) == 2);
   const HermiteSamples<3> samples = sphereAndFinSamples();
   const double w = beadWinding(plain, samples);
-  REQUIRE(w >= kWindingOutside);  // neither outside the samples' surface …
+  REQUIRE(w >= kPieceOutside);  // neither outside the samples' surface …
   REQUIRE(w < kTipWinding);       // … nor on it (½): a thin part's
   MarchingReport report;
   StrayReport stray;
@@ -341,8 +341,61 @@ TEST_CASE("stray pockets: a repaired dent ends within 0.4 spacings of the sample
   REQUIRE(maxOffSphere(plain) > 2 * spacing);
   StrayReport stray;
   const TriMesh mesh = contourWithoutStrays(f, kBox, grid(64), samples, nullptr, &stray, nullptr);
-  // Repaired up to kWindingInside instead of kGuardInside the floor stays 0.51 spacings deep.
+  // Repaired up to w = 0.85 instead of kGuardInside the floor stays 0.51 spacings deep.
   CHECK(maxOffSphere(mesh) < 0.4 * spacing);
   CHECK(stray.rounds >= 1);
   CHECK(checkMesh(mesh).closedManifold());
+}
+
+TEST_CASE("stray pockets: a repaired bulge ends within 0.4 spacings of the sampled surface") {
+  // A blob standing 2.5 sample spacings out of the sphere, on a grid of about a spacing: the
+  // guard cuts it down to where the samples' winding number passes kGuardOutside.
+  BallWithExtras f;
+  const HermiteSamples<3> samples = sphereSamples();
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const double r = 0.15;
+  f.blobs = {{Vec<3>(0, 0, 1 - r + 2.5 * spacing), r}};
+  const TriMesh plain = marchingCubes(f, kBox, grid(64));
+  REQUIRE(maxOffSphere(plain) > 2 * spacing);
+  StrayReport stray;
+  const TriMesh mesh = contourWithoutStrays(f, kBox, grid(64), samples, nullptr, &stray, nullptr);
+  // Cut down to w = 0.15 instead of kGuardOutside the top stays 0.53 spacings high.
+  CHECK(maxOffSphere(mesh) < 0.4 * spacing);
+  CHECK(stray.rounds >= 1);
+  CHECK(checkMesh(mesh).closedManifold());
+}
+
+TEST_CASE("stray pockets: beyond a hole in the sampling a winding number past the guard's level decides") {
+  // The sphere's samples without those within 2 spacings of the north pole. 1.35 spacings below
+  // the hole's centre the samples' winding number is about 0.8 (the missing disc takes about a
+  // fifth of the solid angle), 1.2 above about 0.21: beyond kGuardInside and kGuardOutside, short
+  // of 0.85 and 0.15, and the nearest sample is 2.4 spacings away (the plane test reaches 2.5):
+  // strays, whose side the samples still tell (levels of 0.85 and 0.15 would call none).
+  const HermiteSamples<3> all = sphereSamples();
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(all.size()));
+  std::vector<Eigen::Index> kept;
+  for (Eigen::Index i = 0; i < all.size(); ++i)
+    if (std::acos(std::clamp(all.points(2, i), -1.0, 1.0)) > 2 * spacing) kept.push_back(i);
+  HermiteSamples<3> samples;
+  samples.points = all.points(Eigen::all, kept);
+  samples.normals = all.normals(Eigen::all, kept);
+  const StrayTest stray(samples, kBox, 4 * M_PI);
+  // 40 points on a circle of 0.05 spacings about each place (80: more than the 64 the direct sum
+  // serves, so the samples' winding number decides), and one on the sampled surface.
+  Points<3> X(3, 81);
+  for (int i = 0; i < 40; ++i) {
+    const Vec<3> around(0.05 * spacing * std::cos(0.157 * i), 0.05 * spacing * std::sin(0.157 * i), 0);
+    X.col(i) = around + Vec<3>(0, 0, 1 - 1.35 * spacing);
+    X.col(40 + i) = around + Vec<3>(0, 0, 1 + 1.2 * spacing);
+  }
+  X.col(80) = Vec<3>(0, 0, -1);
+  const std::vector<double> w = stray.winding()->at(X);
+  const auto [inLo, inHi] = std::minmax_element(w.begin(), w.begin() + 40);
+  const auto [outLo, outHi] = std::minmax_element(w.begin() + 40, w.begin() + 80);
+  REQUIRE((*inLo > kGuardInside && *inHi < 0.85));
+  REQUIRE((*outHi < kGuardOutside && *outLo > 0.15));
+  const std::vector<char> s = stray(X);
+  CHECK(std::count(s.begin(), s.begin() + 40, 1) == 40);
+  CHECK(std::count(s.begin() + 40, s.begin() + 80, 1) == 40);
+  CHECK(s[80] == 0);
 }
