@@ -28,7 +28,7 @@ constexpr int kPieceProbes = 64;         // vertices of a piece whose winding nu
 // A vertex with no sample within kNearFar spacings whose samples within kPlaneReach spacings
 // put it kPlaneFar spacings off their tangent planes on average is far too (offTheirPlanes;
 // how many pass each test: docs/maths.md, Stray pockets).
-constexpr double kNearFar = 1.2;
+constexpr double kNearFar = 1.0;
 constexpr double kPlaneReach = 2.5;
 constexpr double kPlaneFar = 0.5;
 // With no sample within kAloneFar spacings a vertex is far whatever the planes: beyond the tip of

@@ -399,3 +399,21 @@ TEST_CASE("stray pockets: beyond a hole in the sampling a winding number past th
   CHECK(std::count(s.begin() + 40, s.begin() + 80, 1) == 40);
   CHECK(s[80] == 0);
 }
+
+TEST_CASE("stray pockets: a bulge a spacing high over a sample is a stray") {
+  // 1.1 spacings straight over a sample of the sphere its nearest sample is that one (the next
+  // are about 1.5 away), the samples' planes put it about a spacing off, and the winding number
+  // is near 0; 0.9 spacings over one it is within the samples' reach.
+  const HermiteSamples<3> samples = sphereSamples();
+  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const StrayTest stray(samples, kBox, 4 * M_PI);
+  Points<3> X(3, 40);
+  for (int i = 0; i < 20; ++i) {
+    const Vec<3> p = samples.points.col(150 * i + 75);
+    X.col(i) = p + 1.1 * spacing * p.normalized();
+    X.col(20 + i) = p + 0.9 * spacing * p.normalized();
+  }
+  const std::vector<char> s = stray(X);
+  CHECK(std::count(s.begin(), s.begin() + 20, 1) == 20);
+  CHECK(std::count(s.begin() + 20, s.end(), 1) == 0);
+}
