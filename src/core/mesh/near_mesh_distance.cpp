@@ -7,6 +7,8 @@
 #include <limits>
 #include <utility>
 
+#include <omp.h>
+
 #include "core/base/radix_sort.h"
 #include "core/mesh/triangle_distance.h"
 
@@ -28,23 +30,19 @@ class TriangleBuckets {
     cube_ = std::max(reach, region.extent().maxCoeff() / kRegionCells);
     if (!(cube_ > 0)) cube_ = 1;  // one point and no reach: any cube holds it
     for (int k = 0; k < 3; ++k) n_[k] = static_cast<int>(std::floor(region.extent()[k] / cube_)) + 1;
-    for (int t = 0; t < mesh.triangleCount(); ++t) {
-      Vec<3> lo = mesh.vertices.col(mesh.triangles(0, t)), hi = lo;
-      for (int c = 1; c < 3; ++c) {
-        lo = lo.cwiseMin(mesh.vertices.col(mesh.triangles(c, t)));
-        hi = hi.cwiseMax(mesh.vertices.col(mesh.triangles(c, t)));
-      }
-      lo = (lo.array() - reach).matrix().cwiseMax(region.lo);
-      hi = (hi.array() + reach).matrix().cwiseMin(region.hi);
-      if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) continue;  // beyond reach
-      const std::array<int, 3> a = cubeOf(lo), b = cubeOf(hi);
-      if (std::int64_t(b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1) > kMaxCubes) {
-        large_.push_back(t);
-        continue;
-      }
-      for (int z = a[2]; z <= b[2]; ++z)
-        for (int y = a[1]; y <= b[1]; ++y)
-          for (int x = a[0]; x <= b[0]; ++x) byCube_.emplace_back(key({x, y, z}), t);
+    // Each thread buckets a contiguous range of triangles; joined in thread order, the lists are
+    // those of one pass over the triangles.
+    std::vector<Lists> parts(static_cast<std::size_t>(omp_get_max_threads()));
+    const int m = mesh.triangleCount();
+#pragma omp parallel
+    {
+      Lists& mine = parts[static_cast<std::size_t>(omp_get_thread_num())];
+#pragma omp for schedule(static)
+      for (int t = 0; t < m; ++t) bucket(mesh, t, region, reach, mine);
+    }
+    for (const Lists& part : parts) {
+      byCube_.insert(byCube_.end(), part.byCube.begin(), part.byCube.end());
+      large_.insert(large_.end(), part.large.begin(), part.large.end());
     }
     radixSort(byCube_);  // (key, triangle) pairs are distinct: any sort gives this order
   }
@@ -60,6 +58,32 @@ class TriangleBuckets {
   }
 
  private:
+  struct Lists {
+    std::vector<std::pair<std::int64_t, int>> byCube;
+    std::vector<int> large;
+  };
+
+  // Lists triangle t in the cubes its bounding box, grown by `reach` and clipped to the region,
+  // touches, or apart when they are more than kMaxCubes.
+  void bucket(const TriMesh& mesh, int t, const Box<3>& region, double reach, Lists& out) const {
+    Vec<3> lo = mesh.vertices.col(mesh.triangles(0, t)), hi = lo;
+    for (int c = 1; c < 3; ++c) {
+      lo = lo.cwiseMin(mesh.vertices.col(mesh.triangles(c, t)));
+      hi = hi.cwiseMax(mesh.vertices.col(mesh.triangles(c, t)));
+    }
+    lo = (lo.array() - reach).matrix().cwiseMax(region.lo);
+    hi = (hi.array() + reach).matrix().cwiseMin(region.hi);
+    if (!lo.allFinite() || !hi.allFinite() || (lo.array() > hi.array()).any()) return;  // beyond reach
+    const std::array<int, 3> a = cubeOf(lo), b = cubeOf(hi);
+    if (std::int64_t(b[0] - a[0] + 1) * (b[1] - a[1] + 1) * (b[2] - a[2] + 1) > kMaxCubes) {
+      out.large.push_back(t);
+      return;
+    }
+    for (int z = a[2]; z <= b[2]; ++z)
+      for (int y = a[1]; y <= b[1]; ++y)
+        for (int x = a[0]; x <= b[0]; ++x) out.byCube.emplace_back(key({x, y, z}), t);
+  }
+
   std::array<int, 3> cubeOf(const Vec<3>& p) const {
     std::array<int, 3> c;
     for (int k = 0; k < 3; ++k)
@@ -91,7 +115,9 @@ std::vector<double> distancesToMeshWithin(const TriMesh& mesh, const Points<3>& 
   if (!(region.lo.array() <= region.hi.array()).all() || mesh.triangleCount() == 0) return out;
   const TriangleBuckets buckets(mesh, region, reach);
   const auto vertex = [&](int t, int k) -> Vec<3> { return mesh.vertices.col(mesh.triangles(k, t)); };
-  for (Eigen::Index i = 0; i < points.cols(); ++i) {
+  const Eigen::Index n = points.cols();
+#pragma omp parallel for schedule(dynamic, 1024)
+  for (Eigen::Index i = 0; i < n; ++i) {
     const Vec<3> p = points.col(i);
     if (!p.allFinite()) continue;
     double& best = out[static_cast<std::size_t>(i)];
