@@ -79,20 +79,26 @@ double roughWinding(const HermiteSamples<3>& samples, double spacing, const Vec<
 // average kPlaneFar spacings or more off the tangent planes of the samples within kPlaneReach
 // spacings: a surface that strayed between the samples (a cap past the tip of a thin fin, a dent
 // into the solid), not one passing between them, which stays within a fraction of a spacing of
-// their planes.
+// their planes. Or, on average outside the planes, kPlaneFar or more outside one of them: beside
+// a convex edge the other face's samples put a bulge behind their planes, and the mean hides it
+// (docs/maths.md, Stray pockets). Not the mirror inside: behind one plane is where the internal
+// sheets of a self-intersecting surface put their vertices.
 bool offTheirPlanes(const HermiteSamples<3>& samples, const OccupiedCells& bySpacing, double spacing, const Vec<3>& x,
                     std::vector<int>& near) {
   bySpacing.samplesWithin(x, kNearFar * spacing, near, 1);
   if (!near.empty()) return false;
   bySpacing.samplesWithin(x, kPlaneReach * spacing, near);
   if (near.empty()) return false;  // no plane to measure against: left to the occupancy test
-  double sum = 0, nearest2 = std::numeric_limits<double>::infinity();
+  double sum = 0, most = -std::numeric_limits<double>::infinity(), nearest2 = std::numeric_limits<double>::infinity();
   for (int i : near) {
-    sum += samples.normals.col(i).dot(x - samples.points.col(i));
+    const double offset = samples.normals.col(i).dot(x - samples.points.col(i));
+    sum += offset;
+    most = std::max(most, offset);
     nearest2 = std::min(nearest2, (x - samples.points.col(i)).squaredNorm());
   }
   const double meanOffset = std::abs(sum / static_cast<double>(near.size()));
-  return nearest2 >= kAloneFar * kAloneFar * spacing * spacing || meanOffset >= kPlaneFar * spacing;
+  const bool outsideOne = sum > 0 && most >= kPlaneFar * spacing;
+  return nearest2 >= kAloneFar * kAloneFar * spacing * spacing || meanOffset >= kPlaneFar * spacing || outsideOne;
 }
 
 // The columns of X that are off their samples' planes (offTheirPlanes, in parallel) and whose
@@ -130,7 +136,8 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
 }
 
 // Per entry of `which`, whether the winding number at that column of X is decided.
-std::vector<char> decidedAt(const CloudWinding<3>& winding, const Points<3>& X, const std::vector<Eigen::Index>& which) {
+std::vector<char> decidedAt(const CloudWinding<3>& winding, const Points<3>& X,
+                            const std::vector<Eigen::Index>& which) {
   const std::vector<double> w = winding.at(Points<3>(X(Eigen::all, which)));
   std::vector<char> out(w.size());
   for (std::size_t i = 0; i < w.size(); ++i) out[i] = decided(w[i]);

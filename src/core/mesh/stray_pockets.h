@@ -15,7 +15,8 @@
 //  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)), or with none within 1.0 spacing and half a spacing or more off the
-//     tangent planes of the samples within 2.5 on average, or with none within 1.5 spacings,
+//     tangent planes of the samples within 2.5 on average (or, on average outside them, half a
+//     spacing outside one), or with none within 1.5 spacings,
 //     whose winding number is decided (above kGuardInside or below kGuardOutside) are
 //     strays: a pocket joined to the surface. Only those outside the guard region so far count,
 //     with f on the other side of a decided winding number along their own grid edge or at a
@@ -57,7 +58,8 @@ inline constexpr double kTipWinding = 0.45;
 // Step 2's plane test for points put on the zero set after the review (chord refinement's new
 // vertices, between the grid's): x is a stray when no sample lies within 1.0 spacing √(A / N) of
 // it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
-// tangent planes on average or none lies within 1.5, and the samples' winding number at x is
+// tangent planes on average (or, on average outside them, half a spacing outside one) or none
+// lies within 1.5, and the samples' winding number at x is
 // decided — summed directly, every sample standing for A / N, for up to 64 such points; the
 // samples' winding number when there are more. Only for a field and samples contourWithoutStrays
 // reviews (appliesTo).

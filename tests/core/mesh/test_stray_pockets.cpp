@@ -417,3 +417,43 @@ TEST_CASE("stray pockets: a bulge a spacing high over a sample is a stray") {
   CHECK(std::count(s.begin(), s.begin() + 20, 1) == 20);
   CHECK(std::count(s.begin() + 20, s.end(), 1) == 0);
 }
+
+TEST_CASE("stray pockets: a bulge beside a convex edge is a stray though the mean plane hides it") {
+  // The quarter space x ≤ 0, z ≤ 0 sampled on a square grid of spacing h: its top face (normal +z)
+  // and its side face (normal +x) meet in a right-angled edge along y. A point 0.75 h over the top
+  // face's plane and 1 h behind the side face's, over the middle of a grid cell: 1.03 h from the
+  // nearest sample; the top's samples put it 0.75 h out, the side's 1 h in, on average under
+  // half a spacing out.
+  const double h = 0.01;
+  const int rows = 40;
+  HermiteSamples<3> samples;
+  samples.points.resize(3, 2 * rows * rows);
+  samples.normals.resize(3, 2 * rows * rows);
+  int k = 0;
+  for (int i = 0; i < rows; ++i)
+    for (int j = 0; j < rows; ++j) {
+      const double a = -(i + 0.5) * h, y = (j - rows / 2) * h;
+      samples.points.col(k) = Vec<3>(a, y, 0);
+      samples.normals.col(k++) = Vec<3>(0, 0, 1);
+      samples.points.col(k) = Vec<3>(0, y, a);
+      samples.normals.col(k++) = Vec<3>(1, 0, 0);
+    }
+  const Box<3> box{Vec<3>(-0.5, -0.3, -0.5), Vec<3>(0.1, 0.3, 0.1)};
+  const StrayTest stray(samples, box, 2 * (rows * h) * (rows * h));
+  Points<3> X(3, 2);
+  X.col(0) = Vec<3>(-h, 0.5 * h, 0.75 * h);
+  X.col(1) = Vec<3>(-h, 0.5 * h, 0);  // on the top face
+  double sum = 0;
+  int near = 0;
+  for (Eigen::Index i = 0; i < samples.size(); ++i)
+    if ((samples.points.col(i) - X.col(0)).norm() <= 2.5 * h) {
+      sum += samples.normals.col(i).dot(X.col(0) - samples.points.col(i));
+      ++near;
+    }
+  REQUIRE(near > 0);
+  REQUIRE(sum / near < 0.5 * h);  // the mean alone would not call it far
+  REQUIRE(stray.winding()->at(Vec<3>(X.col(0))) < kGuardOutside);
+  const std::vector<char> s = stray(X);
+  CHECK(s[0] == 1);
+  CHECK(s[1] == 0);
+}
