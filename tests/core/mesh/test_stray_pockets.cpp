@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "core/mesh/occupied_cells.h"
@@ -89,6 +90,23 @@ HermiteSamples<3> withSamples(HermiteSamples<3> samples, const Points<3>& points
   samples.normals.conservativeResize(3, n + points.cols());
   samples.points.rightCols(points.cols()) = points;
   samples.normals.rightCols(points.cols()) = normals;
+  return samples;
+}
+
+// Two sheets of rows × rows samples each on a square grid of spacing h, interleaved: place(a, y,
+// sheet) gives the sample and its normal at grid coordinates a = −(i + ½) h, y = (j − rows/2) h.
+template <class Place>
+HermiteSamples<3> twoSampledSheets(double h, int rows, Place&& place) {
+  HermiteSamples<3> samples;
+  samples.points.resize(3, 2 * rows * rows);
+  samples.normals.resize(3, 2 * rows * rows);
+  for (int i = 0, k = 0; i < rows; ++i)
+    for (int j = 0; j < rows; ++j)
+      for (int sheet = 0; sheet < 2; ++sheet, ++k) {
+        const auto [point, normal] = place(-(i + 0.5) * h, (j - rows / 2) * h, sheet);
+        samples.points.col(k) = point;
+        samples.normals.col(k) = normal;
+      }
   return samples;
 }
 
@@ -308,15 +326,10 @@ TEST_CASE("stray pockets: a cap beyond the tip of a part thinner than the sampli
   // of both sides put a point 0.1 h behind their planes on average, so only its distance tells.
   const double h = 0.01;
   const int rows = 40;
-  HermiteSamples<3> samples;
-  samples.points.resize(3, 2 * rows * rows);
-  samples.normals.resize(3, 2 * rows * rows);
-  for (int i = 0, k = 0; i < rows; ++i)
-    for (int j = 0; j < rows; ++j)
-      for (const double side : {1.0, -1.0}) {
-        samples.points.col(k) = Vec<3>(-(i + 0.5) * h, (j - rows / 2) * h, 0.1 * h * side);
-        samples.normals.col(k++) = Vec<3>(0, 0, side);
-      }
+  const HermiteSamples<3> samples = twoSampledSheets(h, rows, [&](double a, double y, int sheet) {
+    const double side = sheet == 0 ? 1.0 : -1.0;
+    return std::pair{Vec<3>(a, y, 0.1 * h * side), Vec<3>(0, 0, side)};
+  });
   const Box<3> box{Vec<3>(-0.5, -0.3, -0.1), Vec<3>(0.1, 0.3, 0.1)};
   const StrayTest stray(samples, box, 2 * (rows * h) * (rows * h));
   Points<3> X(3, 3);
@@ -329,40 +342,43 @@ TEST_CASE("stray pockets: a cap beyond the tip of a part thinner than the sampli
   CHECK(s[2] == 0);
 }
 
-TEST_CASE("stray pockets: a repaired dent ends within 0.4 spacings of the sampled surface") {
-  // A crater 2.5 sample spacings deep (spacing √(4π/N) ≈ 0.046) on a grid of about a spacing:
-  // the guard fills it up to where the samples' winding number passes kGuardInside.
-  BallWithExtras f;
-  const HermiteSamples<3> samples = sphereSamples();
-  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
-  const double r = 0.3;
-  f.voids = {{Vec<3>(0, 0, 1 + r - 2.5 * spacing), r}};
+// The sphere's samples' spacing √(4π/N) (about 0.046).
+double sphereSpacing(const HermiteSamples<3>& samples) {
+  return std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+}
+
+// Contours f — the sphere with a pocket 2.5 sample spacings deep or high — on a grid of about a
+// spacing, with the stray review: the pocket must end within 0.4 spacings of the sampled sphere,
+// in a closed mesh, after at least one guard round.
+void checkPocketRepaired(const BallWithExtras& f, const HermiteSamples<3>& samples) {
+  const double spacing = sphereSpacing(samples);
   const TriMesh plain = marchingCubes(f, kBox, grid(64));
   REQUIRE(maxOffSphere(plain) > 2 * spacing);
   StrayReport stray;
   const TriMesh mesh = contourWithoutStrays(f, kBox, grid(64), samples, nullptr, &stray, nullptr);
-  // Repaired up to w = 0.85 instead of kGuardInside the floor stays 0.51 spacings deep.
   CHECK(maxOffSphere(mesh) < 0.4 * spacing);
   CHECK(stray.rounds >= 1);
   CHECK(checkMesh(mesh).closedManifold());
 }
 
-TEST_CASE("stray pockets: a repaired bulge ends within 0.4 spacings of the sampled surface") {
-  // A blob standing 2.5 sample spacings out of the sphere, on a grid of about a spacing: the
-  // guard cuts it down to where the samples' winding number passes kGuardOutside.
-  BallWithExtras f;
+TEST_CASE("stray pockets: a repaired dent ends within 0.4 spacings of the sampled surface") {
+  // A crater: the guard fills it up to where the samples' winding number passes kGuardInside.
+  // Filled up to w = 0.85 instead, the floor stays 0.51 spacings deep.
   const HermiteSamples<3> samples = sphereSamples();
-  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const double r = 0.3;
+  BallWithExtras f;
+  f.voids = {{Vec<3>(0, 0, 1 + r - 2.5 * sphereSpacing(samples)), r}};
+  checkPocketRepaired(f, samples);
+}
+
+TEST_CASE("stray pockets: a repaired bulge ends within 0.4 spacings of the sampled surface") {
+  // A blob standing out of the sphere: the guard cuts it down to where the samples' winding
+  // number passes kGuardOutside. Cut down to w = 0.15 instead, the top stays 0.53 spacings high.
+  const HermiteSamples<3> samples = sphereSamples();
   const double r = 0.15;
-  f.blobs = {{Vec<3>(0, 0, 1 - r + 2.5 * spacing), r}};
-  const TriMesh plain = marchingCubes(f, kBox, grid(64));
-  REQUIRE(maxOffSphere(plain) > 2 * spacing);
-  StrayReport stray;
-  const TriMesh mesh = contourWithoutStrays(f, kBox, grid(64), samples, nullptr, &stray, nullptr);
-  // Cut down to w = 0.15 instead of kGuardOutside the top stays 0.53 spacings high.
-  CHECK(maxOffSphere(mesh) < 0.4 * spacing);
-  CHECK(stray.rounds >= 1);
-  CHECK(checkMesh(mesh).closedManifold());
+  BallWithExtras f;
+  f.blobs = {{Vec<3>(0, 0, 1 - r + 2.5 * sphereSpacing(samples)), r}};
+  checkPocketRepaired(f, samples);
 }
 
 TEST_CASE("stray pockets: beyond a hole in the sampling a winding number past the guard's level decides") {
@@ -426,18 +442,9 @@ TEST_CASE("stray pockets: a bulge beside a convex edge is a stray though the mea
   // half a spacing out.
   const double h = 0.01;
   const int rows = 40;
-  HermiteSamples<3> samples;
-  samples.points.resize(3, 2 * rows * rows);
-  samples.normals.resize(3, 2 * rows * rows);
-  int k = 0;
-  for (int i = 0; i < rows; ++i)
-    for (int j = 0; j < rows; ++j) {
-      const double a = -(i + 0.5) * h, y = (j - rows / 2) * h;
-      samples.points.col(k) = Vec<3>(a, y, 0);
-      samples.normals.col(k++) = Vec<3>(0, 0, 1);
-      samples.points.col(k) = Vec<3>(0, y, a);
-      samples.normals.col(k++) = Vec<3>(1, 0, 0);
-    }
+  const HermiteSamples<3> samples = twoSampledSheets(h, rows, [](double a, double y, int sheet) {
+    return sheet == 0 ? std::pair{Vec<3>(a, y, 0), Vec<3>(0, 0, 1)} : std::pair{Vec<3>(0, y, a), Vec<3>(1, 0, 0)};
+  });
   const Box<3> box{Vec<3>(-0.5, -0.3, -0.5), Vec<3>(0.1, 0.3, 0.1)};
   const StrayTest stray(samples, box, 2 * (rows * h) * (rows * h));
   Points<3> X(3, 2);
