@@ -11,14 +11,13 @@
 //     winding number is above kPieceInside (a void in the solid) or below kPieceOutside (a
 //     blob outside) are left out. A true piece of the surface has about ½ on it; the tip of a
 //     part thinner than a few spacings that the grid cut off has less (0.27–0.41 on the dino's
-//     claws), so the bound on that side is the stray's;
+//     claws), so the bound on that side stays well under the guard's kGuardOutside;
 //  2. vertices of the largest piece with no sample in the 3 × 3 × 3 cells around their own
 //     (occupied_cells.h; cells half the contour grid's, but never wider than 1.3 sample
 //     spacings √(A / N)), or with none within 1.0 spacing and half a spacing or more off the
 //     tangent planes of the samples within 2.5 on average (or, on average outside them, half a
-//     spacing outside one), or with none within 1.5 spacings,
-//     whose winding number is decided (above kGuardInside or below kGuardOutside) are
-//     strays: a pocket joined to the surface. Only those outside the guard region so far count,
+//     spacing outside one), or with none within 1.5 spacings, whose winding number is decided
+//     (above kGuardInside or below kGuardOutside) are strays: a pocket joined to the surface. Only those outside the guard region so far count,
 //     with f on the other side of a decided winding number along their own grid edge or at a
 //     corner of the cell-sized cube about them (else a guard would change nothing).
 //  3. after the rounds below, pieces that could be tips a grid cut off a part thinner than a
@@ -59,9 +58,9 @@ inline constexpr double kTipWinding = 0.45;
 // vertices, between the grid's): x is a stray when no sample lies within 1.0 spacing √(A / N) of
 // it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
 // tangent planes on average (or, on average outside them, half a spacing outside one) or none
-// lies within 1.5, and the samples' winding number at x is
-// decided — summed directly, every sample standing for A / N, for up to 64 such points; the
-// samples' winding number when there are more. Only for a field and samples contourWithoutStrays
+// lies within 1.5, and the samples' winding number at x is decided — summed directly, every
+// sample standing for A / N, for up to 64 such points; the samples' winding number when there
+// are more. Only for a field and samples contourWithoutStrays
 // reviews (appliesTo).
 class StrayTest {
  public:
