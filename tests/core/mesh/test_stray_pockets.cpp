@@ -65,6 +65,11 @@ class BallWithExtras : public ImplicitField<3> {
 
 HermiteSamples<3> sphereSamples() { return makePreset3d("sphere", 6000); }
 
+// The sphere's samples' spacing √(4π/N) (about 0.046 for sphereSamples()).
+double sphereSpacing(const HermiteSamples<3>& samples) {
+  return std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+}
+
 MarchingOptions grid(int resolution) {
   MarchingOptions o;
   o.resolution = resolution;
@@ -237,7 +242,7 @@ TEST_CASE("stray pockets: a small piece beside the surface with a thin part's wi
   const HermiteSamples<3> samples = sphereAndFinSamples();
   const double w = beadWinding(plain, samples);
   REQUIRE(w >= kPieceOutside);  // neither outside the samples' surface …
-  REQUIRE(w < kTipWinding);       // … nor on it (½): a thin part's
+  REQUIRE(w < kTipWinding);     // … nor on it (½): a thin part's
   MarchingReport report;
   StrayReport stray;
   const TriMesh mesh = contourWithoutStrays(f, kBox, grid(48), samples, &report, &stray, nullptr);
@@ -276,7 +281,7 @@ TEST_CASE("stray pockets: a dent nearer the samples than the occupancy test sees
   const HermiteSamples<3> samples = sphereSamples();
   const TriMesh plain = marchingCubes(f, kBox, grid(24));
   REQUIRE(maxOffSphere(plain) > 0.06);
-  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const double spacing = sphereSpacing(samples);
   const OccupiedCells occupied(samples.points, kBox.lo, std::min(0.5 * 3.2 / 24, 1.3 * spacing));
   REQUIRE_FALSE(occupied.farFromSamples(Vec<3>(0, 0, 0.93)));
   StrayReport stray;
@@ -291,7 +296,7 @@ TEST_CASE("stray pockets: a dent nearer the samples than the occupancy test sees
 TEST_CASE("stray pockets: the plane test for vertices added after the review") {
   // 6000 samples of the unit sphere: spacing √(4π / 6000) ≈ 0.046.
   const HermiteSamples<3> samples = sphereSamples();
-  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const double spacing = sphereSpacing(samples);
   const StrayTest stray(samples, kBox, 4 * M_PI);
   BallWithExtras ball;
   CHECK(StrayTest::appliesTo(ball, samples));
@@ -342,11 +347,6 @@ TEST_CASE("stray pockets: a cap beyond the tip of a part thinner than the sampli
   CHECK(s[2] == 0);
 }
 
-// The sphere's samples' spacing √(4π/N) (about 0.046).
-double sphereSpacing(const HermiteSamples<3>& samples) {
-  return std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
-}
-
 // Contours f — the sphere with a pocket 2.5 sample spacings deep or high — on a grid of about a
 // spacing, with the stray review: the pocket must end within 0.4 spacings of the sampled sphere,
 // in a closed mesh, after at least one guard round.
@@ -388,7 +388,7 @@ TEST_CASE("stray pockets: beyond a hole in the sampling a winding number past th
   // of 0.85 and 0.15, and the nearest sample is 2.4 spacings away (the plane test reaches 2.5):
   // strays, whose side the samples still tell (levels of 0.85 and 0.15 would call none).
   const HermiteSamples<3> all = sphereSamples();
-  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(all.size()));
+  const double spacing = sphereSpacing(all);
   std::vector<Eigen::Index> kept;
   for (Eigen::Index i = 0; i < all.size(); ++i)
     if (std::acos(std::clamp(all.points(2, i), -1.0, 1.0)) > 2 * spacing) kept.push_back(i);
@@ -421,7 +421,7 @@ TEST_CASE("stray pockets: a bulge a spacing high over a sample is a stray") {
   // are about 1.5 away), the samples' planes put it about a spacing off, and the winding number
   // is near 0; 0.9 spacings over one it is within the samples' reach.
   const HermiteSamples<3> samples = sphereSamples();
-  const double spacing = std::sqrt(4 * M_PI / static_cast<double>(samples.size()));
+  const double spacing = sphereSpacing(samples);
   const StrayTest stray(samples, kBox, 4 * M_PI);
   Points<3> X(3, 40);
   for (int i = 0; i < 20; ++i) {
