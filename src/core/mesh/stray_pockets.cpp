@@ -49,8 +49,6 @@ bool overlap(const Box<3>& a, const Box<3>& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
 }
 
-bool decided(double w) { return w > kGuardInside || w < kGuardOutside; }
-
 // 1 for the vertices of the mesh's largest piece, else 0.
 std::vector<char> largestPieceVertices(const TriMesh& mesh) {
   const MeshPieces pieces(mesh);
@@ -126,7 +124,7 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
 #pragma omp parallel for schedule(dynamic, 1)
   for (int i = 0; i < count; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    keep[k] = decided(roughWinding(samples, spacing, X.col(out[k])));
+    keep[k] = windingDecided(roughWinding(samples, spacing, X.col(out[k])));
   }
   std::size_t kept = 0;
   for (std::size_t i = 0; i < out.size(); ++i)
@@ -140,7 +138,7 @@ std::vector<char> decidedAt(const CloudWinding<3>& winding, const Points<3>& X,
                             const std::vector<Eigen::Index>& which) {
   const std::vector<double> w = winding.at(Points<3>(X(Eigen::all, which)));
   std::vector<char> out(w.size());
-  for (std::size_t i = 0; i < w.size(); ++i) out[i] = decided(w[i]);
+  for (std::size_t i = 0; i < w.size(); ++i) out[i] = windingDecided(w[i]);
   return out;
 }
 
@@ -364,8 +362,7 @@ class StrayContour {
   // in the solid is positive.
   bool overruledNear(const Vec<3>& p, const GridLines<3>& lines) {
     const auto disagree = [&](const ImplicitField<3>& field, const Vec<3>& c) {
-      const double f = field.evaluate(c), w = winding()->at(c);
-      return (w > kGuardInside && f > 0) || (w < kGuardOutside && f < 0);
+      return windingOverrules(winding()->at(c), field.evaluate(c));
     };
     const ImplicitField<3>& contoured = grid_ ? *grid_ : *field_;
     const GridEdge e = gridEdgeOf(lines, p);

@@ -17,9 +17,10 @@
 //     spacings √(A / N)), or with none within 1.0 spacing and half a spacing or more off the
 //     tangent planes of the samples within 2.5 on average (or, on average outside them, half a
 //     spacing outside one), or with none within 1.5 spacings, whose winding number is decided
-//     (above kGuardInside or below kGuardOutside) are strays: a pocket joined to the surface. Only those outside the guard region so far count,
-//     with f on the other side of a decided winding number along their own grid edge or at a
-//     corner of the cell-sized cube about them (else a guard would change nothing).
+//     (above kGuardInside or below kGuardOutside) are strays: a pocket joined to the surface.
+//     Only those outside the guard region so far count, with f on the other side of a decided
+//     winding number along their own grid edge or at a corner of the cell-sized cube about them
+//     (else a guard would change nothing).
 //  3. after the rounds below, pieces that could be tips a grid cut off a part thinner than a
 //     cell (cut_tips.h: small, within a cell diagonal of the largest) whose mean winding number
 //     is below kTipWinding (and not below kPieceOutside) are left out: a true surface has
@@ -61,8 +62,7 @@ inline constexpr double kTipWinding = 0.45;
 // tangent planes on average (or, on average outside them, half a spacing outside one) or none
 // lies within 1.5, and the samples' winding number at x is decided — summed directly, every
 // sample standing for A / N, for up to 64 such points; the samples' winding number when there
-// are more. Only for a field and samples contourWithoutStrays
-// reviews (appliesTo).
+// are more. Only for a field and samples contourWithoutStrays reviews (appliesTo).
 class StrayTest {
  public:
   // `samples` must outlive the test; `box` is the contour's; `cancel` is polled while the winding

@@ -70,7 +70,7 @@ WindingGuardField::WindingGuardField(const ImplicitField<3>& inner, std::shared_
 bool WindingGuardField::overrules(const Vec<3>& x, double f) const {
   if (f == 0 || !region_.contains(x)) return false;
   const double w = winding_->at(x);
-  return (w > kGuardInside && f > 0) || (w < kGuardOutside && f < 0);
+  return windingOverrules(w, f);
 }
 
 double WindingGuardField::evaluate(const Vec<3>& x, Vec<3>* g, Mat<3>* H) const {

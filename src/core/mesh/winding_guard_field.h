@@ -24,6 +24,11 @@ namespace hermite {
 inline constexpr double kGuardInside = 0.75;
 inline constexpr double kGuardOutside = 0.25;
 
+inline bool windingDecided(double w) { return w > kGuardInside || w < kGuardOutside; }
+// Whether f's sign disagrees with a decided w (f > 0 where w says inside, f < 0 where it says
+// outside): where a guard overrules f.
+inline bool windingOverrules(double w, double f) { return (w > kGuardInside && f > 0) || (w < kGuardOutside && f < 0); }
+
 // A union of balls of one radius, with a hash of cells of that size for the tests.
 class GuardRegion {
  public:
