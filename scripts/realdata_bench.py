@@ -16,7 +16,7 @@ with open3d's screened Poisson at depth 8 on the same oriented points, and repor
 Usage:
   scripts/realdata_bench.py [--lab build/release/hermite-lab] [--points 200000] [--resolution 256]
                             [--chord-tolerance F] [--meshes armadillo,elephant,bunny00,fandisk] [--threads N]
-                            [--set KEY=VALUE ...]
+                            [--seed S | --seeds S1,S2,...] [--set KEY=VALUE ...]
                             [--no-poisson] [--json OUT]
 --chord-tolerance passes `mesh --chord-tolerance F` (docs/cli.md; 0 turns it off); without it the
 command's default applies (0.02 cells since issue 17's timing work). --set KEY=VALUE overrides a key
@@ -26,6 +26,9 @@ it as data.tar.gz) unless a path is given. Needs python3 with numpy and open3d (
 python3-open3d); never a dependency of the product or its tests. A method that fails gets a
 "failed: why" row (and a "failed" key in the JSON); the others go on, and the script exits 1
 at the end, listing the failures.
+With Poisson, a tally follows the table: per criterion (time, mean, p99, worst vertex, compared to
+the printed digits) on how many (mesh, seed) pairs ours is no larger, naming the pairs where it is;
+--seeds samples every mesh once per seed, so one run measures how often that holds.
 """
 import argparse
 import json
@@ -153,6 +156,70 @@ def run_poisson(pcd, depth):
     return recon, elapsed, {}
 
 
+def bench_mesh(name, seed, args, rows, failures):
+    """Rows (appended to `rows`) for one mesh sampled with `seed`: ours, then Poisson."""
+    path, truth = load_truth(name)
+    lo, hi = truth.get_min_bound(), truth.get_max_bound()
+    diagonal = float(np.linalg.norm(hi - lo))
+    pcd = sample_oriented(truth, args.points, seed)
+    truth_euler = topology(truth)[2]
+    with tempfile.TemporaryDirectory() as work:
+        methods = [("hermite-lab PU", lambda: run_lab(args.lab, pcd, args.resolution, args.threads, work,
+                                                            args.chord_tolerance, args.set))]
+        if not args.no_poisson:
+            methods.append(("poisson depth 8", lambda: run_poisson(pcd, 8)))
+        for label, run in methods:
+            try:
+                recon, elapsed, extra = run()
+            except MethodFailed as e:
+                failures.append(f"{os.path.basename(path)}, seed {seed}, {label}: {e}")
+                rows.append({"mesh": os.path.basename(path), "points": args.points, "seed": seed, "method": label,
+                             "failed": str(e)})
+                print(f"| {os.path.basename(path)} | {args.points} | {seed} | {label} | failed: {e} |", flush=True)
+                continue
+            comps, closed, euler = topology(recon)
+            mean, p99, worst = distances(truth, recon, diagonal, seed)
+            ours = label.startswith("hermite")
+            row = {"mesh": os.path.basename(path), "points": args.points, "seed": seed, "method": label,
+                   "resolution": args.resolution if ours else None,
+                   "chord_tolerance": (args.chord_tolerance if args.chord_tolerance is not None else "default")
+                   if ours else None,
+                   "settings": args.set if ours else None,
+                   "time_s": elapsed, "components": comps, "closed": closed,
+                   "euler": euler, "truth_euler": truth_euler,
+                   "mean_pct": mean, "p99_pct": p99, "max_vertex_pct": worst, **extra}
+            rows.append(row)
+            print(f"| {row['mesh']} | {args.points} | {seed} | {label} | {elapsed:.1f} | {comps} | "
+                  f"{'yes' if closed else 'no'} | {euler} ({truth_euler}) | {mean:.3f} | {p99:.3f} | {worst:.3f} |",
+                  flush=True)
+
+
+# What "no worse than Poisson" compares, per (mesh, seed): smaller is better, to the printed digits.
+TALLY = [("time_s", "time", 1), ("mean_pct", "mean", 3), ("p99_pct", "p99", 3), ("max_vertex_pct", "max vertex", 3)]
+
+
+def tally(rows):
+    """Per criterion, on how many (mesh, seed) pairs ours is no worse than Poisson, with the losses."""
+    pairs = {}
+    for r in rows:
+        if "failed" not in r:
+            pairs.setdefault((r["mesh"], r["seed"]), {})["ours" if r["method"].startswith("hermite") else "poisson"] = r
+    pairs = {k: v for k, v in pairs.items() if len(v) == 2}
+    if not pairs:
+        return
+    print(f"\nours against Poisson over {len(pairs)} (mesh, seed) pairs:")
+    closed = [k for k, v in pairs.items() if not (v["ours"]["closed"] and v["ours"]["components"] == 1)]
+    print(f"  one closed piece: {len(pairs) - len(closed)} of {len(pairs)}" +
+          (f"; not: {', '.join(f'{m} seed {s}' for m, s in closed)}" if closed else ""))
+    for key, label, digits in TALLY:
+        lost = [(k, v) for k, v in pairs.items() if round(v["ours"][key], digits) > round(v["poisson"][key], digits)]
+        line = f"  {label} no larger: {len(pairs) - len(lost)} of {len(pairs)}"
+        if lost:
+            line += "; larger: " + ", ".join(f"{m} seed {s} ({v['ours'][key]:.{digits}f} / {v['poisson'][key]:.{digits}f})"
+                                            for (m, s), v in lost)
+        print(line)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--lab", default="build/release/hermite-lab")
@@ -162,55 +229,26 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--chord-tolerance", type=float, default=None)
     ap.add_argument("--seed", type=int, default=17)
+    ap.add_argument("--seeds", help="comma-separated sampling seeds, each mesh sampled once per seed (replaces --seed)")
     ap.add_argument("--no-poisson", action="store_true")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="passed to `mesh --set` (repeatable), e.g. fit.partition.max_points_per_box=30")
     ap.add_argument("--json", help="also write the rows as JSON here")
     args = ap.parse_args()
+    seeds = [int(s) for s in args.seeds.split(",")] if args.seeds else [args.seed]
 
     rows, failures = [], []
-    print("| mesh | N | method | time s | comps | closed | χ (truth) | mean % | p99 % | max vert % |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+    print("| mesh | N | seed | method | time s | comps | closed | χ (truth) | mean % | p99 % | max vert % |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for name in args.meshes.split(","):
-        path, truth = load_truth(name)
-        lo, hi = truth.get_min_bound(), truth.get_max_bound()
-        diagonal = float(np.linalg.norm(hi - lo))
-        pcd = sample_oriented(truth, args.points, args.seed)
-        truth_euler = topology(truth)[2]
-        with tempfile.TemporaryDirectory() as work:
-            methods = [("hermite-lab PU", lambda: run_lab(args.lab, pcd, args.resolution, args.threads, work,
-                                                                args.chord_tolerance, args.set))]
-            if not args.no_poisson:
-                methods.append(("poisson depth 8", lambda: run_poisson(pcd, 8)))
-            for label, run in methods:
-                try:
-                    recon, elapsed, extra = run()
-                except MethodFailed as e:
-                    failures.append(f"{os.path.basename(path)}, {label}: {e}")
-                    rows.append({"mesh": os.path.basename(path), "points": args.points, "method": label,
-                                 "failed": str(e)})
-                    print(f"| {os.path.basename(path)} | {args.points} | {label} | failed: {e} |", flush=True)
-                    continue
-                comps, closed, euler = topology(recon)
-                mean, p99, worst = distances(truth, recon, diagonal, args.seed)
-                row = {"mesh": os.path.basename(path), "points": args.points, "method": label,
-                       "resolution": args.resolution if label.startswith("hermite") else None,
-                       "chord_tolerance": (args.chord_tolerance if args.chord_tolerance is not None else "default")
-                       if label.startswith("hermite") else None,
-                       "settings": args.set if label.startswith("hermite") else None,
-                       "time_s": elapsed, "components": comps, "closed": closed,
-                       "euler": euler, "truth_euler": truth_euler,
-                       "mean_pct": mean, "p99_pct": p99, "max_vertex_pct": worst, **extra}
-                rows.append(row)
-                print(f"| {row['mesh']} | {args.points} | {label} | {elapsed:.1f} | {comps} | "
-                      f"{'yes' if closed else 'no'} | {euler} ({truth_euler}) | {mean:.3f} | {p99:.3f} | {worst:.3f} |",
-                      flush=True)
+        for seed in seeds:
+            bench_mesh(name, seed, args, rows, failures)
+    tally(rows)
     if args.json:
         with open(args.json, "w") as f:
             json.dump(rows, f, indent=1)
     if failures:
         sys.exit("failed:\n  " + "\n  ".join(failures))
-
 
 if __name__ == "__main__":
     main()
