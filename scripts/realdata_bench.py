@@ -215,8 +215,8 @@ def tally(rows):
         lost = [(k, v) for k, v in pairs.items() if round(v["ours"][key], digits) > round(v["poisson"][key], digits)]
         line = f"  {label} no larger: {len(pairs) - len(lost)} of {len(pairs)}"
         if lost:
-            line += "; larger: " + ", ".join(f"{m} seed {s} ({v['ours'][key]:.{digits}f} / {v['poisson'][key]:.{digits}f})"
-                                            for (m, s), v in lost)
+            line += "; larger: " + ", ".join(
+                f"{m} seed {s} ({v['ours'][key]:.{digits}f} / {v['poisson'][key]:.{digits}f})" for (m, s), v in lost)
         print(line)
 
 
