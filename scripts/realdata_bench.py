@@ -209,7 +209,7 @@ def tally(rows):
         return
     print(f"\nours against Poisson over {len(pairs)} (mesh, seed) pairs:")
     closed = [k for k, v in pairs.items() if not (v["ours"]["closed"] and v["ours"]["components"] == 1)]
-    print(f"  one closed piece: {len(pairs) - len(closed)} of {len(pairs)}" +
+    print(f"  ours one closed piece: {len(pairs) - len(closed)} of {len(pairs)}" +
           (f"; not: {', '.join(f'{m} seed {s}' for m, s in closed)}" if closed else ""))
     for key, label, digits in TALLY:
         lost = [(k, v) for k, v in pairs.items() if round(v["ours"][key], digits) > round(v["poisson"][key], digits)]
@@ -218,6 +218,14 @@ def tally(rows):
             line += "; larger: " + ", ".join(
                 f"{m} seed {s} ({v['ours'][key]:.{digits}f} / {v['poisson'][key]:.{digits}f})" for (m, s), v in lost)
         print(line)
+
+
+def seed_list(text):
+    """--seeds: comma-separated integers."""
+    try:
+        return [int(s) for s in text.split(",")]
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}' is not a comma-separated list of integers")
 
 
 def main():
@@ -229,13 +237,14 @@ def main():
     ap.add_argument("--threads", type=int, default=0)
     ap.add_argument("--chord-tolerance", type=float, default=None)
     ap.add_argument("--seed", type=int, default=17)
-    ap.add_argument("--seeds", help="comma-separated sampling seeds, each mesh sampled once per seed (replaces --seed)")
+    ap.add_argument("--seeds", type=seed_list, metavar="S1,S2,...",
+                    help="sampling seeds, each mesh sampled once per seed (replaces --seed)")
     ap.add_argument("--no-poisson", action="store_true")
     ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
                     help="passed to `mesh --set` (repeatable), e.g. fit.partition.max_points_per_box=30")
     ap.add_argument("--json", help="also write the rows as JSON here")
     args = ap.parse_args()
-    seeds = [int(s) for s in args.seeds.split(",")] if args.seeds else [args.seed]
+    seeds = args.seeds or [args.seed]
 
     rows, failures = [], []
     print("| mesh | N | seed | method | time s | comps | closed | χ (truth) | mean % | p99 % | max vert % |")
