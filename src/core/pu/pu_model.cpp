@@ -100,10 +100,26 @@ SupportLimits supportLimits(const PuOptions& options) {
 // nor reaches far over the surface.
 constexpr char kCover = 2;
 
+// A box's support that ends just short of a sharp edge, or of the far side of a part thinner
+// than the support, holds the samples of one face only: its fit carries that face on past the
+// edge, where the box still weighs, and the blend bulges there (docs/maths.md, "Samples across an
+// edge"). So the fit of a box holding samples whose normals spread beyond kEdgeSpreadCos of their
+// mean is checked against the samples in a shell kEdgeShell beyond its support (a quarter of the
+// box per side): those whose normal makes more than kEdgeAngleCos with the fit's gradient, at a
+// place where the box weighs at least kEdgeWeight a spacing inside its support, join its samples
+// and the box is fitted once more. Smooth blend only (the hard blend uses each fit in its box).
+constexpr double kEdgeShell = 0.5;
+constexpr double kEdgeSpreadCos = 0.866;  // 30°: boxes on smooth parts are not checked
+constexpr double kEdgeAngleCos = 0.7;     // 46°
+constexpr double kEdgeWeight = 0.2;       // of the bump's peak 1
+// At most this share of the support-sample limit joins a refit (checkLocalFitMemory counts it).
+constexpr double kEdgeAddedShare = 0.5;
+
 // Per-thread scratch of the local fits, reused from box to box.
 template <int Dim>
 struct LeafScratch {
   int node = 0;              // the leaf's tree node (where the support queries start)
+  std::vector<int> shell;    // samples of the shell beyond the support (refitAcrossEdges)
   std::vector<int> pos;      // the support's samples, as positions in the tree's order
   std::vector<int> idx;      // the same samples' indices, ascending (the local fit's order)
   std::vector<double> dist;  // their reach (the support factor that just holds each)
@@ -117,9 +133,12 @@ class LeafFitter {
  public:
   using Leaf = typename PuModel<Dim>::Leaf;
 
+  // `reach`: the samples' data reach (their spacings), or null for the hard blend (no edge check).
   LeafFitter(const HermiteSamples<Dim>& samples, const PuTree<Dim>& tree, const PuOptions& options,
-             const HrbfOptions& local, SupportLimits limits, const std::vector<char>& kind)
-      : samples_(samples), tree_(tree), options_(options), local_(local), limits_(limits), kind_(kind) {}
+             const HrbfOptions& local, SupportLimits limits, const std::vector<char>& kind,
+             const PuDataReach<Dim>* reach)
+      : samples_(samples), tree_(tree), options_(options), local_(local), limits_(limits), kind_(kind),
+        reach_(reach) {}
 
   const CancelToken* cancel() const { return local_.cancel; }
   // Fits leaf i; throws NumericalError when its system stays singular after growing.
@@ -159,6 +178,7 @@ class LeafFitter {
         leaf.support = scaledBox<Dim>(box, s);
         leaf.factor = s;
         leaf.samples = k;
+        if (!cover && reach_) refitAcrossEdges(box, leaf, report, scratch);
         return;
       } catch (const NumericalError& e) {
         if (cover) return unblend();
@@ -193,6 +213,58 @@ class LeafFitter {
       narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), scratch);
     }
     return s;
+  }
+
+  // The edge check above kEdgeShell (scratch.pos: the fitted samples): adds the disagreeing shell
+  // samples to scratch.pos and fits again; a refit that fails keeps the first fit.
+  void refitAcrossEdges(const Box<Dim>& box, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
+    std::vector<int>& pos = scratch.pos;
+    if (!normalsSpread(pos)) return;
+    tree_.positionsInBox(scaledBox<Dim>(box, leaf.factor + kEdgeShell), scratch.shell, scratch.node);
+    const std::size_t fitted = pos.size(), most = fitted + static_cast<std::size_t>(kEdgeAddedShare * limits_.max);
+    for (int j : scratch.shell)
+      if (pos.size() < most && !leaf.support.contains(tree_.sortedPoints().col(j)) && disagrees(leaf, j))
+        pos.push_back(j);
+    if (pos.size() == fitted) return;
+    sampleIndices(pos, scratch.idx);
+    gatherSamples(scratch.idx, scratch.sub);
+    FitReport again;
+    try {
+      leaf.model = fitPuLocal<Dim>(scratch.sub, local_, again);
+    } catch (const NumericalError&) {
+      return;  // the first fit stays (fitPuLocal threw before assigning)
+    }
+    report = std::move(again);
+    leaf.samples = static_cast<int>(pos.size());
+  }
+
+  // Whether the normals of the samples at positions `pos` spread beyond kEdgeSpreadCos of their mean.
+  bool normalsSpread(const std::vector<int>& pos) const {
+    const auto normal = [&](int j) { return samples_.normals.col(tree_.order()[static_cast<std::size_t>(j)]); };
+    Vec<Dim> mean = Vec<Dim>::Zero();
+    for (int j : pos) mean += normal(j);
+    mean.normalize();
+    for (int j : pos)
+      if (!(mean.dot(normal(j)) >= kEdgeSpreadCos)) return true;
+    return false;
+  }
+
+  // Whether the shell sample at position j (outside the leaf's support) has a normal more than
+  // kEdgeAngleCos from the leaf's fit's gradient, and the box weighs at least kEdgeWeight a spacing
+  // (dₖ, its data reach over c) inside the support from it.
+  bool disagrees(const Leaf& leaf, int j) const {
+    const Box<Dim>& support = leaf.support;
+    const Vec<Dim> y = tree_.sortedPoints().col(j);
+    Vec<Dim> inside = y.cwiseMax(support.lo).cwiseMin(support.hi);
+    const Vec<Dim> toCentre = support.center() - inside;
+    const double spacing = reach_->radiusAt(j) / reach_->factor();
+    if (toCentre.norm() > 0) inside += std::min(spacing, toCentre.norm()) * toCentre.normalized();
+    const bool frozen[Dim] = {};
+    if (bump<Dim>(support, inside, frozen, nullptr, nullptr) < kEdgeWeight) return false;
+    const int i = tree_.order()[static_cast<std::size_t>(j)];
+    Vec<Dim> g;
+    leaf.model.evaluate(samples_.points.col(i), &g);
+    return g.dot(samples_.normals.col(i)) < kEdgeAngleCos * g.norm();
   }
 
   // scratch.pos ← the samples `query` holds, given those `previous` holds. When query lies inside
@@ -249,6 +321,7 @@ class LeafFitter {
   const HrbfOptions& local_;
   SupportLimits limits_;
   const std::vector<char>& kind_;  // per leaf: 0 not blended, 1 blended, kCover
+  const PuDataReach<Dim>* reach_;
 };
 
 // Which leaves the blend uses (docs/maths.md, "No data"). Smooth blend: the boxes holding
@@ -406,12 +479,13 @@ void refineCover(PuTree<Dim>& tree, const PuDataReach<Dim>& reach, std::vector<c
 }
 
 // Refuses (MemoryLimitError) a PU fit whose local fits, one per thread at once, need more memory
-// than is available: each holds a system of at most min(n, limits.max) samples, as the
-// in-process path (kernel block and saddle matrix: 2 square matrices) or fitHrbf's, plus each
-// thread's BLAS buffer when the fits themselves reach kUncheckedBytes.
+// than is available: each holds a system of at most min(n, limits.max · (1 + kEdgeAddedShare))
+// samples, as the in-process path (kernel block and saddle matrix: 2 square matrices) or
+// fitHrbf's, plus each thread's BLAS buffer when the fits themselves reach kUncheckedBytes.
 template <int Dim>
 void checkLocalFitMemory(int samples, const SupportLimits& limits, const HrbfOptions& local) {
-  const std::int64_t k = std::min<std::int64_t>(samples, limits.max);
+  const auto most = static_cast<std::int64_t>(limits.max) + static_cast<std::int64_t>(kEdgeAddedShare * limits.max);
+  const std::int64_t k = std::min<std::int64_t>(samples, most);  // a refit across an edge adds to the limit
   const std::int64_t m = monomialCount<Dim>(local.polynomial);
   const std::int64_t unknowns = k * (Dim + 1) + m;
   const SolverChoice path =
@@ -1033,7 +1107,8 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   HrbfOptions local = options.local;
   local.kernel.radius *= frame.q;
   checkLocalFitMemory<Dim>(n, limits, local);
-  fitLeaves<Dim>(LeafFitter<Dim>(samples, tree, options, local, limits, blended), leaves, reports);
+  const PuDataReach<Dim>* reach = dataReach.empty() ? nullptr : &dataReach;
+  fitLeaves<Dim>(LeafFitter<Dim>(samples, tree, options, local, limits, blended, reach), leaves, reports);
   if (report) {
     *report = summariseFits<Dim>(tree, leaves, reports, options, local);
     report->treeMs = treeMs;

@@ -86,7 +86,9 @@ class PuModel : public ImplicitField<Dim> {
   struct Leaf {
     Box<Dim> support;     // in frame coordinates: the leaf box scaled by `factor` about its centre
     double factor = 1.5;  // overlap, or more for a grown support, or less (≥ the floor) for a capped one
-    int samples = 0;      // samples in the support (the local fit's data); 0 when not fitted
+    // The local fit's samples: those in the support, and beside a sharp edge the few beyond it
+    // that the first fit disagreed with (pu_model.cpp, refitAcrossEdges); 0 when not fitted.
+    int samples = 0;
     // Whether the leaf is blended: its box holds samples or borders one that does (pu_model.cpp,
     // blendedLeaves; the hard blend uses every leaf). f has no data where no blended support reaches.
     bool blended = true;
