@@ -170,9 +170,8 @@ class LeafFitter {
     }
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
     for (int attempt = 0;; ++attempt) {
-      sampleIndices(pos, scratch.idx);
+      gatherPositions(scratch);
       const int k = static_cast<int>(pos.size());
-      gatherSamples(scratch.idx, scratch.sub);
       try {
         leaf.model = fitPuLocal<Dim>(scratch.sub, local_, report);
         leaf.support = scaledBox<Dim>(box, s);
@@ -226,8 +225,7 @@ class LeafFitter {
       if (pos.size() < most && !leaf.support.contains(tree_.sortedPoints().col(j)) && disagrees(leaf, j))
         pos.push_back(j);
     if (pos.size() == fitted) return;
-    sampleIndices(pos, scratch.idx);
-    gatherSamples(scratch.idx, scratch.sub);
+    gatherPositions(scratch);
     FitReport again;
     try {
       leaf.model = fitPuLocal<Dim>(scratch.sub, local_, again);
@@ -280,12 +278,15 @@ class LeafFitter {
     pos.erase(std::remove_if(pos.begin(), pos.end(), [&](int j) { return !query.contains(Y.col(j)); }), pos.end());
   }
 
-  // The sample indices of the positions pos, ascending: the local fit's data in the order of the
-  // samples, whatever the order of the tree walk.
-  void sampleIndices(const std::vector<int>& pos, std::vector<int>& idx) const {
+  // scratch.sub ← the samples at the positions scratch.pos, by ascending sample index (scratch.idx):
+  // the local fit's data in the order of the samples, whatever the order of the tree walk.
+  void gatherPositions(LeafScratch<Dim>& scratch) const {
+    const std::vector<int>& pos = scratch.pos;
+    std::vector<int>& idx = scratch.idx;
     idx.resize(pos.size());
     for (std::size_t j = 0; j < pos.size(); ++j) idx[j] = tree_.order()[static_cast<std::size_t>(pos[j])];
     std::sort(idx.begin(), idx.end());
+    gatherSamples(idx, scratch.sub);
   }
 
   // The support factor just large enough for the `rank`-th nearest of the samples in
