@@ -104,16 +104,21 @@ constexpr char kCover = 2;
 // than the support, holds the samples of one face only: its fit carries that face on past the
 // edge, where the box still weighs, and the blend bulges there (docs/maths.md, "Samples across an
 // edge"). So the fit of a box holding samples whose normals spread beyond kEdgeSpreadCos of their
-// mean is checked against the samples in a shell kEdgeShell beyond its support (a quarter of the
-// box per side): those whose normal makes more than kEdgeAngleCos with the fit's gradient, at a
-// place where the box weighs at least kEdgeWeight a spacing inside its support, join its samples
-// and the box is fitted once more. Smooth blend only (the hard blend uses each fit in its box).
+// mean is checked against the samples in a shell beyond its support (a quarter of the box's
+// longest edge per side, edgeShell): those whose normal makes more than kEdgeAngleCos with the
+// fit's gradient, at a place where the box weighs at least kEdgeWeight a spacing inside its
+// support, join its samples and the box is fitted once more. Smooth blend only (the hard blend
+// uses each fit in its box).
 constexpr double kEdgeShell = 0.5;
 constexpr double kEdgeSpreadCos = 0.866;  // 30°: boxes on smooth parts are not checked
 constexpr double kEdgeAngleCos = 0.7;     // 46°
 constexpr double kEdgeWeight = 0.2;       // of the bump's peak 1
 // At most this share of the support-sample limit joins a refit (checkLocalFitMemory counts it).
 constexpr double kEdgeAddedShare = 0.5;
+// A cover box whose nearest limits.min samples spread beyond kEdgeSpreadCos lies beside a crease:
+// so few samples of two faces fit a surface that bends between them, off both where the box weighs
+// (docs/maths.md, "Samples across an edge"). It fits this many times limits.min instead.
+constexpr double kCoverCreaseShare = 2.0;
 
 // Per-thread scratch of the local fits, reused from box to box.
 template <int Dim>
@@ -156,9 +161,9 @@ class LeafFitter {
     std::vector<int>& pos = scratch.pos;
     const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
     double s = initialFactor(box, cover ? 1.0 : 0.5 * (1.0 + options_.overlap), scratch);
-    // A cover box fits its nearest few samples; one whose support cannot stay small (samples at
-    // one L∞ distance: a box off a flat cloud reaches a whole square of it) or whose fit fails is
-    // left out, not grown: it only widens where f has a value.
+    // A cover box fits its nearest few samples (more beside a crease: widenCover); one whose
+    // support cannot stay small (samples at one L∞ distance: a box off a flat cloud reaches a whole
+    // square of it) or whose fit fails is left out, not grown: it only widens where f has a value.
     if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
       const int want = std::min(limits_.min, n);
       if (static_cast<int>(pos.size()) > want) {
@@ -166,6 +171,7 @@ class LeafFitter {
         s = factorReaching(box, want, 1.0, scratch);
         narrowSamples(scaledBox<Dim>(box, before), scaledBox<Dim>(box, s), scratch);
       }
+      if (normalsSpread(pos)) s = widenCover(box, s, scratch);
       if (static_cast<int>(pos.size()) > 4 * want) return unblend();
     }
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
@@ -214,12 +220,28 @@ class LeafFitter {
     return s;
   }
 
+  // The support factor of a cover box beside a crease (kCoverCreaseShare, above), from its factor
+  // `s` holding its nearest limits.min samples (scratch.pos): grown until it holds kCoverCreaseShare
+  // times as many (at most limits.max), then just reaching that many; scratch.pos ← its samples.
+  double widenCover(const Box<Dim>& box, double s, LeafScratch<Dim>& scratch) const {
+    const int want = std::min(static_cast<int>(std::ceil(kCoverCreaseShare * limits_.min)), limits_.max);
+    if (want > samples_.size() || static_cast<int>(scratch.pos.size()) >= want) return s;
+    double grown = s;
+    while (static_cast<int>(scratch.pos.size()) < want) {
+      grown *= options_.growth;
+      tree_.positionsInBox(scaledBox<Dim>(box, grown), scratch.pos, scratch.node);
+    }
+    const double reach = factorReaching(box, want, s, scratch);
+    narrowSamples(scaledBox<Dim>(box, grown), scaledBox<Dim>(box, reach), scratch);
+    return reach;
+  }
+
   // The edge check above kEdgeShell (scratch.pos: the fitted samples): adds the disagreeing shell
   // samples to scratch.pos and fits again; a refit that fails keeps the first fit.
   void refitAcrossEdges(const Box<Dim>& box, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     std::vector<int>& pos = scratch.pos;
     if (!normalsSpread(pos)) return;
-    tree_.positionsInBox(scaledBox<Dim>(box, leaf.factor + kEdgeShell), scratch.shell, scratch.node);
+    tree_.positionsInBox(edgeShell(box, leaf.support), scratch.shell, scratch.node);
     const std::size_t fitted = pos.size(), most = fitted + static_cast<std::size_t>(kEdgeAddedShare * limits_.max);
     for (int j : scratch.shell)
       if (pos.size() < most && !leaf.support.contains(tree_.sortedPoints().col(j)) && disagrees(leaf, j))
@@ -234,6 +256,13 @@ class LeafFitter {
     }
     report = std::move(again);
     leaf.samples = static_cast<int>(pos.size());
+  }
+
+  // The support grown by ½·kEdgeShell of the box's longest edge on every side: a box thin along an
+  // axis looks as far beyond its support along it as along the others.
+  static Box<Dim> edgeShell(const Box<Dim>& box, const Box<Dim>& support) {
+    const Vec<Dim> pad = Vec<Dim>::Constant(0.5 * kEdgeShell * box.extent().maxCoeff());
+    return Box<Dim>{support.lo - pad, support.hi + pad};
   }
 
   // Whether the normals of the samples at positions `pos` spread beyond kEdgeSpreadCos of their mean.
