@@ -206,13 +206,7 @@ class LeafFitter {
     tree_.positionsInBox(scaledBox<Dim>(box, s), pos, scratch.node);
     const int want = std::min(limits_.min, samples_.size());
     if (static_cast<int>(pos.size()) < want) {
-      while (static_cast<int>(pos.size()) < want) {
-        s *= options_.growth;
-        tree_.positionsInBox(scaledBox<Dim>(box, s), pos, scratch.node);
-      }
-      const double grown = s;
-      s = factorReaching(box, want, options_.overlap, scratch);
-      narrowSamples(scaledBox<Dim>(box, grown), scaledBox<Dim>(box, s), scratch);
+      s = grownToHold(box, s, want, scratch);
     } else if (static_cast<int>(pos.size()) > limits_.max) {
       s = factorReaching(box, limits_.max, floor, scratch);
       narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), scratch);
@@ -226,6 +220,13 @@ class LeafFitter {
   double widenCover(const Box<Dim>& box, double s, LeafScratch<Dim>& scratch) const {
     const int want = std::min(static_cast<int>(std::ceil(kCoverCreaseShare * limits_.min)), limits_.max);
     if (want > samples_.size() || static_cast<int>(scratch.pos.size()) >= want) return s;
+    return grownToHold(box, s, want, scratch);
+  }
+
+  // The support factor s (its samples in scratch.pos, fewer than `want` ≤ the sample count) grown
+  // by options.growth steps until the support holds `want` samples, then just reaching the
+  // want-th nearest, not below s; scratch.pos ← the samples it holds.
+  double grownToHold(const Box<Dim>& box, double s, int want, LeafScratch<Dim>& scratch) const {
     double grown = s;
     while (static_cast<int>(scratch.pos.size()) < want) {
       grown *= options_.growth;
