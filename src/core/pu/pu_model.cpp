@@ -146,6 +146,13 @@ class LeafFitter {
         reach_(reach) {}
 
   const CancelToken* cancel() const { return local_.cancel; }
+  // The samples the support of blended leaf i would hold before its fit (initialFactor; a box
+  // holding samples or a blended empty one, not a cover box).
+  int supportSamples(int i, LeafScratch<Dim>& scratch) const {
+    scratch.node = tree_.leaves()[static_cast<std::size_t>(i)];
+    initialFactor(tree_.leafBox(i), supportFloor(), scratch);
+    return static_cast<int>(scratch.pos.size());
+  }
   // Fits leaf i; throws NumericalError when its system stays singular after growing.
   void fit(int i, Leaf& leaf, FitReport& report, LeafScratch<Dim>& scratch) const {
     const Box<Dim>& box = tree_.leafBox(i);
@@ -160,7 +167,7 @@ class LeafFitter {
     if (!leaf.blended) return unblend();
     std::vector<int>& pos = scratch.pos;
     const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
-    double s = initialFactor(box, cover ? 1.0 : 0.5 * (1.0 + options_.overlap), scratch);
+    double s = initialFactor(box, cover ? 1.0 : supportFloor(), scratch);
     // A cover box fits its nearest few samples (more beside a crease: widenCover); one whose
     // support cannot stay small (samples at one L∞ distance: a box off a flat cloud reaches a whole
     // square of it) or whose fit fails is left out, not grown: it only widens where f has a value.
@@ -198,6 +205,9 @@ class LeafFitter {
   }
 
  private:
+  // The least support factor of a box that is not a cover box: halfway between the box and the overlap.
+  double supportFloor() const { return 0.5 * (1.0 + options_.overlap); }
+
   // The support factor of a box, its samples in scratch.pos: the overlap, grown until the
   // support holds limits.min samples, or shrunk (not below the floor) to hold at most limits.max.
   double initialFactor(const Box<Dim>& box, double floor, LeafScratch<Dim>& scratch) const {
@@ -362,36 +372,91 @@ class LeafFitter {
 // a margin of about one box beyond the data, so the cells of a coarser mesh across the surface
 // still have data at every corner, without the far extrapolations of big empty boxes. Each is
 // fitted on its own support (borrowing a neighbour's fit instead extrapolates that fit a whole box
-// and grows sheets). Hard blend: every leaf.
+// and grows sheets). Hard blend: every leaf. blendedEmptyLeaf answers for one empty leaf.
+template <int Dim>
+bool blendedEmptyLeaf(const PuTree<Dim>& tree, int i, double overlap) {
+  const auto& nodes = tree.nodes();
+  const Box<Dim>& b = tree.leafBox(i);
+  // A relative 1e-9 for rounding (edges are powers-of-two fractions of the root's).
+  const double edge = (1.0 - 1e-9) * b.extent().maxCoeff();
+  bool near = false;
+  int stack[64 * PuTree<Dim>::kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0 && !near) {
+    const auto& nd = nodes[stack[--top]];
+    if (nd.begin == nd.end || !boxesIntersect<Dim>(nd.box, b)) continue;
+    if (nd.firstChild >= 0) {
+      for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
+    } else {
+      near = 2.0 * nd.box.extent().maxCoeff() >= edge;
+    }
+  }
+  return near && tree.countInBox(scaledBox<Dim>(b, overlap), 1, tree.leaves()[static_cast<std::size_t>(i)]) >= 1;
+}
+
 template <int Dim>
 std::vector<char> blendedLeaves(const PuTree<Dim>& tree, PuBlend blend, double overlap) {
   const int n = tree.leafCount();
   std::vector<char> out(static_cast<std::size_t>(n), 1);
   if (blend == PuBlend::Hard) return out;
-  const auto& nodes = tree.nodes();
 #pragma omp parallel for schedule(dynamic, 64)
-  for (int i = 0; i < n; ++i) {
-    if (tree.leafSampleCount(i) > 0) continue;
-    const Box<Dim>& b = tree.leafBox(i);
-    // A relative 1e-9 for rounding (edges are powers-of-two fractions of the root's).
-    const double edge = (1.0 - 1e-9) * b.extent().maxCoeff();
-    bool near = false;
-    int stack[64 * PuTree<Dim>::kChildren];
-    int top = 0;
-    stack[top++] = 0;
-    while (top > 0 && !near) {
-      const auto& nd = nodes[stack[--top]];
-      if (nd.begin == nd.end || !boxesIntersect<Dim>(nd.box, b)) continue;
-      if (nd.firstChild >= 0) {
-        for (int ch = 0; ch < PuTree<Dim>::kChildren; ++ch) stack[top++] = nd.firstChild + ch;
-      } else {
-        near = 2.0 * nd.box.extent().maxCoeff() >= edge;
+  for (int i = 0; i < n; ++i)
+    if (tree.leafSampleCount(i) == 0) out[static_cast<std::size_t>(i)] = blendedEmptyLeaf<Dim>(tree, i, overlap);
+  return out;
+}
+
+// A blended empty box may be twice as wide as the data box it touches, itself many spacings wide
+// where few samples fall in it (a box that clips a face's corner). Beside a large face parallel to
+// one of its sides, its support reaches the face at one L∞ distance: shrinking it to hold
+// limits.max samples (initialFactor) either keeps the whole square of the face it meets or nothing,
+// and its local fit takes hundreds of samples at (4k + 4)³/3 flops. Such boxes are split (into
+// empty children, classified afresh by blendedEmptyLeaf) until none is left; children reach the
+// face from closer, by a smaller square. Boxes whose support at the overlap holds at most
+// limits.max are not tested: they keep it, or grow to reach limits.min. Smooth blend only.
+template <int Dim>
+void splitCrowdedBlended(PuTree<Dim>& tree, std::vector<char>& blended, const PuOptions& options,
+                         const LeafFitter<Dim>& fitter, const SupportLimits& limits) {
+  if (options.blend != PuBlend::Smooth) return;
+  std::vector<char> byNode(tree.nodes().size(), 0);  // blended, by node id (ids survive splits)
+  for (int i = 0; i < tree.leafCount(); ++i)
+    byNode[static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)])] = blended[static_cast<std::size_t>(i)];
+  std::size_t firstNode = 0;  // a leaf tested once keeps its answer: later passes test the new ones
+  for (int pass = 0; pass < 32; ++pass) {
+    throwIfCancelled(fitter.cancel());
+    const int n = tree.leafCount();
+    std::vector<char> crowded(static_cast<std::size_t>(n), 0);
+#pragma omp parallel
+    {
+      LeafScratch<Dim> scratch;
+#pragma omp for schedule(dynamic, 64)
+      for (int i = 0; i < n; ++i) {
+        const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
+        if (node < firstNode || !byNode[node] || tree.leafSampleCount(i) > 0) continue;
+        // Cheap first: a support at the overlap holding at most limits.max samples stays, or grows
+        // to its nearest limits.min (more only where many lie at one distance: a few boxes).
+        const Box<Dim> support = scaledBox<Dim>(tree.leafBox(i), options.overlap);
+        if (tree.countInBox(support, limits.max, static_cast<int>(node)) <= limits.max) continue;
+        crowded[static_cast<std::size_t>(i)] = fitter.supportSamples(i, scratch) > limits.max ? 1 : 0;
       }
     }
-    near = near && tree.countInBox(scaledBox<Dim>(b, overlap), 1, tree.leaves()[static_cast<std::size_t>(i)]) >= 1;
-    out[static_cast<std::size_t>(i)] = near ? 1 : 0;
+    std::vector<int> split;
+    for (int i = 0; i < n; ++i)
+      if (crowded[static_cast<std::size_t>(i)]) split.push_back(i);
+    firstNode = tree.nodes().size();
+    if (!split.empty()) tree.splitEmptyLeaves(split);
+    if (tree.leafCount() == n) break;  // none crowded, or every one at the tree's depth limit
+    byNode.resize(tree.nodes().size(), 0);
+    const int m = tree.leafCount();
+#pragma omp parallel for schedule(dynamic, 64)
+    for (int i = 0; i < m; ++i) {
+      const auto node = static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)]);
+      if (node >= firstNode) byNode[node] = blendedEmptyLeaf<Dim>(tree, i, options.overlap);
+    }
   }
-  return out;
+  blended.resize(static_cast<std::size_t>(tree.leafCount()));
+  for (int i = 0; i < tree.leafCount(); ++i)
+    blended[static_cast<std::size_t>(i)] = byNode[static_cast<std::size_t>(tree.leaves()[static_cast<std::size_t>(i)])];
 }
 
 // Squared distance between two boxes (0 when they meet).
@@ -1091,6 +1156,22 @@ double PuModel<Dim>::lipschitzBound(const Box<Dim>& box) const {
   return (1.0 + 1e-12) * ((sumGF + fMax * sumG) / sMin + lMax);
 }
 
+namespace {
+
+// The tree's options of a PU fit (pu_tree.h).
+PuTreeOptions treeOptionsOf(const PuOptions& options, const SupportLimits& limits) {
+  PuTreeOptions tree;
+  tree.maxPointsPerBox = options.maxPointsPerBox;
+  tree.boxSize = options.boxSize;
+  tree.maxSupportSamples = limits.max;
+  tree.overlap = options.overlap;
+  tree.splitEmpty = options.blend == PuBlend::Hard;
+  tree.cancel = options.local.cancel;
+  return tree;
+}
+
+}  // namespace
+
 template <int Dim>
 PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options, PuReport* report,
                    const Similarity<Dim>& frame) {
@@ -1109,16 +1190,13 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   }
   const Points<Dim>& frameY = identity ? samples.points : Y;
   const SupportLimits limits = supportLimits<Dim>(options);
-  PuTreeOptions treeOptions;
-  treeOptions.maxPointsPerBox = options.maxPointsPerBox;
-  treeOptions.boxSize = options.boxSize;
-  treeOptions.maxSupportSamples = limits.max;
-  treeOptions.overlap = options.overlap;
-  treeOptions.splitEmpty = options.blend == PuBlend::Hard;
-  treeOptions.cancel = options.local.cancel;
-  PuTree<Dim> tree(frameY, treeOptions);
+  PuTree<Dim> tree(frameY, treeOptionsOf(options, limits));
   PuDataReach<Dim> dataReach;
   std::vector<char> blended = blendedLeaves<Dim>(tree, options.blend, options.overlap);
+  HrbfOptions local = options.local;
+  local.kernel.radius *= frame.q;
+  const LeafFitter<Dim> sizer(samples, tree, options, local, limits, blended, nullptr);  // supports only
+  splitCrowdedBlended<Dim>(tree, blended, options, sizer, limits);
   if (options.blend == PuBlend::Smooth) {
     // Normals in frame coordinates: y = R⁻¹(x − t)/q turns directions by R⁻¹ = Rᵀ.
     Points<Dim> frameN;
@@ -1135,8 +1213,6 @@ PuModel<Dim> fitPu(const HermiteSamples<Dim>& samples, const PuOptions& options,
   blendReachCover<Dim>(tree, dataReach, blended);
   throwIfCancelled(options.local.cancel);
   for (std::size_t i = 0; i < leafCount; ++i) leaves[i].blended = blended[i] != 0;
-  HrbfOptions local = options.local;
-  local.kernel.radius *= frame.q;
   checkLocalFitMemory<Dim>(n, limits, local);
   const PuDataReach<Dim>* reach = dataReach.empty() ? nullptr : &dataReach;
   fitLeaves<Dim>(LeafFitter<Dim>(samples, tree, options, local, limits, blended, reach), leaves, reports);

@@ -36,7 +36,8 @@ struct PuOptions {
   double growth = 1.5;          // > 1: factor a too-sparse support grows by per step
   // A box whose support holds more than this many samples (0 = automatic: 3·maxPointsPerBox, at
   // least minSamples) is split further (pu_tree.h); where that cannot help (depth limit) the
-  // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2. Solves
+  // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2; a blended
+  // empty box whose support still holds more is split (smooth blend, pu_model.cpp). Solves
   // cost O(samples³): why 3· and not 6· or 2·, supportLimits in pu_model.cpp.
   int maxSupportSamples = 0;
   // c of the data reach (pu_data_reach.h; scene key `fit.partition.data_reach`): the smooth

@@ -35,7 +35,8 @@ struct PuTreeOptions {
   int maxSupportSamples = 0;
   double overlap = 1.5;
   // Whether the support rule splits empty boxes too: the hard blend fits every box; the smooth
-  // blend fits only boxes holding samples, so splitting empty ones would only add boxes.
+  // blend fits only the empty boxes beside the data, and splits those crowded itself
+  // (pu_model.cpp, splitCrowdedBlended).
   bool splitEmpty = true;
   // Polled every few hundred splits (Cancelled); a million samples take seconds to subdivide.
   const CancelToken* cancel = nullptr;

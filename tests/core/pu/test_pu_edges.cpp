@@ -104,3 +104,25 @@ TEST_CASE("pu: the contour of a thin sampled plate stays within half a spacing o
     CHECK(worstVertex(sampledBox(n, half, seed), half, 130) < 0.5 * spacing);
   }
 }
+
+TEST_CASE("pu: an empty box beside a large face fits no more samples than the support limit") {
+  // A flat box sampled on its faces: octree boxes beside its large faces are empty, up to twice as
+  // wide as the data boxes they touch, and reach a face at one L∞ distance, where their supports
+  // take hundreds of its samples at once.
+  const Vec<3> half(1, 1, 0.3);
+  const HermiteSamples<3> samples = sampledBox(20000, half, 1);
+  PuOptions options;
+  options.local.kernel.type = KernelType::Cubic;
+  options.local.polynomial = Polynomial::Linear;
+  const PuModel<3> model = fitPu<3>(samples, options);
+  const int limit = 3 * options.maxPointsPerBox;  // the automatic support limit (PuOptions)
+  int fitted = 0, most = 0;
+  for (int i = 0; i < model.tree().leafCount(); ++i) {
+    const auto& leaf = model.leaves()[static_cast<std::size_t>(i)];
+    if (!leaf.blended || model.tree().leafSampleCount(i) > 0) continue;
+    ++fitted;
+    most = std::max(most, leaf.samples);
+  }
+  CHECK(fitted > 1000);
+  CHECK(most <= limit);
+}
