@@ -78,6 +78,9 @@ struct CompactQ {
   Eigen::MatrixXd V, T;
 };
 
+// A vector of at most m entries, on the stack.
+using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxMonomials<3>, 1>;
+
 CompactQ compactQ(const Eigen::HouseholderQR<Eigen::MatrixXd>& qr) {
   const Eigen::Index m = qr.matrixQR().cols();
   CompactQ q;
@@ -91,8 +94,8 @@ CompactQ compactQ(const Eigen::HouseholderQR<Eigen::MatrixXd>& qr) {
   for (Eigen::Index i = 0; i < m; ++i) {
     q.T(i, i) = tau(i);
     if (i == 0) continue;
-    const Eigen::VectorXd w = q.V.leftCols(i).transpose() * q.V.col(i);
-    const Eigen::VectorXd Tw = q.T.topLeftCorner(i, i).triangularView<Eigen::Upper>() * w;
+    const SmallVector w = q.V.leftCols(i).transpose() * q.V.col(i);
+    const SmallVector Tw = q.T.topLeftCorner(i, i).triangularView<Eigen::Upper>() * w;
     q.T.col(i).head(i) = -tau(i) * Tw;
   }
   return q;

@@ -141,12 +141,12 @@ Eigen::Matrix<double, Dim + 1, Dim + 1> hrbfBlock(const Kernel& kernel, const Ve
 }
 
 template <int Dim>
-Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p) {
+HrbfPolynomialRows<Dim> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p) {
   const int m = monomialCount<Dim>(polynomial);
-  Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> rows(Dim + 1, m);
+  HrbfPolynomialRows<Dim> rows(Dim + 1, m);
   if (m == 0) return rows;
-  Eigen::VectorXd q(m);
-  Eigen::Matrix<double, Dim, Eigen::Dynamic> gq(Dim, m);
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxMonomials<Dim>, 1> q(m);
+  Eigen::Matrix<double, Dim, Eigen::Dynamic, 0, Dim, kMaxMonomials<Dim>> gq(Dim, m);
   monomials<Dim>(polynomial, p, q, gq);
   rows.row(0) = q.transpose();
   rows.bottomRows(Dim) = gq;
@@ -210,8 +210,8 @@ HrbfModel<Dim> fitHrbfAbout(const HermiteSamples<Dim>& samples, const HrbfOption
 
 template Eigen::Matrix<double, 3, 3> hrbfBlock<2>(const Kernel&, const Vec<2>&);
 template Eigen::Matrix<double, 4, 4> hrbfBlock<3>(const Kernel&, const Vec<3>&);
-template Eigen::Matrix<double, 3, Eigen::Dynamic> hrbfPolynomialRows<2>(Polynomial, const Vec<2>&);
-template Eigen::Matrix<double, 4, Eigen::Dynamic> hrbfPolynomialRows<3>(Polynomial, const Vec<3>&);
+template HrbfPolynomialRows<2> hrbfPolynomialRows<2>(Polynomial, const Vec<2>&);
+template HrbfPolynomialRows<3> hrbfPolynomialRows<3>(Polynomial, const Vec<3>&);
 template SaddleSystem assembleHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&);
 template SaddleSystem assembleHrbf<3>(const HermiteSamples<3>&, const HrbfOptions&);
 template HrbfModel<2> fitHrbf<2>(const HermiteSamples<2>&, const HrbfOptions&, FitReport*);

@@ -71,9 +71,11 @@ template <int Dim>
 Eigen::Matrix<double, Dim + 1, Dim + 1> hrbfBlock(const Kernel& kernel, const Vec<Dim>& d);
 
 // The Dim + 1 rows of the polynomial block P for the conditions at p: monomial values, then
-// their gradients (Dim + 1 × monomialCount).
+// their gradients (Dim + 1 × monomialCount), on the stack.
 template <int Dim>
-Eigen::Matrix<double, Dim + 1, Eigen::Dynamic> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p);
+using HrbfPolynomialRows = Eigen::Matrix<double, Dim + 1, Eigen::Dynamic, 0, Dim + 1, kMaxMonomials<Dim>>;
+template <int Dim>
+HrbfPolynomialRows<Dim> hrbfPolynomialRows(Polynomial polynomial, const Vec<Dim>& p);
 
 // Fits the HRBF to validated samples. Throws NumericalError when no solver path succeeds or the
 // coefficients are not finite; warnings (order, conditioning, fallback) go to the report.

@@ -30,6 +30,11 @@ constexpr int monomialCount(Polynomial p) {
   return 0;
 }
 
+// The most monomials a polynomial term has in Dim variables (quadratic): the fixed capacity of the
+// small per-sample matrices below, which then live on the stack.
+template <int Dim>
+inline constexpr int kMaxMonomials = monomialCount<Dim>(Polynomial::Quadratic);
+
 // Values (m), gradients (Dim × m) and, for the Hessian of p, nothing else is needed per monomial.
 template <int Dim>
 void monomials(Polynomial p, const Vec<Dim>& x, Eigen::Ref<Eigen::VectorXd> values,
