@@ -167,19 +167,19 @@ class LeafFitter {
     if (!leaf.blended) return unblend();
     std::vector<int>& pos = scratch.pos;
     const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
-    double s = initialFactor(box, cover ? 1.0 : supportFloor(), scratch);
+    double s = 1.0;
     // A cover box fits its nearest few samples (more beside a crease: widenCover); one whose
     // support cannot stay small (samples at one L∞ distance: a box off a flat cloud reaches a whole
     // square of it) or whose fit fails is left out, not grown: it only widens where f has a value.
     if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
       const int want = std::min(limits_.min, n);
-      if (static_cast<int>(pos.size()) > want) {
-        const double before = s;
-        s = factorReaching(box, want, 1.0, scratch);
-        narrowSamples(scaledBox<Dim>(box, before), scaledBox<Dim>(box, s), scratch);
-      }
+      // The support at the overlap stays when it holds just the fewest, else it just reaches them.
+      const bool more = tree_.countInBox(scaledBox<Dim>(box, options_.overlap), want, scratch.node) > want;
+      s = nearestSupport(box, want, more ? 1.0 : options_.overlap, scratch);
       if (normalsSpread(pos)) s = widenCover(box, s, scratch);
       if (static_cast<int>(pos.size()) > 4 * want) return unblend();
+    } else {
+      s = initialFactor(box, supportFloor(), scratch);
     }
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
     for (int attempt = 0;; ++attempt) {
@@ -230,8 +230,22 @@ class LeafFitter {
   double widenCover(const Box<Dim>& box, double s, LeafScratch<Dim>& scratch) const {
     const int want = std::min(static_cast<int>(std::ceil(kCoverCreaseShare * limits_.min)), limits_.max);
     if (want > samples_.size() || static_cast<int>(scratch.pos.size()) >= want) return s;
-    return grownToHold(box, s, want, scratch);
+    return nearestSupport(box, want, s, scratch);
   }
+
+  // The support factor just reaching the `want`-th nearest sample (≤ the sample count), but at
+  // least `floor`; scratch.pos ← the samples it holds: the support grownToHold finds, without
+  // its walks of growing boxes.
+  double nearestSupport(const Box<Dim>& box, int want, double floor, LeafScratch<Dim>& scratch) const {
+    const double s = reachingFactor(tree_.kthScaledDistance(box, want), floor);
+    tree_.positionsInBox(scaledBox<Dim>(box, s), scratch.pos, scratch.node);
+    return s;
+  }
+
+  // The support factor holding a sample at scaled L∞ distance d, but at least `floor`: a relative
+  // 1e-9 beyond the sample, so rounding of the scaled box cannot drop it (its weight there, ~1e-26,
+  // is negligible).
+  static double reachingFactor(double d, double floor) { return std::max(floor, d * (1.0 + 1e-9)); }
 
   // The support factor s (its samples in scratch.pos, fewer than `want` ≤ the sample count) grown
   // by options.growth steps until the support holds `want` samples, then just reaching the
@@ -340,9 +354,7 @@ class LeafFitter {
     for (std::size_t j = 0; j < scratch.pos.size(); ++j)
       dist[j] = ((Y.col(scratch.pos[j]) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
     std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
-    // A relative 1e-9 beyond the sample: rounding of the scaled box cannot drop it (its weight
-    // there, ~1e-26, is negligible).
-    return std::max(floor, dist[rank - 1] * (1.0 + 1e-9));
+    return reachingFactor(dist[rank - 1], floor);
   }
 
   // The samples idx (points and normals, in that order) as the local fit's data.

@@ -1,6 +1,8 @@
 #include "core/pu/pu_tree.h"
 
 #include <algorithm>
+#include <array>
+#include <limits>
 #include <numeric>
 #include <string>
 
@@ -9,6 +11,8 @@
 namespace hermite {
 
 namespace {
+
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 // Child ch of a box split at c: bit k of ch picks the upper half along axis k.
 template <int Dim>
@@ -301,6 +305,41 @@ void PuTree<Dim>::positionsInBox(const Box<Dim>& query, std::vector<int>& out, i
       },
       [] { return false; });
   out.resize(size);
+}
+
+template <int Dim>
+double PuTree<Dim>::kthScaledDistance(const Box<Dim>& box, int k) const {
+  const Vec<Dim> c = box.center();
+  const Vec<Dim> invH = (0.5 * box.extent()).cwiseInverse();
+  thread_local std::vector<double> best;  // the k smallest so far, ascending
+  best.clear();
+  const auto bound = [&] { return static_cast<int>(best.size()) < k ? kInfinity : best.back(); };
+  const auto nodeDistance = [&](int id) {  // no sample of the node lies nearer
+    const Box<Dim>& b = nodes_[static_cast<std::size_t>(id)].box;
+    return ((b.lo - c).cwiseMax(c - b.hi).cwiseMax(0.0).cwiseProduct(invH)).maxCoeff();
+  };
+  int stack[64 * kChildren];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const int id = stack[--top];
+    const Span& sp = spans_[static_cast<std::size_t>(id)];
+    if (sp.begin == sp.end || nodeDistance(id) > bound()) continue;
+    if (sp.firstChild >= 0) {  // the nearest child on top
+      std::array<std::pair<double, int>, kChildren> order;
+      for (int ch = 0; ch < kChildren; ++ch) order[ch] = {nodeDistance(sp.firstChild + ch), sp.firstChild + ch};
+      std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+      for (const auto& [d, child] : order) stack[top++] = child;
+      continue;
+    }
+    for (int j = sp.begin; j < sp.end; ++j) {
+      const double d = ((sorted_.col(j) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
+      if (static_cast<int>(best.size()) == k && !(d < best.back())) continue;
+      if (static_cast<int>(best.size()) == k) best.pop_back();
+      best.insert(std::upper_bound(best.begin(), best.end(), d), d);
+    }
+  }
+  return bound();
 }
 
 template class PuTree<2>;

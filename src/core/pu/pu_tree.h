@@ -85,6 +85,11 @@ class PuTree {
   // sample in `query` lies in that node — so a query about a leaf skips the walk down from the
   // root; the samples and their order are those of a walk from the root.
   void positionsInBox(const Box<Dim>& query, std::vector<int>& out, int near = 0) const;
+  // The k-th smallest of the samples' scaled L∞ distances maxₖ |yₖ − cₖ| / hₖ from the centre c
+  // of `box` (half-extents h): `box` scaled about c by that factor just holds its k nearest
+  // samples. +∞ when the tree holds fewer than k (k ≥ 1). A nearest-first walk that skips nodes
+  // farther than the k-th distance found so far.
+  double kthScaledDistance(const Box<Dim>& box, int k) const;
   // How many samples lie in `query`, counting stops above `limit`.
   int countInBox(const Box<Dim>& query, int limit, int near = 0) const;
   // The nearest ancestor of node `near` (itself included) whose box holds `query` strictly

@@ -1,8 +1,10 @@
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
+#include <vector>
 
 #include "core/base/errors.h"
 #include "core/pu/pu_model.h"
@@ -49,6 +51,24 @@ TEST_CASE("pu: the tree follows max_points_per_box and box_size, leaves tile the
     const auto& nd = tree.node(tree.leaves()[i]);
     for (int j = nd.begin; j < nd.end; ++j) CHECK(tree.locateLeaf(s.points.col(tree.order()[j])) == i);
   }
+}
+
+TEST_CASE("pu: the tree's k-th scaled distance from a box is the k-th of all samples' distances") {
+  std::mt19937 rng(5);
+  Points<3> P(3, 3000);
+  for (int i = 0; i < P.cols(); ++i) P.col(i) = randomIn<3>(rng, Box<3>{Vec<3>::Zero(), Vec<3>(1, 0.5, 0.25)});
+  const PuTree<3> tree(P, {20, 0.0});
+  for (int q = 0; q < 50; ++q) {
+    const Vec<3> c = randomIn<3>(rng, Box<3>{Vec<3>::Constant(-0.2), Vec<3>::Constant(1.2)});
+    const Vec<3> h(0.01 + 0.1 * q / 50.0, 0.02, 0.05);
+    const Box<3> box{c - h, c + h};
+    std::vector<double> d;
+    for (int i = 0; i < P.cols(); ++i) d.push_back(((P.col(i) - c).cwiseAbs().cwiseProduct(h.cwiseInverse())).maxCoeff());
+    std::sort(d.begin(), d.end());
+    for (int k : {1, 8, 16, 100})
+      CHECK(tree.kthScaledDistance(box, k) == doctest::Approx(d[static_cast<std::size_t>(k - 1)]).epsilon(1e-14));
+  }
+  CHECK(tree.kthScaledDistance(tree.root(), 3001) == std::numeric_limits<double>::infinity());
 }
 
 TEST_CASE("pu: weights sum to one where there is data, and the fit interpolates") {
