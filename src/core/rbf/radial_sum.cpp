@@ -260,12 +260,13 @@ template <int Dim>
 void RadialSum<Dim>::buildSoA() {
   const int n = static_cast<int>(centres_.cols());
   padded_ = (n + kPad - 1) / kPad * kPad;
-  soa_.assign(2 * Dim + 1, std::vector<double>(padded_, 0.0));
+  soa_.assign(static_cast<std::size_t>(2 * Dim + 1) * padded_, 0.0);
+  const auto at = [&](int row, int j) -> double& { return soa_[static_cast<std::size_t>(row) * padded_ + j]; };
   for (int j = 0; j < n; ++j) {
-    for (int k = 0; k < Dim; ++k) soa_[k][j] = centres_(k, j);
-    soa_[Dim][j] = alpha_(j);
+    for (int k = 0; k < Dim; ++k) at(k, j) = centres_(k, j);
+    at(Dim, j) = alpha_(j);
     if (hasBeta())
-      for (int k = 0; k < Dim; ++k) soa_[Dim + 1 + k][j] = beta_(k, j);
+      for (int k = 0; k < Dim; ++k) at(Dim + 1 + k, j) = beta_(k, j);
   }
 }
 
@@ -308,10 +309,10 @@ template <int Dim>
 void RadialSum<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
   f.resize(X.cols());
   if (G) G->resize(Dim, X.cols());
-  BatchTerms<Dim> t{kernel_, polynomial_, &poly_, polyOrigin_, {}, {}, soa_[Dim].data(), padded_, hasBeta()};
+  BatchTerms<Dim> t{kernel_, polynomial_, &poly_, polyOrigin_, {}, {}, soa(Dim), padded_, hasBeta()};
   for (int k = 0; k < Dim; ++k) {
-    t.c[k] = soa_[k].data();
-    t.bc[k] = t.beta ? soa_[Dim + 1 + k].data() : nullptr;
+    t.c[k] = soa(k);
+    t.bc[k] = t.beta ? soa(Dim + 1 + k) : nullptr;
   }
 #if defined(__AVX512F__)
   if (fusedBatchKernel<Dim>(t, X, f, G)) return;
@@ -347,15 +348,15 @@ double RadialSum<Dim>::lipschitzBound(const Box<Dim>& box) const {
     // sup|φ′| = 3 hi², sup‖Hφ‖ = 6 hi. One vectorised pass over the SoA centres (padding
     // centres have zero coefficients).
     const bool beta = hasBeta();
-    const double* al = soa_[Dim].data();
+    const double* al = soa(Dim);
     double lo[Dim], hi[Dim];
     const double* c[Dim];
     const double* bc[Dim];
     for (int k = 0; k < Dim; ++k) {
       lo[k] = box.lo(k);
       hi[k] = box.hi(k);
-      c[k] = soa_[k].data();
-      bc[k] = beta ? soa_[Dim + 1 + k].data() : soa_[k].data();
+      c[k] = soa(k);
+      bc[k] = beta ? soa(Dim + 1 + k) : soa(k);
     }
     double sumA = 0.0, sumB = 0.0;
 #pragma omp simd reduction(+ : sumA, sumB)

@@ -47,8 +47,10 @@ class RadialSum : public ImplicitField<Dim> {
   Eigen::VectorXd poly_;
   Vec<Dim> polyOrigin_ = Vec<Dim>::Zero();
   // Structure-of-arrays copies padded to a multiple of 8 (padding: zero coefficients) for the
-  // vectorised loops: soa_[k] holds coordinate k of every centre, soa_[Dim] α, soa_[Dim+1+k] βₖ.
-  std::vector<std::vector<double>> soa_;
+  // vectorised loops, in one buffer of 2·Dim + 1 rows of padded_ entries: soa(k) holds coordinate
+  // k of every centre, soa(Dim) α, soa(Dim + 1 + k) βₖ.
+  const double* soa(int row) const { return soa_.data() + static_cast<std::size_t>(row) * padded_; }
+  std::vector<double> soa_;
   int padded_ = 0;
 };
 
