@@ -63,7 +63,8 @@ TEST_CASE("pu: the tree's k-th scaled distance from a box is the k-th of all sam
     const Vec<3> h(0.01 + 0.1 * q / 50.0, 0.02, 0.05);
     const Box<3> box{c - h, c + h};
     std::vector<double> d;
-    for (int i = 0; i < P.cols(); ++i) d.push_back(((P.col(i) - c).cwiseAbs().cwiseProduct(h.cwiseInverse())).maxCoeff());
+    for (int i = 0; i < P.cols(); ++i)
+      d.push_back(((P.col(i) - c).cwiseAbs().cwiseProduct(h.cwiseInverse())).maxCoeff());
     std::sort(d.begin(), d.end());
     for (int k : {1, 8, 16, 100})
       CHECK(tree.kthScaledDistance(box, k) == doctest::Approx(d[static_cast<std::size_t>(k - 1)]).epsilon(1e-14));
