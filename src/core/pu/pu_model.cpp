@@ -167,20 +167,11 @@ class LeafFitter {
     if (!leaf.blended) return unblend();
     std::vector<int>& pos = scratch.pos;
     const bool cover = kind_[static_cast<std::size_t>(i)] == kCover;
-    double s = 1.0;
-    // A cover box fits its nearest few samples (more beside a crease: widenCover); one whose
-    // support cannot stay small (samples at one L∞ distance: a box off a flat cloud reaches a whole
-    // square of it) or whose fit fails is left out, not grown: it only widens where f has a value.
-    if (cover) {  // the fewest samples a local fit takes: it only has to give f a value there
-      const int want = std::min(limits_.min, n);
-      // The support at the overlap stays when it holds just the fewest, else it just reaches them.
-      const bool more = tree_.countInBox(scaledBox<Dim>(box, options_.overlap), want, scratch.node) > want;
-      s = nearestSupport(box, want, more ? 1.0 : options_.overlap, scratch);
-      if (normalsSpread(pos)) s = widenCover(box, s, scratch);
-      if (static_cast<int>(pos.size()) > 4 * want) return unblend();
-    } else {
-      s = initialFactor(box, supportFloor(), scratch);
-    }
+    double s = cover ? coverSupport(box, scratch) : initialFactor(box, supportFloor(), scratch);
+    // A cover box whose support cannot stay small (samples at one L∞ distance: a box off a flat
+    // cloud reaches a whole square of it) or whose fit fails is left out, not grown: it only widens
+    // where f has a value.
+    if (cover && static_cast<int>(pos.size()) > 4 * std::min(limits_.min, n)) return unblend();
     // A singular local system (e.g. collinear samples under a quadratic term) grows too.
     for (int attempt = 0;; ++attempt) {
       gatherPositions(scratch);
@@ -222,6 +213,16 @@ class LeafFitter {
       narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), scratch);
     }
     return s;
+  }
+
+  // The support factor of a cover box, its samples in scratch.pos: its nearest limits.min samples
+  // (the fewest a local fit takes: it only has to give f a value there), more beside a crease
+  // (widenCover). The support at the overlap stays when it holds just that many.
+  double coverSupport(const Box<Dim>& box, LeafScratch<Dim>& scratch) const {
+    const int want = std::min(limits_.min, samples_.size());
+    const bool more = tree_.countInBox(scaledBox<Dim>(box, options_.overlap), want, scratch.node) > want;
+    const double s = nearestSupport(box, want, more ? 1.0 : options_.overlap, scratch);
+    return normalsSpread(scratch.pos) ? widenCover(box, s, scratch) : s;
   }
 
   // The support factor of a cover box beside a crease (kCoverCreaseShare, above), from its factor
