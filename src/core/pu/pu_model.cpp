@@ -199,15 +199,15 @@ class LeafFitter {
   // The least support factor of a box that is not a cover box: halfway between the box and the overlap.
   double supportFloor() const { return 0.5 * (1.0 + options_.overlap); }
 
-  // The support factor of a box, its samples in scratch.pos: the overlap, grown until the
-  // support holds limits.min samples, or shrunk (not below the floor) to hold at most limits.max.
+  // The support factor of a box, its samples in scratch.pos: the overlap, grown just enough for
+  // the support to hold limits.min samples, or shrunk (not below the floor) to hold at most limits.max.
   double initialFactor(const Box<Dim>& box, double floor, LeafScratch<Dim>& scratch) const {
     std::vector<int>& pos = scratch.pos;
     double s = options_.overlap;
     tree_.positionsInBox(scaledBox<Dim>(box, s), pos, scratch.node);
     const int want = std::min(limits_.min, samples_.size());
     if (static_cast<int>(pos.size()) < want) {
-      s = grownToHold(box, s, want, scratch);
+      s = nearestSupport(box, want, s, scratch);
     } else if (static_cast<int>(pos.size()) > limits_.max) {
       s = factorReaching(box, limits_.max, floor, scratch);
       narrowSamples(scaledBox<Dim>(box, options_.overlap), scaledBox<Dim>(box, s), scratch);
@@ -226,8 +226,8 @@ class LeafFitter {
   }
 
   // The support factor of a cover box beside a crease (kCoverCreaseShare, above), from its factor
-  // `s` holding its nearest limits.min samples (scratch.pos): grown until it holds kCoverCreaseShare
-  // times as many (at most limits.max), then just reaching that many; scratch.pos ← its samples.
+  // `s` holding its nearest limits.min samples (scratch.pos): grown just enough to hold
+  // kCoverCreaseShare times as many (at most limits.max); scratch.pos ← its samples.
   double widenCover(const Box<Dim>& box, double s, LeafScratch<Dim>& scratch) const {
     const int want = std::min(static_cast<int>(std::ceil(kCoverCreaseShare * limits_.min)), limits_.max);
     if (want > samples_.size() || static_cast<int>(scratch.pos.size()) >= want) return s;
@@ -235,8 +235,8 @@ class LeafFitter {
   }
 
   // The support factor just reaching the `want`-th nearest sample (≤ the sample count), but at
-  // least `floor`; scratch.pos ← the samples it holds: the support grownToHold finds, without
-  // its walks of growing boxes.
+  // least `floor`; scratch.pos ← the samples it holds. One nearest-first walk of the tree and one
+  // query of that support (not walks of supports grown step by step until they hold enough).
   double nearestSupport(const Box<Dim>& box, int want, double floor, LeafScratch<Dim>& scratch) const {
     const double s = reachingFactor(tree_.kthScaledDistance(box, want), floor);
     tree_.positionsInBox(scaledBox<Dim>(box, s), scratch.pos, scratch.node);
@@ -247,20 +247,6 @@ class LeafFitter {
   // 1e-9 beyond the sample, so rounding of the scaled box cannot drop it (its weight there, ~1e-26,
   // is negligible).
   static double reachingFactor(double d, double floor) { return std::max(floor, d * (1.0 + 1e-9)); }
-
-  // The support factor s (its samples in scratch.pos, fewer than `want` ≤ the sample count) grown
-  // by options.growth steps until the support holds `want` samples, then just reaching the
-  // want-th nearest, not below s; scratch.pos ← the samples it holds.
-  double grownToHold(const Box<Dim>& box, double s, int want, LeafScratch<Dim>& scratch) const {
-    double grown = s;
-    while (static_cast<int>(scratch.pos.size()) < want) {
-      grown *= options_.growth;
-      tree_.positionsInBox(scaledBox<Dim>(box, grown), scratch.pos, scratch.node);
-    }
-    const double reach = factorReaching(box, want, s, scratch);
-    narrowSamples(scaledBox<Dim>(box, grown), scaledBox<Dim>(box, reach), scratch);
-    return reach;
-  }
 
   // The edge check above kEdgeShell (scratch.pos: the fitted samples): adds the disagreeing shell
   // samples to scratch.pos and fits again; a refit that fails keeps the first fit.
