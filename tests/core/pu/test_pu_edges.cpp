@@ -81,8 +81,8 @@ double worstVertex(const HermiteSamples<3>& samples, const Vec<3>& half, int res
 
 // Beside a sharp edge a box whose support ends just short of it fits one face and carries it on
 // past the edge, where the box still weighs (pu_model.cpp, refitAcrossEdges): at this sampling one
-// such box put a vertex 1.47 spacings off the cube before its fit took the samples across the edge
-// (0.74 after; seeds 1–10 give 0.40–0.86 after).
+// such box put a vertex more than a spacing off the cube before its fit took the samples across the
+// edge (docs/performance.md, "Five samplings of five meshes").
 TEST_CASE("pu: the contour of a sampled cube stays within a spacing of its faces beside the edges") {
   const int n = 20000;
   const double spacing = std::sqrt(24.0 / n);  // the cube's area over the samples
@@ -90,10 +90,10 @@ TEST_CASE("pu: the contour of a sampled cube stays within a spacing of its faces
 }
 
 // A plate 5 spacings thick: its boxes are thin across it, and the empty boxes just off its faces
-// fit their nearest few samples, of two faces beside a rim. Seed 2 put a vertex 1.76 spacings off
-// while the edge check looked only a quarter of the box's thin side beyond its support (0.45 with
-// the shell a quarter of its longest edge, edgeShell); seed 3 0.95 while such an empty box fitted
-// 8 samples there (0.42 with 16, widenCover). Seeds 1–10 give 0.21–0.59 now (0.20–3.84 before).
+// fit their nearest few samples, of two faces beside a rim. Seed 2 strayed more than half a spacing
+// while the edge check looked only a quarter of the box's thin side beyond its support (edgeShell),
+// seed 3 while such an empty box fitted 8 samples there (widenCover); docs/performance.md, "Plates
+// and creases at 20 000 samples".
 TEST_CASE("pu: the contour of a thin sampled plate stays within half a spacing of its faces beside the rims") {
   const int n = 20000;
   const Vec<3> half(1, 1, 0.05);
