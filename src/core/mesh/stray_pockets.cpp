@@ -13,6 +13,7 @@
 #include "core/mesh/marching_grid.h"
 #include "core/mesh/occupied_cells.h"
 #include "core/mesh/winding_guard_field.h"
+#include "core/points/uniform_winding.h"
 
 namespace hermite {
 
@@ -36,7 +37,10 @@ constexpr double kPlaneFar = 0.5;
 // planes. A vertex of a uniformly sampled surface is that far from every sample with probability
 // about e^(−π·1.5²) ≈ 0.001, and its winding number is about ½ there, so it is no stray.
 constexpr double kAloneFar = 1.5;
-constexpr std::size_t kRoughWindingLimit = 64;
+// Up to this many far vertices the rough winding number (every sample standing for A / N) filters
+// them before the samples' winding number is built: the sums cost well under half of that build
+// (docs/performance.md, "Stray review").
+constexpr std::size_t kRoughWindingLimit = 1024;
 // Pieces with more than this share of the mesh's triangles stay whatever their winding number: a
 // stray pocket is small, and a large piece off ½ means samples whose normals disagree (an
 // inconsistently oriented or self-intersecting source), not a pocket.
@@ -59,18 +63,16 @@ std::vector<char> largestPieceVertices(const TriMesh& mesh) {
   return on;
 }
 
-// The winding number at x with every sample standing for the same area (A / N, the contour's
-// area A): no k-nearest-neighbour pass, so a few points cost one sum over the samples each. A
-// filter only: a vertex it calls decided is asked the samples' winding number.
-double roughWinding(const HermiteSamples<3>& samples, double spacing, const Vec<3>& x) {
-  const double eps2 = 0.25 * spacing * spacing;
-  double sum = 0;
-  for (Eigen::Index i = 0; i < samples.points.cols(); ++i) {
-    const Vec<3> q = samples.points.col(i) - x;
-    const double r2 = q.squaredNorm() + eps2;
-    sum += q.dot(samples.normals.col(i)) / (r2 * std::sqrt(r2));
-  }
-  return spacing * spacing * sum / (4 * M_PI);
+// Keeps the entries of `which` (columns of X) whose rough winding number (uniform_winding.h: every
+// sample standing for A / N) is decided: a filter for a few points, before the samples' winding
+// number is built for them.
+void keepRoughlyDecided(const HermiteSamples<3>& samples, double spacing, const Points<3>& X,
+                        std::vector<Eigen::Index>& which) {
+  const std::vector<double> w = uniformAreaWinding(samples, spacing, X, which);
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < which.size(); ++i)
+    if (windingDecided(w[i])) which[kept++] = which[i];
+  which.resize(kept);
 }
 
 // Whether x, with no sample within kNearFar spacings, has none within kAloneFar either or lies on
@@ -99,11 +101,7 @@ bool offTheirPlanes(const HermiteSamples<3>& samples, const OccupiedCells& bySpa
   return nearest2 >= kAloneFar * kAloneFar * spacing * spacing || meanOffset >= kPlaneFar * spacing || outsideOne;
 }
 
-// The columns of X that are off their samples' planes (offTheirPlanes, in parallel) and whose
-// rough winding number is decided (the occupancy's far vertices are not among them); all of them,
-// unfiltered, when they are more than kRoughWindingLimit: then the samples' winding number, built
-// once, is cheaper than a sum over the samples each (CGAL's boeing, whose wings are thinner than
-// the sampling, has thousands).
+// The columns of X that are off their samples' planes (offTheirPlanes, in parallel).
 std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamples<3>& samples,
                                            const OccupiedCells& bySpacing, double spacing) {
   const Eigen::Index n = X.cols();
@@ -118,35 +116,29 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
   std::vector<Eigen::Index> out;
   for (Eigen::Index v = 0; v < n; ++v)
     if (off[static_cast<std::size_t>(v)]) out.push_back(v);
-  if (out.size() > kRoughWindingLimit) return out;  // the samples' winding number is cheaper for so many
-  const int count = static_cast<int>(out.size());
-  std::vector<char> keep(out.size(), 0);  // a sum over every sample each: one point per thread
-#pragma omp parallel for schedule(dynamic, 1)
-  for (int i = 0; i < count; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    keep[k] = windingDecided(roughWinding(samples, spacing, X.col(out[k])));
-  }
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < out.size(); ++i)
-    if (keep[i]) out[kept++] = out[i];
-  out.resize(kept);
   return out;
 }
 
-// Per entry of `which`, whether the winding number at that column of X is decided.
-std::vector<char> decidedAt(const CloudWinding<3>& winding, const Points<3>& X,
-                            const std::vector<Eigen::Index>& which) {
-  const std::vector<double> w = winding.at(Points<3>(X(Eigen::all, which)));
-  std::vector<char> out(w.size());
-  for (std::size_t i = 0; i < w.size(); ++i) out[i] = windingDecided(w[i]);
-  return out;
+// Keeps the entries of `which` (columns of X) where the samples' winding number is decided,
+// `windingOf()` giving it. Up to kRoughWindingLimit of them are first filtered by the rough winding
+// number, so that a few far vertices where that is not decided never build it.
+template <class WindingOf>
+void keepDecided(const HermiteSamples<3>& samples, double spacing, const Points<3>& X,
+                 std::vector<Eigen::Index>& which, WindingOf&& windingOf) {
+  if (which.size() <= kRoughWindingLimit) keepRoughlyDecided(samples, spacing, X, which);
+  if (which.empty()) return;
+  const std::vector<double> w = windingOf().at(Points<3>(X(Eigen::all, which)));
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < which.size(); ++i)
+    if (windingDecided(w[i])) which[kept++] = which[i];
+  which.resize(kept);
 }
 
 // The vertices of the mesh's largest piece far from the samples whose winding number is decided:
 // a pocket joined to the surface (a piece of its own is the piece rule's). Far means the
 // occupancy's test, or off the samples' planes (offPlaneVertices; `bySpacing` holds the samples
 // in cells of one spacing). `windingOf()` gives the winding number; it is called only when some
-// vertex is far (a clean contour never builds it).
+// far vertex passes the rough filter (keepDecided; a clean contour never builds it).
 template <class WindingOf>
 std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& samples, const OccupiedCells& occupied,
                                   const OccupiedCells& bySpacing, double spacing, WindingOf&& windingOf) {
@@ -164,11 +156,9 @@ std::vector<Vec<3>> strayVertices(const TriMesh& mesh, const HermiteSamples<3>& 
   const std::vector<char> main = largestPieceVertices(mesh);
   far.erase(std::remove_if(far.begin(), far.end(), [&](Eigen::Index v) { return !main[static_cast<std::size_t>(v)]; }),
             far.end());
-  if (far.empty()) return {};
-  const std::vector<char> stray = decidedAt(windingOf(), mesh.vertices, far);
+  keepDecided(samples, spacing, mesh.vertices, far, windingOf);
   std::vector<Vec<3>> strays;
-  for (std::size_t i = 0; i < far.size(); ++i)
-    if (stray[i]) strays.push_back(mesh.vertices.col(far[i]));
+  for (Eigen::Index v : far) strays.push_back(mesh.vertices.col(v));
   return strays;
 }
 
@@ -426,13 +416,9 @@ bool StrayTest::appliesTo(const ImplicitField<3>& field, const HermiteSamples<3>
 std::vector<char> StrayTest::operator()(const Points<3>& X) const {
   std::vector<char> out(static_cast<std::size_t>(X.cols()), 0);
   if (!(spacing_ > 0)) return out;
-  const std::vector<Eigen::Index> off = offPlaneVertices(X, samples_, bySpacing_, spacing_);
-  if (off.size() <= kRoughWindingLimit) {  // filtered by the rough winding number already
-    for (Eigen::Index v : off) out[static_cast<std::size_t>(v)] = 1;
-    return out;
-  }
-  const std::vector<char> stray = decidedAt(*winding(), X, off);
-  for (std::size_t i = 0; i < off.size(); ++i) out[static_cast<std::size_t>(off[i])] = stray[i];
+  std::vector<Eigen::Index> off = offPlaneVertices(X, samples_, bySpacing_, spacing_);
+  keepDecided(samples_, spacing_, X, off, [&]() -> const CloudWinding<3>& { return *winding(); });
+  for (Eigen::Index v : off) out[static_cast<std::size_t>(v)] = 1;
   return out;
 }
 

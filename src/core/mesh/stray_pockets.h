@@ -18,6 +18,8 @@
 //     tangent planes of the samples within 2.5 on average (or, on average outside them, half a
 //     spacing outside one), or with none within 1.5 spacings, whose winding number is decided
 //     (above kGuardInside or below kGuardOutside) are strays: a pocket joined to the surface.
+//     Up to 1 024 such far vertices are first filtered by a winding number summed directly
+//     with every sample standing for A / N: only where that decides is the samples' one built.
 //     Only those outside the guard region so far count, with f on the other side of a decided
 //     winding number along their own grid edge or at a corner of the cell-sized cube about them
 //     (else a guard would change nothing).
@@ -60,9 +62,9 @@ inline constexpr double kTipWinding = 0.45;
 // vertices, between the grid's): x is a stray when no sample lies within 1.0 spacing √(A / N) of
 // it (A the contour's area), the samples within 2.5 put it half a spacing or more off their
 // tangent planes on average (or, on average outside them, half a spacing outside one) or none
-// lies within 1.5, and the samples' winding number at x is decided — summed directly, every
-// sample standing for A / N, for up to 64 such points; the samples' winding number when there
-// are more. Only for a field and samples contourWithoutStrays reviews (appliesTo).
+// lies within 1.5, and the samples' winding number at x is decided (up to 1 024 such points are
+// first filtered by a sum over the samples, each standing for A / N, as step 2's far vertices
+// are). Only for a field and samples contourWithoutStrays reviews (appliesTo).
 class StrayTest {
  public:
   // `samples` must outlive the test; `box` is the contour's; `cancel` is polled while the winding
