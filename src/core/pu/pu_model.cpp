@@ -35,6 +35,17 @@ bool isIdentity(const Similarity<3>& T) {
   return T.q == 1.0 && T.t.isZero(0.0) && T.R == Mat<3>::Identity();
 }
 
+// The median longest edge of the blended leaves' supports (frame units); 0 when none is blended.
+template <class Leaf>
+double medianSupportEdge(const std::vector<Leaf>& leaves) {
+  std::vector<double> edges;
+  for (const Leaf& l : leaves)
+    if (l.blended) edges.push_back(l.support.extent().maxCoeff());
+  if (edges.empty()) return 0.0;
+  std::nth_element(edges.begin(), edges.begin() + static_cast<std::ptrdiff_t>(edges.size() / 2), edges.end());
+  return edges[edges.size() / 2];
+}
+
 // The C² bump of one support at y, with ∇ and Hessian in y coordinates when asked; axes in
 // `frozen` (y clamped there) have zero derivatives. Returns 0 outside the support.
 template <int Dim>
@@ -711,6 +722,7 @@ PuModel<Dim>::PuModel(PuTree<Dim> tree, std::vector<Leaf> leaves, const PuOption
     if (l.blended) minFactor_ = std::min(minFactor_, l.factor);
   if (!std::isfinite(minFactor_)) minFactor_ = 1.0;
   noData_ = tree_.nodes().empty() ? 1.0 : frame_.q * tree_.root().extent().norm();
+  typicalSupport_ = medianSupportEdge(leaves_);
   buildReach();
 }
 
@@ -907,7 +919,7 @@ bool PuModel<Dim>::coveredByData(const Box<Dim>& yb) const {
 
 // f (and ∇f) for the smooth blend by runs of kRun consecutive columns of X: callers that care pass
 // neighbouring points next to each other (the mesher's blocks and vertices), so a run's bounding
-// box meets few supports. A run looks its supports up once and evaluates each local fit at the
+// box meets few supports; a run of scattered points (scatteredRun) goes point by point. A run looks its supports up once and evaluates each local fit at the
 // run's points inside its support by the fit's vectorised batch loop (nested in this parallel
 // loop, it runs on the calling thread). Per point the sums are the ones evaluateValid() forms — the
 // same supports in the same order (depth first, as forSupportsAt), N = Σ wᵢ fᵢ, S = Σ wᵢ and their
@@ -1005,6 +1017,24 @@ void PuModel<Dim>::evaluateRun(const Points<Dim>& X, Eigen::Index begin, Eigen::
   }
 }
 
+// A run whose points spread over more than kScatteredSupports typical supports across (along the
+// second-longest axis of their box, in frame units) is scattered: its box meets a large part of the
+// tree, and a walk per point costs less. Rows of a grid and the vertices of a mesh stay runs.
+constexpr double kScatteredSupports = 4.0;
+
+template <int Dim>
+bool PuModel<Dim>::scatteredRun(const Points<Dim>& X, Eigen::Index begin, Eigen::Index count) const {
+  if (count < 2) return false;
+  Vec<Dim> lo = X.col(begin), hi = lo;
+  for (Eigen::Index j = 1; j < count; ++j) {
+    lo = lo.cwiseMin(X.col(begin + j));
+    hi = hi.cwiseMax(X.col(begin + j));
+  }
+  Vec<Dim> extent = (hi - lo) / frame_.q;  // a rotation changes the axes, not much the spread
+  std::sort(extent.data(), extent.data() + Dim);
+  return extent[Dim - 2] > kScatteredSupports * typicalSupport_;
+}
+
 template <int Dim>
 void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Points<Dim>* G) const {
   const Eigen::Index n = X.cols();
@@ -1017,8 +1047,14 @@ void PuModel<Dim>::evaluateBatch(const Points<Dim>& X, Eigen::VectorXd& f, Point
     {
       Scratch sc;
 #pragma omp for schedule(dynamic, 4)
-      for (Eigen::Index r = 0; r < runs; ++r)
-        evaluateRun(X, r * Scratch::kRun, std::min(Scratch::kRun, n - r * Scratch::kRun), f, G, sc);
+      for (Eigen::Index r = 0; r < runs; ++r) {
+        const Eigen::Index begin = r * Scratch::kRun, count = std::min(Scratch::kRun, n - begin);
+        if (!scatteredRun(X, begin, count)) {
+          evaluateRun(X, begin, count, f, G, sc);
+          continue;
+        }
+        for (Eigen::Index j = 0; j < count; ++j) evaluateRun(X, begin + j, 1, f, G, sc);
+      }
     }
     return;
   }

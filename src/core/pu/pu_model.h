@@ -150,6 +150,8 @@ class PuModel : public ImplicitField<Dim> {
   bool anySupportAt(const Vec<Dim>& y, Accept&& accept) const;
   template <class F>
   void forSupportsTouching(const Box<Dim>& b, F&& visit) const;
+  // Whether columns begin … begin + count − 1 of X lie too far apart to share one walk of the tree.
+  bool scatteredRun(const Points<Dim>& X, Eigen::Index begin, Eigen::Index count) const;
   // The world box in frame coordinates: the bounding box of its mapped corners.
   Box<Dim> frameBox(const Box<Dim>& box) const;
   // Every point of the frame box yb lies in the root and in a blended leaf box.
@@ -174,6 +176,7 @@ class PuModel : public ImplicitField<Dim> {
   bool identityFrame_ = true;
   double minFactor_ = 1.0;  // smallest support factor of a data leaf (the weight sum's lower bound needs it)
   double noData_ = 1.0;
+  double typicalSupport_ = 0.0;  // median longest edge of the blended supports (frame units)
 };
 
 // Fits a PU model to validated samples. The tree is built on frame.applyInverse(points) (its

@@ -346,3 +346,43 @@ TEST_CASE("pu: crowded supports split their box; dense samples of a sphere give 
     CHECK(gmax <= L);
   }
 }
+
+TEST_CASE("pu: batch evaluation gives each point the same value in any order, scattered or in rows") {
+  const HermiteSamples<3> s = testing::goldenSphere(3000);
+  PuOptions o;
+  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
+  o.maxPointsPerBox = 20;
+  const PuModel<3> pu = fitPu<3>(s, o);
+  // Rows along x through the sphere (runs that share a walk of the tree), then the same points
+  // shuffled (runs of scattered points, evaluated point by point).
+  const int rows = 50, perRow = 64;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  Points<3> X(3, rows * perRow);
+  for (int r = 0; r < rows; ++r) {
+    const double y = u(rng), z = u(rng);
+    for (int k = 0; k < perRow; ++k) X.col(r * perRow + k) = Vec<3>(-1.2 + 2.4 * k / (perRow - 1), y, z);
+  }
+  std::vector<Eigen::Index> order(static_cast<std::size_t>(X.cols()));
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = static_cast<Eigen::Index>(i);
+  std::shuffle(order.begin(), order.end(), rng);
+  const Points<3> Y = X(Eigen::all, order);
+  Eigen::VectorXd fx, fy;
+  Points<3> gx, gy;
+  pu.evaluateBatch(X, fx, &gx);
+  pu.evaluateBatch(Y, fy, &gy);
+  int differ = 0, far = 0;
+  double worst = 0;
+  for (Eigen::Index k = 0; k < Y.cols(); ++k) {
+    const Eigen::Index i = order[static_cast<std::size_t>(k)];
+    differ += fy(k) != fx(i) || gy.col(k) != gx.col(i);
+    Vec<3> g;
+    const double f = pu.evaluate(X.col(i), &g);
+    worst = std::max(worst, std::abs(f - fx(i)) / (1 + std::abs(f)));
+    far += fx(i) == pu.noDataValue();
+  }
+  CHECK(differ == 0);
+  CHECK(worst < 1e-12);
+  CHECK(far > 0);  // some points have no data, some have
+  CHECK(far < X.cols());
+}
