@@ -37,8 +37,8 @@ struct PuOptions {
   // A box whose support holds more than this many samples (0 = automatic: 3·maxPointsPerBox, at
   // least minSamples) is split further (pu_tree.h); where that cannot help (depth limit) the
   // support shrinks towards its box, though not below the box scaled by (1 + overlap)/2; a blended
-  // empty box whose support still holds more is split (smooth blend, pu_model.cpp). Solves
-  // cost O(samples³): why 3· and not 6· or 2·, supportLimits in pu_model.cpp.
+  // empty box whose support still holds more is split (smooth blend, pu_blended_leaves.h). Solves
+  // cost O(samples³): why 3· and not 6· or 2·, supportLimits in pu_leaf_fitter.h.
   int maxSupportSamples = 0;
   // c of the data reach (pu_data_reach.h; scene key `fit.partition.data_reach`): the smooth
   // blend has data within c·dₖ of a sample, dₖ its distance to the (2·Dim)-th nearest other
@@ -88,9 +88,9 @@ class PuModel : public ImplicitField<Dim> {
     Box<Dim> support;     // in frame coordinates: the leaf box scaled by `factor` about its centre
     double factor = 1.5;  // overlap, or more for a grown support, or less (≥ the floor) for a capped one
     // The local fit's samples: those in the support, and beside a sharp edge the few beyond it
-    // that the first fit disagreed with (pu_model.cpp, refitAcrossEdges); 0 when not fitted.
+    // that the first fit disagreed with (pu_leaf_fitter.h, refitAcrossEdges); 0 when not fitted.
     int samples = 0;
-    // Whether the leaf is blended: its box holds samples or borders one that does (pu_model.cpp,
+    // Whether the leaf is blended: its box holds samples or borders one that does (pu_blended_leaves.h,
     // blendedLeaves; the hard blend uses every leaf). f has no data where no blended support reaches.
     bool blended = true;
     HrbfModel<Dim> model;  // in world coordinates

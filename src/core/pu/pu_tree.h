@@ -36,7 +36,7 @@ struct PuTreeOptions {
   double overlap = 1.5;
   // Whether the support rule splits empty boxes too: the hard blend fits every box; the smooth
   // blend fits only the empty boxes beside the data, and splits those crowded itself
-  // (pu_model.cpp, splitCrowdedBlended).
+  // (pu_blended_leaves.cpp, splitCrowdedBlended).
   bool splitEmpty = true;
   // Polled every few hundred splits (Cancelled); a million samples take seconds to subdivide.
   const CancelToken* cancel = nullptr;

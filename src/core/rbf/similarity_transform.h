@@ -31,6 +31,7 @@ struct Similarity {
   double q = 1.0;                     // uniform scale > 0
   Vec<Dim> apply(const Vec<Dim>& x) const { return q * (R * x) + t; }
   Vec<Dim> applyInverse(const Vec<Dim>& x) const { return R.transpose() * (x - t) / q; }
+  bool isIdentity() const { return q == 1.0 && t.isZero(0.0) && R == Mat<Dim>::Identity(); }
 };
 
 // Points Tpᵢ and normals Rnᵢ.

@@ -80,7 +80,7 @@ double worstVertex(const HermiteSamples<3>& samples, const Vec<3>& half, int res
 }  // namespace
 
 // Beside a sharp edge a box whose support ends just short of it fits one face and carries it on
-// past the edge, where the box still weighs (pu_model.cpp, refitAcrossEdges): at this sampling one
+// past the edge, where the box still weighs (pu_leaf_fitter.h, refitAcrossEdges): at this sampling one
 // such box put a vertex more than a spacing off the cube before its fit took the samples across the
 // edge (docs/performance.md, "Five samplings of five meshes").
 TEST_CASE("pu: the contour of a sampled cube stays within a spacing of its faces beside the edges") {
