@@ -21,6 +21,13 @@ PuOptions options2d(int maxPoints, Kernel kernel = {KernelType::Gaussian, 0.2}, 
   return o;
 }
 
+PuOptions options3d(Kernel kernel, int maxPoints = 20) {
+  PuOptions o;
+  o.local = HrbfOptions{kernel, Polynomial::Linear, 0.0};
+  o.maxPointsPerBox = maxPoints;
+  return o;
+}
+
 template <int Dim>
 Vec<Dim> randomIn(std::mt19937& rng, const Box<Dim>& b) {
   std::uniform_real_distribution<double> u(0, 1);
@@ -245,9 +252,7 @@ TEST_CASE("pu: duplicate and collinear samples inside a box") {
 
 TEST_CASE("pu: the Lipschitz bound holds on boxes") {
   const HermiteSamples<3> s = testing::goldenSphere(300);
-  PuOptions o;
-  o.local = HrbfOptions{{KernelType::Gaussian, 0.5}, Polynomial::Linear, 0.0};
-  o.maxPointsPerBox = 20;
+  const PuOptions o = options3d({KernelType::Gaussian, 0.5});
   const PuModel<3> pu = fitPu<3>(s, o);
   std::mt19937 rng(9);
   const Box<3> domain{Vec<3>::Constant(-1.6), Vec<3>::Constant(1.6)};
@@ -349,10 +354,7 @@ TEST_CASE("pu: crowded supports split their box; dense samples of a sphere give 
 
 TEST_CASE("pu: batch evaluation gives each point the same value in any order, scattered or in rows") {
   const HermiteSamples<3> s = testing::goldenSphere(3000);
-  PuOptions o;
-  o.local = HrbfOptions{{KernelType::Cubic, 1.0}, Polynomial::Linear, 0.0};
-  o.maxPointsPerBox = 20;
-  const PuModel<3> pu = fitPu<3>(s, o);
+  const PuModel<3> pu = fitPu<3>(s, options3d({KernelType::Cubic, 1.0}));
   // Rows along x through the sphere (runs that share a walk of the tree), then the same points
   // shuffled (runs of scattered points, evaluated point by point).
   const int rows = 50, perRow = 64;
