@@ -360,7 +360,7 @@ bool PuModel<Dim>::scatteredRun(const Points<Dim>& X, Eigen::Index begin, Eigen:
     lo = lo.cwiseMin(X.col(begin + j));
     hi = hi.cwiseMax(X.col(begin + j));
   }
-  Vec<Dim> extent = (hi - lo) / frame_.q;  // a rotation changes the axes, not much the spread
+  Vec<Dim> extent = (hi - lo) / frame_.q;  // along the world axes (callers' rows), in frame units
   std::sort(extent.data(), extent.data() + Dim);
   return extent[Dim - 2] > kScatteredSupports * typicalSupport_;
 }
