@@ -285,7 +285,7 @@ class LeafFitter {
     const Points<Dim>& Y = tree_.sortedPoints();
     dist.resize(scratch.pos.size());
     for (std::size_t j = 0; j < scratch.pos.size(); ++j)
-      dist[j] = ((Y.col(scratch.pos[j]) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
+      dist[j] = scaledDistance<Dim>(Y.col(scratch.pos[j]), c, invH);
     std::nth_element(dist.begin(), dist.begin() + (rank - 1), dist.end());
     return reachingFactor(dist[rank - 1], floor);
   }

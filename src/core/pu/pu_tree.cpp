@@ -333,7 +333,7 @@ double PuTree<Dim>::kthScaledDistance(const Box<Dim>& box, int k) const {
       continue;
     }
     for (int j = sp.begin; j < sp.end; ++j) {
-      const double d = ((sorted_.col(j) - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
+      const double d = scaledDistance<Dim>(sorted_.col(j), c, invH);
       if (static_cast<int>(best.size()) == k && !(d < best.back())) continue;
       if (static_cast<int>(best.size()) == k) best.pop_back();
       best.insert(std::upper_bound(best.begin(), best.end(), d), d);

@@ -146,6 +146,14 @@ Box<Dim> scaledBox(const Box<Dim>& b, double factor) {
   return Box<Dim>{c - h, c + h};
 }
 
+// The scaled L∞ distance maxₖ |yₖ − cₖ| / hₖ of y from a box's centre c, given invH = 1 / its
+// half-extents hₖ: the factor by which the box, scaled about c, just reaches y. The one formula
+// of PuTree::kthScaledDistance and of the local fits' support factors, so that they agree bit for bit.
+template <int Dim>
+double scaledDistance(const Vec<Dim>& y, const Vec<Dim>& c, const Vec<Dim>& invH) {
+  return ((y - c).cwiseAbs().cwiseProduct(invH)).maxCoeff();
+}
+
 template <int Dim>
 bool boxesIntersect(const Box<Dim>& a, const Box<Dim>& b) {
   return (a.lo.array() <= b.hi.array()).all() && (b.lo.array() <= a.hi.array()).all();
