@@ -63,12 +63,8 @@ std::vector<char> largestPieceVertices(const TriMesh& mesh) {
   return on;
 }
 
-// Keeps the entries of `which` (columns of X) whose rough winding number (uniform_winding.h: every
-// sample standing for A / N) is decided: a filter for a few points, before the samples' winding
-// number is built for them.
-void keepRoughlyDecided(const HermiteSamples<3>& samples, double spacing, const Points<3>& X,
-                        std::vector<Eigen::Index>& which) {
-  const std::vector<double> w = uniformAreaWinding(samples, spacing, X, which);
+// Keeps the entries of `which` whose winding number w (one per entry, in order) is decided.
+void keepWhereDecided(std::vector<Eigen::Index>& which, const std::vector<double>& w) {
   std::size_t kept = 0;
   for (std::size_t i = 0; i < which.size(); ++i)
     if (windingDecided(w[i])) which[kept++] = which[i];
@@ -121,17 +117,14 @@ std::vector<Eigen::Index> offPlaneVertices(const Points<3>& X, const HermiteSamp
 
 // Keeps the entries of `which` (columns of X) where the samples' winding number is decided,
 // `windingOf()` giving it. Up to kRoughWindingLimit of them are first filtered by the rough winding
-// number, so that a few far vertices where that is not decided never build it.
+// number (uniform_winding.h: every sample standing for A / N), so that a few far vertices where
+// that is not decided never build it.
 template <class WindingOf>
 void keepDecided(const HermiteSamples<3>& samples, double spacing, const Points<3>& X,
                  std::vector<Eigen::Index>& which, WindingOf&& windingOf) {
-  if (which.size() <= kRoughWindingLimit) keepRoughlyDecided(samples, spacing, X, which);
+  if (which.size() <= kRoughWindingLimit) keepWhereDecided(which, uniformAreaWinding(samples, spacing, X, which));
   if (which.empty()) return;
-  const std::vector<double> w = windingOf().at(Points<3>(X(Eigen::all, which)));
-  std::size_t kept = 0;
-  for (std::size_t i = 0; i < which.size(); ++i)
-    if (windingDecided(w[i])) which[kept++] = which[i];
-  which.resize(kept);
+  keepWhereDecided(which, windingOf().at(Points<3>(X(Eigen::all, which))));
 }
 
 // The vertices of the mesh's largest piece far from the samples whose winding number is decided:
